@@ -1,0 +1,201 @@
+"""Ticking trees: a traced tick for display and logging, a compiled tick for replay and learning.
+
+Semantics are the classical memoryless ones of Table 2.2: every tick starts at the root,
+conditions never return RUNNING. ``TickResult.action`` is the first action that returned
+RUNNING during a tick whose root returned RUNNING (an action started under a Parallel that
+then finished is halted at once, so it counts as not run).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence as Seq
+from dataclasses import dataclass
+
+from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
+                            children)
+
+
+def always_running(_action: str) -> Status:
+    """The symbolic world's actions (thesis §5): they run, and their effects show in the next state."""
+    return Status.RUNNING
+
+
+@dataclass(frozen=True, slots=True)
+class TickResult:
+    status: Status
+    action: str | None
+    trace: tuple[tuple[int, Status], ...] = ()
+
+    def statuses(self) -> dict[int, Status]:
+        """uid → status of every node the tick visited."""
+        return dict(self.trace)
+
+
+def tick(root: Node, condition: Callable[[str], bool] | Mapping[str, bool],
+         action: Callable[[str], Status] = always_running) -> TickResult:
+    """Tick once and record every visited node's status (post-order)."""
+    holds = condition.__getitem__ if isinstance(condition, Mapping) else condition
+    trace: list[tuple[int, Status]] = []
+    first_action: list[str] = []
+
+    def run(node: Node) -> Status:
+        if isinstance(node, Condition):
+            status = Status.SUCCESS if holds(node.name) else Status.FAILURE
+        elif isinstance(node, Action):
+            status = action(node.name)
+            if status is Status.RUNNING and not first_action:
+                first_action.append(node.name)
+        elif isinstance(node, Sequence):
+            status = Status.SUCCESS
+            for kid in node.children:
+                status = run(kid)
+                if status is not Status.SUCCESS:
+                    break
+        elif isinstance(node, Fallback):
+            status = Status.FAILURE
+            for kid in node.children:
+                status = run(kid)
+                if status is not Status.FAILURE:
+                    break
+        elif isinstance(node, Inverter):
+            inner = run(node.child)
+            status = {Status.SUCCESS: Status.FAILURE, Status.FAILURE: Status.SUCCESS}.get(inner, inner)
+        elif isinstance(node, Parallel):
+            results = [run(kid) for kid in node.children]
+            status = _parallel_status(results, node.success_threshold)
+        else:  # pragma: no cover - exhaustive over Node
+            raise TypeError(f"not a node: {node!r}")
+        trace.append((node.uid, status))
+        return status
+
+    status = run(root)
+    ran = first_action[0] if first_action and status is Status.RUNNING else None
+    return TickResult(status, ran, tuple(trace))
+
+
+def _parallel_status(results: Seq[Status], threshold: int) -> Status:
+    successes = sum(r is Status.SUCCESS for r in results)
+    failures = sum(r is Status.FAILURE for r in results)
+    if successes >= threshold:
+        return Status.SUCCESS
+    if failures > len(results) - threshold:
+        return Status.FAILURE
+    return Status.RUNNING
+
+
+def tick_state(root: Node, names: Seq[str], state: Seq[bool]) -> TickResult:
+    """Traced tick over a symbolic state given as truth values in ``names`` order."""
+    return tick(root, dict(zip(names, state)))
+
+
+# --- compiled tick -----------------------------------------------------------------------------
+
+_MAX_NESTING = 12  # Python allows 20 statically nested blocks; deeper subtrees become functions
+
+
+class CompiledTree:
+    """A tree compiled once into straight-line Python over state tuples, with a memo table.
+
+    Calling it with a state returns ``(status, action)`` for the symbolic world (actions
+    return RUNNING). The learners and the replay call it millions of times.
+    """
+
+    __slots__ = ("_fn", "_memo", "source", "names")
+
+    def __init__(self, root: Node, names: Seq[str]):
+        self.names = tuple(names)
+        self.source, namespace = _generate(root, {n: i for i, n in enumerate(self.names)})
+        self._fn: Callable[[tuple[bool, ...]], tuple[Status, str | None]] = namespace["tick"]
+        self._memo: dict[tuple[bool, ...], tuple[Status, str | None]] = {}
+
+    def __call__(self, state: tuple[bool, ...]) -> tuple[Status, str | None]:
+        try:
+            return self._memo[state]
+        except KeyError:
+            result = self._memo[state] = self._fn(state)
+            if len(self._memo) > 1 << 20:
+                self._memo.clear()
+            return result
+
+
+def compile_tree(root: Node, names: Seq[str]) -> CompiledTree:
+    return CompiledTree(root, names)
+
+
+def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
+    """Python source for ``tick(s)``: each node leaves its result in ``r`` (True = SUCCESS,
+    False = FAILURE) or returns ``(RUNNING, action)`` at once; ``while True: ... break`` blocks
+    give Sequence/Fallback their early exit without function calls."""
+    namespace: dict = {"RUNNING": Status.RUNNING, "SUCCESS": Status.SUCCESS, "FAILURE": Status.FAILURE}
+    functions: list[str] = []
+    counter = [0]
+
+    def fresh(prefix: str) -> str:
+        counter[0] += 1
+        return f"{prefix}{counter[0]}"
+
+    def constant(value: object, prefix: str) -> str:
+        name = fresh(prefix)
+        namespace[name] = value
+        return name
+
+    def emit(node: Node, pad: str, nesting: int, out: list[str]) -> None:
+        if isinstance(node, Condition):
+            if node.name not in index:
+                raise KeyError(f"the tree tests condition {node.name!r}, which the domain does not have")
+            out.append(f"{pad}r = s[{index[node.name]}]")
+        elif isinstance(node, Action):
+            out.append(f"{pad}return {constant((Status.RUNNING, node.name), '_run')}")
+        elif isinstance(node, Inverter):
+            emit(node.child, pad, nesting, out)
+            out.append(f"{pad}r = not r")
+        elif isinstance(node, (Sequence, Fallback)) and nesting >= _MAX_NESTING:
+            name = function(node)
+            out.append(f"{pad}r = {name}(s)")
+            out.append(f"{pad}if r.__class__ is tuple: return r")
+        elif isinstance(node, (Sequence, Fallback)):
+            stop = "if not r: break" if isinstance(node, Sequence) else "if r: break"
+            out.append(f"{pad}r = {isinstance(node, Sequence)}")
+            out.append(f"{pad}while True:")
+            inner = pad + "    "
+            for kid in node.children:
+                emit(kid, inner, nesting + 1, out)
+                if isinstance(kid, Action):  # it returned: later siblings are unreachable
+                    break
+                out.append(f"{inner}{stop}")
+            else:
+                out.append(f"{inner}break")
+        elif isinstance(node, Parallel):
+            helper = constant(_parallel_helper(node, index), "_par")
+            out.append(f"{pad}r = {helper}(s)")
+            out.append(f"{pad}if r.__class__ is tuple: return r")
+        else:  # pragma: no cover
+            raise TypeError(f"not a node: {node!r}")
+
+    def function(node: Node) -> str:
+        name = fresh("_sub")
+        body: list[str] = [f"def {name}(s):"]
+        emit(node, "    ", 0, body)
+        body.append("    return r")
+        functions.append("\n".join(body))
+        return name
+
+    main: list[str] = ["def tick(s):"]
+    emit(root, "    ", 0, main)
+    main.append("    return (SUCCESS, None) if r else (FAILURE, None)")
+    source = "\n\n".join(functions + ["\n".join(main)]) + "\n"
+    exec(compile(source, "<compiled behaviour tree>", "exec"), namespace)  # noqa: S102 - our own generated code
+    return source, namespace
+
+
+def _parallel_helper(node: Parallel, index: Mapping[str, int]) -> Callable[[tuple[bool, ...]], object]:
+    """Parallel nodes keep ticking after a child runs, so they use the traced tick."""
+    names = sorted(index, key=index.__getitem__)
+
+    def run(state: tuple[bool, ...]) -> object:
+        result = tick(node, dict(zip(names, state)))
+        if result.status is Status.RUNNING:
+            return (Status.RUNNING, result.action)
+        return result.status is Status.SUCCESS
+
+    return run

@@ -1,0 +1,137 @@
+"""Demonstrations in the thesis's CSV format (§5), read with ``file:line`` errors and written atomically.
+
+One file is one demonstration; each line is ``v1;...;vn;A``: the conditions' truth values in
+ID order, then the action observed in that state (0: goal state, -1: external action).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
+from teach.errors import FormatError
+from teach.fsutil import atomic_write_text
+
+
+@dataclass(frozen=True, slots=True)
+class Step:
+    """One CSV line: a state and the action observed in it."""
+
+    state: State
+    action: int
+    line: int = 0
+
+
+@dataclass(frozen=True)
+class Transition:
+    before: State
+    action: int
+    after: State
+
+
+@dataclass(frozen=True)
+class Demonstration:
+    name: str
+    steps: tuple[Step, ...]
+    path: Path | None = None
+
+    @property
+    def reached_goal(self) -> bool:
+        return bool(self.steps) and self.steps[-1].action == GOAL_ACTION
+
+    @property
+    def actions(self) -> tuple[int, ...]:
+        """The robot's actions in order (no external actions, no goal marker)."""
+        return tuple(s.action for s in self.steps if s.action > 0)
+
+    def transitions(self) -> list[Transition]:
+        """Every (s, a, s') with a known successor state, external actions included."""
+        return [Transition(a.state, a.action, b.state)
+                for a, b in zip(self.steps, self.steps[1:]) if a.action != GOAL_ACTION]
+
+    @property
+    def goal_state(self) -> State | None:
+        return self.steps[-1].state if self.reached_goal else None
+
+
+def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str | None = None) -> Demonstration:
+    """Parse one CSV demonstration, validating every line against the domain."""
+    width = len(domain.conditions)
+    lines = text.splitlines()
+    while lines and not lines[-1].strip():
+        lines.pop()
+    if not lines:
+        raise FormatError("empty demonstration file", path)
+    steps: list[Step] = []
+    for number, raw in enumerate(lines, start=1):
+        line = raw.strip()
+        if not line:
+            raise FormatError("empty line inside a demonstration", path, number)
+        if steps and steps[-1].action == GOAL_ACTION:
+            raise FormatError("a line after the goal line (action 0 must be the last line)", path, number)
+        fields = [f.strip() for f in line.split(";")]
+        if len(fields) != width + 1:
+            raise FormatError(f"expected {width + 1} fields ({width} conditions and an action ID) "
+                              f"separated by ';', found {len(fields)}", path, number)
+        state = []
+        for index, value in enumerate(fields[:-1]):
+            if value not in ("0", "1"):
+                cname = domain.conditions[index].name
+                raise FormatError(f"condition {index + 1} ({cname}) must be 0 or 1, found {value!r}", path, number)
+            state.append(value == "1")
+        try:
+            action = int(fields[-1])
+        except ValueError:
+            raise FormatError(f"action ID must be an integer, found {fields[-1]!r}", path, number) from None
+        if action not in (GOAL_ACTION, EXTERNAL_ACTION) and not domain.has_action(action):
+            known = ", ".join(str(a.id) for a in domain.actions)
+            raise FormatError(f"unknown action ID {action} (this domain has {known}; 0 = goal, -1 = external)",
+                              path, number)
+        steps.append(Step(tuple(state), action, number))
+    if steps[-1].action == EXTERNAL_ACTION:
+        raise FormatError("an external action (-1) on the last line has no following state", path, len(lines))
+    return Demonstration(name or Path(path).stem, tuple(steps), Path(path))
+
+
+def read_demonstration(path: str | Path, domain: Domain) -> Demonstration:
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise FormatError("demonstration is not UTF-8 text", path) from None
+    except OSError as exc:
+        raise FormatError(f"cannot read demonstration: {exc.strerror}", path) from None
+    return parse_demonstration(text, domain, path)
+
+
+def read_demo_set(folder: str | Path, domain: Domain | None = None) -> tuple[Domain, list[Demonstration]]:
+    """All ``*.csv`` demonstrations of a folder in sorted name order, with their domain."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise FormatError("not a folder of demonstrations", folder)
+    if domain is None:
+        domain = load_domain(find_domain_file(folder))
+    files = sorted(p for p in folder.iterdir() if p.suffix == ".csv" and p.is_file())
+    if not files:
+        raise FormatError("no demonstrations (*.csv) in this folder", folder)
+    return domain, [read_demonstration(p, domain) for p in files]
+
+
+def format_demonstration(demo: Demonstration) -> str:
+    return "".join(";".join("1" if v else "0" for v in step.state) + f";{step.action}\n" for step in demo.steps)
+
+
+def write_demonstration(path: str | Path, demo: Demonstration) -> None:
+    """Write one demonstration atomically, so a crash never leaves half a file."""
+    atomic_write_text(path, format_demonstration(demo))
+
+
+def next_demo_path(folder: str | Path, prefix: str = "demo") -> Path:
+    """The next free ``<prefix>-NNN.csv`` name in a folder (sorted order = recording order)."""
+    folder = Path(folder)
+    taken = {p.name for p in folder.glob(f"{prefix}-*.csv")} if folder.is_dir() else set()
+    number = 1
+    while f"{prefix}-{number:03d}.csv" in taken:
+        number += 1
+    return folder / f"{prefix}-{number:03d}.csv"

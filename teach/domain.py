@@ -1,0 +1,250 @@
+"""Domains: conditions, actions and their optional action model, read from ``domain.toml``.
+
+A state is a tuple of booleans, one per condition in file order (condition ID = position + 1).
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from teach.errors import DomainError, FormatError
+
+State = tuple[bool, ...]
+
+GOAL_ACTION = 0
+EXTERNAL_ACTION = -1
+_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_RESERVED_NAMES = {"Sequence", "Fallback", "ReactiveSequence", "ReactiveFallback", "Parallel",
+                   "Inverter", "Condition", "Action", "root", "BehaviorTree", "TreeNodesModel"}
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class Literal:
+    """A condition with the truth value it must have; written ``Name`` or ``!Name``."""
+
+    name: str
+    value: bool = True
+
+    @classmethod
+    def parse(cls, text: str) -> "Literal":
+        text = text.strip()
+        if text.startswith("!"):
+            return cls(text[1:].strip(), False)
+        return cls(text, True)
+
+    def negated(self) -> "Literal":
+        return Literal(self.name, not self.value)
+
+    def __str__(self) -> str:
+        return self.name if self.value else f"!{self.name}"
+
+
+@dataclass(frozen=True, slots=True)
+class ConditionDef:
+    name: str
+    en: str = ""
+    de: str = ""
+
+    def label(self, lang: str = "en") -> str:
+        return (self.de if lang == "de" else self.en) or self.name
+
+
+@dataclass(frozen=True, slots=True)
+class ActionDef:
+    id: int
+    name: str
+    en: tuple[str, ...] = ()
+    de: tuple[str, ...] = ()
+    pre: tuple[Literal, ...] = ()
+    ram: tuple[Literal, ...] = ()
+
+    def label(self, lang: str = "en") -> str:
+        phrases = self.de if lang == "de" else self.en
+        return phrases[0] if phrases else self.name
+
+
+@dataclass(frozen=True)
+class Domain:
+    """The vocabulary of one task: conditions (by position) and actions (by ID)."""
+
+    name: str
+    conditions: tuple[ConditionDef, ...]
+    actions: tuple[ActionDef, ...]
+    goal: tuple[Literal, ...] = ()
+    path: Path | None = None
+    _cond_index: dict[str, int] = field(init=False, repr=False, compare=False)
+    _by_id: dict[int, ActionDef] = field(init=False, repr=False, compare=False)
+    _by_name: dict[str, ActionDef] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_cond_index", {c.name: i for i, c in enumerate(self.conditions)})
+        object.__setattr__(self, "_by_id", {a.id: a for a in self.actions})
+        object.__setattr__(self, "_by_name", {a.name: a for a in self.actions})
+
+    @property
+    def condition_names(self) -> tuple[str, ...]:
+        return tuple(c.name for c in self.conditions)
+
+    @property
+    def action_names(self) -> tuple[str, ...]:
+        return tuple(a.name for a in self.actions)
+
+    def index(self, condition: str) -> int:
+        """Position of a condition in a state tuple."""
+        try:
+            return self._cond_index[condition]
+        except KeyError:
+            raise DomainError(f"unknown condition {condition!r}", self.path) from None
+
+    def has_condition(self, name: str) -> bool:
+        return name in self._cond_index
+
+    def condition(self, name: str) -> ConditionDef:
+        return self.conditions[self.index(name)]
+
+    def action(self, key: int | str) -> ActionDef:
+        """An action by ID or by name."""
+        found = self._by_id.get(key) if isinstance(key, int) else self._by_name.get(key)
+        if found is None:
+            raise DomainError(f"unknown action {key!r}", self.path)
+        return found
+
+    def has_action(self, key: int | str) -> bool:
+        return (key in self._by_id) if isinstance(key, int) else (key in self._by_name)
+
+    def holds(self, literal: Literal, state: State) -> bool:
+        return state[self.index(literal.name)] == literal.value
+
+    def state(self, true_conditions: "list[str] | tuple[str, ...] | set[str]" = ()) -> State:
+        """A state in which exactly the named conditions are true."""
+        for name in true_conditions:
+            self.index(name)
+        return tuple(c.name in true_conditions for c in self.conditions)
+
+    def describe(self, state: State) -> str:
+        return " ".join(f"{c.name}={int(v)}" for c, v in zip(self.conditions, state))
+
+    @property
+    def has_model(self) -> bool:
+        return any(a.pre or a.ram for a in self.actions)
+
+
+def _line_of(text: str, needle: str, after_line: int = 1) -> int | None:
+    """The first line (1-based) at or after ``after_line`` that contains ``needle``."""
+    for number, line in enumerate(text.splitlines()[after_line - 1:], start=after_line):
+        if needle in line:
+            return number
+    return None
+
+
+def _table_lines(text: str, header: str) -> list[int]:
+    return [n for n, line in enumerate(text.splitlines(), 1) if line.strip().startswith(header)]
+
+
+def load_domain(path: str | Path) -> Domain:
+    """Read and validate a ``domain.toml``; every error names the file and line."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise FormatError(f"cannot read domain file: {exc.strerror}", path) from None
+    except UnicodeDecodeError:
+        raise FormatError("domain file is not UTF-8 text", path) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        match = re.search(r"\(at line (\d+), column \d+\)", str(exc))
+        line = int(match.group(1)) if match else None
+        message = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) or "invalid TOML"
+        raise FormatError(f"invalid TOML: {message}", path, line) from None
+    return _domain_from_data(data, text, path)
+
+
+def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
+    def fail(message: str, line: int | None = None) -> None:
+        raise FormatError(message, path, line)
+
+    name = data.get("name", path.parent.name)
+    if not isinstance(name, str):
+        fail("'name' must be a string", _line_of(text, "name"))
+    raw_conditions = data.get("condition", [])
+    raw_actions = data.get("action", [])
+    if not isinstance(raw_conditions, list) or not raw_conditions:
+        fail("no [[condition]] tables: a domain needs at least one condition")
+    if not isinstance(raw_actions, list) or not raw_actions:
+        fail("no [[action]] tables: a domain needs at least one action")
+    cond_lines = _table_lines(text, "[[condition]]")
+    action_lines = _table_lines(text, "[[action]]")
+
+    conditions: list[ConditionDef] = []
+    for i, raw in enumerate(raw_conditions):
+        line = cond_lines[i] if i < len(cond_lines) else None
+        cname = raw.get("name") if isinstance(raw, dict) else None
+        if not isinstance(cname, str) or not _NAME.match(cname) or cname in _RESERVED_NAMES:
+            fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _), got {cname!r}", line)
+        if any(c.name == cname for c in conditions):
+            fail(f"duplicate condition name {cname!r}", line)
+        en, de = raw.get("en", ""), raw.get("de", "")
+        if not isinstance(en, str) or not isinstance(de, str):
+            fail(f"condition {cname}: 'en' and 'de' must be strings", line)
+        conditions.append(ConditionDef(cname, en, de))
+    cond_names = {c.name for c in conditions}
+
+    def literals(raw: object, what: str, line: int | None) -> tuple[Literal, ...]:
+        if not isinstance(raw, list) or not all(isinstance(x, str) for x in raw):
+            fail(f"{what} must be a list of strings like \"BallFound\" or \"!BallFound\"", line)
+        result = []
+        for item in raw:  # type: ignore[union-attr]
+            literal = Literal.parse(item)
+            if literal.name not in cond_names:
+                where = _line_of(text, f'"{item}"', line or 1) or line
+                fail(f"{what} names unknown condition {literal.name!r}", where)
+            if literal.negated() in result:
+                fail(f"{what} asks for both {literal.name} and !{literal.name}", line)
+            if literal not in result:
+                result.append(literal)
+        return tuple(result)
+
+    actions: list[ActionDef] = []
+    for i, raw in enumerate(raw_actions):
+        line = action_lines[i] if i < len(action_lines) else None
+        if not isinstance(raw, dict):
+            fail("[[action]] must be a table", line)
+        aid, aname = raw.get("id"), raw.get("name")
+        if not isinstance(aname, str) or not _NAME.match(aname) or aname in _RESERVED_NAMES:
+            fail(f"action {i + 1}: 'name' must be an identifier (letters, digits, _), got {aname!r}", line)
+        if isinstance(aid, bool) or not isinstance(aid, int) or aid < 1:
+            fail(f"action {aname}: 'id' must be an integer >= 1 (0 and -1 are reserved), got {aid!r}", line)
+        if aname in cond_names:
+            fail(f"action {aname} has the same name as a condition", line)
+        if any(a.name == aname for a in actions):
+            fail(f"duplicate action name {aname!r}", line)
+        if any(a.id == aid for a in actions):
+            fail(f"duplicate action id {aid}", line)
+        phrases = {}
+        for lang in ("en", "de"):
+            value = raw.get(lang, [])
+            if isinstance(value, str):
+                value = [value]
+            if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
+                fail(f"action {aname}: '{lang}' must be a list of phrases", line)
+            phrases[lang] = tuple(value)
+        pre = literals(raw.get("pre", []), f"action {aname}: 'pre'", line)
+        ram = literals(raw.get("ram", []), f"action {aname}: 'ram'", line)
+        actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram))  # type: ignore[arg-type]
+
+    goal = literals(data.get("goal", []), "'goal'", _line_of(text, "goal"))
+    return Domain(name, tuple(conditions), tuple(actions), goal, path)
+
+
+def find_domain_file(folder: str | Path) -> Path:
+    """The ``domain.toml`` of a demonstration folder: in the folder itself or its parent."""
+    folder = Path(folder)
+    start = folder if folder.is_dir() else folder.parent
+    for candidate in (start / "domain.toml", start.parent / "domain.toml"):
+        if candidate.is_file():
+            return candidate
+    raise FormatError("no domain.toml in this folder or its parent (pass --domain FILE)", folder)

@@ -1,0 +1,60 @@
+"""domain.toml and CSV demonstrations: valid files load, bad ones give one `path:line:` error."""
+
+from __future__ import annotations
+
+import pytest
+
+from teach.demos import Demonstration, Step, parse_demonstration, read_demo_set, write_demonstration
+from teach.domain import Literal, load_domain
+from teach.errors import FormatError
+
+
+def test_ball_domain(ball):
+    assert ball.condition_names[0] == "BallFound"
+    assert ball.action(3).name == "GraspBall"
+    assert Literal("BallGrasped", False) in ball.action("GraspBall").pre
+    assert ball.goal == (Literal("BallPlaced"),)
+
+
+def test_demo_round_trip(ball, tmp_path):
+    text = "0;0;0;0;0;1\n1;0;0;0;0;-1\n0;0;0;0;0;1\n1;0;0;0;0;0\n"
+    demo = parse_demonstration(text, ball, "x.csv")
+    assert demo.actions == (1, 1) and demo.reached_goal
+    write_demonstration(tmp_path / "d" / "a.csv", demo)
+    (tmp_path / "domain.toml").write_text((ball.path).read_text())
+    _, [again] = read_demo_set(tmp_path / "d")
+    assert again.steps == tuple(Step(s.state, s.action, s.line) for s in demo.steps)
+
+
+@pytest.mark.parametrize("text, line, words", [
+    ("0;0;0;0;1\n", 1, "expected 6 fields"),
+    ("0;0;2;0;0;1\n", 1, "must be 0 or 1"),
+    ("0;0;0;0;0;9\n", 1, "unknown action ID 9"),
+    ("0;0;0;0;0;0\n0;0;0;0;0;1\n", 2, "after the goal line"),
+    ("0;0;0;0;0;1\n0;0;0;0;0;-1\n", 2, "no following state"),
+    ("0;0;0;0;0;x\n", 1, "must be an integer"),
+    ("", None, "empty demonstration"),
+])
+def test_bad_demonstrations(ball, text, line, words):
+    with pytest.raises(FormatError) as info:
+        parse_demonstration(text, ball, "bad.csv")
+    assert info.value.line == line and words in str(info.value)
+    assert str(info.value).startswith("bad.csv:")
+
+
+@pytest.mark.parametrize("body, words", [
+    ('name = "x"\n[[condition]]\nname = "A"\n[[condition]]\nname = "A"\n[[action]]\nid = 1\nname = "X"\n',
+     "duplicate condition name"),
+    ('[[condition]]\nname = "A"\n[[action]]\nid = 0\nname = "X"\n', "'id' must be an integer >= 1"),
+    ('[[condition]]\nname = "A"\n[[action]]\nid = 1\nname = "X"\npre = ["B"]\n', "unknown condition 'B'"),
+    ('[[condition]]\nname = "A"\n[[action]]\nid = 1\nname = "X"\n[[action]]\nid = 1\nname = "Y"\n',
+     "duplicate action id 1"),
+    ('[[condition]\nname = "A"\n', "invalid TOML"),
+    ('goal = ["Nope"]\n[[condition]]\nname = "A"\n[[action]]\nid = 1\nname = "X"\n', "unknown condition 'Nope'"),
+])
+def test_bad_domains(tmp_path, body, words):
+    path = tmp_path / "domain.toml"
+    path.write_text(body)
+    with pytest.raises(FormatError) as info:
+        load_domain(path)
+    assert words in str(info.value) and info.value.line is not None
