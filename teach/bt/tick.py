@@ -43,7 +43,7 @@ def tick(root: Node, condition: Callable[[str], bool] | Mapping[str, bool],
             status = Status.SUCCESS if holds(node.name) else Status.FAILURE
         elif isinstance(node, Action):
             status = action(node.name)
-            if status is Status.RUNNING and not first_action:
+            if status is Status.RUNNING:
                 first_action.append(node.name)
         elif isinstance(node, Sequence):
             status = Status.SUCCESS
@@ -61,8 +61,11 @@ def tick(root: Node, condition: Callable[[str], bool] | Mapping[str, bool],
             inner = run(node.child)
             status = {Status.SUCCESS: Status.FAILURE, Status.FAILURE: Status.SUCCESS}.get(inner, inner)
         elif isinstance(node, Parallel):
+            started = len(first_action)
             results = [run(kid) for kid in node.children]
             status = _parallel_status(results, node.success_threshold)
+            if status is not Status.RUNNING:
+                del first_action[started:]  # the Parallel finished: its running children are halted
         else:  # pragma: no cover - exhaustive over Node
             raise TypeError(f"not a node: {node!r}")
         trace.append((node.uid, status))
