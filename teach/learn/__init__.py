@@ -1,0 +1,1 @@
+"""Learners that turn demonstrations into behaviour trees (thesis §4)."""
