@@ -44,11 +44,21 @@ class Literal:
 
 @dataclass(frozen=True, slots=True)
 class ConditionDef:
+    """A condition with its labels; ``en_false``/``de_false`` optionally phrase it as untrue."""
+
     name: str
     en: str = ""
     de: str = ""
+    en_false: str = ""
+    de_false: str = ""
 
-    def label(self, lang: str = "en") -> str:
+    def label(self, lang: str = "en", value: bool = True) -> str:
+        if not value:
+            negative = self.de_false if lang == "de" else self.en_false
+            if negative:
+                return negative
+            positive = self.label(lang)
+            return f"nicht: {positive}" if lang == "de" else f"not: {positive}"
         return (self.de if lang == "de" else self.en) or self.name
 
 
@@ -187,10 +197,10 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
             fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _), got {cname!r}", line)
         if any(c.name == cname for c in conditions):
             fail(f"duplicate condition name {cname!r}", line)
-        en, de = raw.get("en", ""), raw.get("de", "")
-        if not isinstance(en, str) or not isinstance(de, str):
-            fail(f"condition {cname}: 'en' and 'de' must be strings", line)
-        conditions.append(ConditionDef(cname, en, de))
+        labels = [raw.get(key, "") for key in ("en", "de", "en_false", "de_false")]
+        if not all(isinstance(label, str) for label in labels):
+            fail(f"condition {cname}: 'en', 'de', 'en_false' and 'de_false' must be strings", line)
+        conditions.append(ConditionDef(cname, *labels))
     cond_names = {c.name for c in conditions}
 
     def literals(raw: object, what: str, line: int | None) -> tuple[Literal, ...]:
