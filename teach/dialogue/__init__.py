@@ -1,0 +1,1 @@
+"""The teaching dialogue: phrases, questions, the session manager and its two front-ends."""

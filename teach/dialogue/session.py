@@ -1,0 +1,591 @@
+"""The session manager: a plain state machine that turns teacher lines into replies.
+
+It interleaves demonstrations in a world, online learning after every demonstration,
+at most ``budget`` clarifying questions, and runs of the learned tree that the teacher can
+interrupt and correct. The terminal and the scripted-dialogue runner are two thin drivers:
+they feed lines to ``handle`` and show the ``Reply`` objects it returns.
+
+Modes: ``idle`` (waiting for a command or actions), ``demonstrating`` (a demonstration is
+open), ``asking`` (a question waits for its answer).
+"""
+
+from __future__ import annotations
+
+import shutil
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from teach.bt.nodes import Node, size
+from teach.demos import Demonstration, Step, next_demo_path, read_demonstration, write_demonstration
+from teach.dialogue.journal import Journal, parse_state_text, state_text
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.questions import Question, QuestionBudget, describe_situation, guard_key, select_question
+from teach.dialogue.worlds import TeachingWorld
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
+from teach.errors import LearnError, TeachError
+from teach.observe import Observer
+
+QUESTIONS_PER_TURN = 2
+MIN_DEMOS_BEFORE_ASKING = 2
+
+
+@dataclass
+class Reply:
+    """Something to show: ``kind`` is say, info, error, tree, state or question."""
+
+    kind: str
+    text: str = ""
+    tree: Node | None = None
+    state: dict[str, bool] | None = None
+
+
+@dataclass
+class SessionConfig:
+    session: str
+    domain: Domain
+    lang: str = "en"
+    questions: int = 5
+    seed: int = 0
+    world: str = "mujoco"
+    base: Path = Path(".")
+
+    @property
+    def demo_dir(self) -> Path:
+        return self.base / "demos" / self.session
+
+    @property
+    def tree_dir(self) -> Path:
+        return self.base / "trees" / self.session
+
+    @property
+    def journal_path(self) -> Path:
+        return self.base / "recordings" / f"{self.session}.journal.json"
+
+
+@dataclass
+class Command:
+    names: tuple[str, ...]
+    usage: str
+    en: str
+    de: str
+    handler: Callable[["SessionManager", str], list[Reply]]
+
+
+@dataclass
+class _OpenDemo:
+    steps: list[Step] = field(default_factory=list)
+    source: str = "demonstration"
+
+
+def _t(lang: str, en: str, de: str) -> str:
+    return de if lang == "de" else en
+
+
+class SessionManager:
+    """One teaching session. Not thread-safe: one driver feeds it lines."""
+
+    def __init__(self, config: SessionConfig, world: TeachingWorld, observer: Observer | None = None,
+                 journal: Journal | None = None):
+        from teach.learn.specialize import Specializer
+
+        self.config = config
+        self.domain = config.domain
+        self.world = world
+        self.observer = observer or Observer()
+        self.lang = config.lang
+        self.phrases = PhraseBook(self.domain, world.events)
+        self.learner = Specializer(self.domain)
+        self.budget = QuestionBudget(config.questions)
+        self.demos: list[Demonstration] = []
+        self.labelled: set[State] = set()
+        self.settled: set[tuple[str, str]] = set()
+        self.generation = 0
+        self.pruned: Node | None = None
+        self.pending: Question | None = None
+        self.open: _OpenDemo | None = None
+        self.finished = False
+        self.step = 0
+        self.last_learn_ms = 0.0
+        self.journal = journal or Journal(config.session, str(config.domain.path or ""), config.lang,
+                                          config.questions, config.world, config.seed)
+        config.demo_dir.mkdir(parents=True, exist_ok=True)
+        config.tree_dir.mkdir(parents=True, exist_ok=True)
+        if self.domain.path is not None and not (config.demo_dir / "domain.toml").exists():
+            shutil.copyfile(self.domain.path, config.demo_dir / "domain.toml")
+        self.observer.on_domain(self.domain)
+
+    # --- the driver's interface -----------------------------------------------------------
+
+    @property
+    def mode(self) -> str:
+        if self.pending is not None:
+            return "asking"
+        return "demonstrating" if self.open is not None else "idle"
+
+    def greet(self) -> list[Reply]:
+        actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
+        replies = [Reply("say", _t(self.lang,
+                                   f"Hello! Show me how to do the task, one step at a time. I can: {actions}. "
+                                   "Say 'done' when the task is finished, 'help' for more.",
+                                   f"Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
+                                   "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr."))]
+        if self.demos:
+            replies.insert(0, Reply("info", _t(self.lang,
+                                               f"Resumed session {self.config.session}: {len(self.demos)} demonstrations, "
+                                               f"{self.budget.used} questions asked, generation {self.generation}.",
+                                               f"Sitzung {self.config.session} fortgesetzt: {len(self.demos)} Vorführungen, "
+                                               f"{self.budget.used} Fragen gestellt, Generation {self.generation}.")))
+            if self.pruned is not None:
+                replies.append(Reply("tree", tree=self.pruned))
+        replies.append(self._state_reply())
+        self._say_all(replies)
+        return replies
+
+    def handle(self, line: str) -> list[Reply]:
+        """One teacher line in, replies out. Never raises for bad input."""
+        line = line.strip()
+        if not line:
+            return []
+        self._tick_clock()
+        self.observer.on_dialogue("teacher", line, self.budget.left)
+        try:
+            command, rest = self._command(line)
+            if self.pending is not None and (command is None or command.names[0] in ("done", "skip")):
+                replies = self._answer(line)
+            elif command is not None:
+                replies = command.handler(self, rest)
+            else:
+                replies = self._teach_actions(line)
+        except UnknownPhrase as unknown:
+            replies = [Reply("error", unknown.message)]
+        except TeachError as error:
+            replies = [Reply("error", str(error))]
+        self._say_all(replies)
+        return replies
+
+    def close(self) -> None:
+        self.journal.save(self.config.journal_path)
+        self.world.close()
+        self.observer.close()
+
+    # --- commands --------------------------------------------------------------------------
+
+    def _command(self, line: str) -> tuple[Command | None, str]:
+        words = line.split(maxsplit=1)
+        head = normalize(words[0]) if words else ""
+        for command in COMMANDS:
+            if head in command.names:
+                return command, words[1] if len(words) > 1 else ""
+        whole = normalize(line)
+        for command in COMMANDS:
+            if whole in command.names:
+                return command, ""
+        return None, line
+
+    def cmd_help(self, rest: str) -> list[Reply]:
+        lines = [f"  {c.usage:<28} {_t(self.lang, c.en, c.de)}" for c in COMMANDS]
+        actions = "; ".join(self.phrases.phrases(self.lang)[:12])
+        intro = _t(self.lang, "Type what the robot should do, e.g. ", "Schreib, was der Roboter tun soll, z. B. ")
+        return [Reply("info", intro + f"“{actions}”.\n" + "\n".join(lines))]
+
+    def cmd_demonstrate(self, rest: str) -> list[Reply]:
+        replies = []
+        if self.open is None:
+            self.open = _OpenDemo(source=f"demonstration {len(self.demos) + 1}")
+            replies.append(Reply("info", _t(self.lang, "New demonstration. Show me the steps.",
+                                            "Neue Vorführung. Zeig mir die Schritte.")))
+        if rest.strip():
+            replies += self._teach_actions(rest)
+        return replies
+
+    def cmd_done(self, rest: str) -> list[Reply]:
+        if self.open is None or not self.open.steps:
+            return [Reply("error", _t(self.lang, "No demonstration is open: show me some steps first.",
+                                      "Es läuft keine Vorführung: zeig mir erst ein paar Schritte."))]
+        self.open.steps.append(Step(self.world.state(), GOAL_ACTION))
+        return self._finish_demo()
+
+    def cmd_cancel(self, rest: str) -> list[Reply]:
+        self.open = None
+        return [Reply("info", _t(self.lang, "Demonstration discarded.", "Vorführung verworfen."))]
+
+    def cmd_undo(self, rest: str) -> list[Reply]:
+        if self.open is not None and self.open.steps:
+            last = self.open.steps.pop()
+            self.world.arrange(last.state)
+            if not self.open.steps:
+                self.open = None
+            return [Reply("info", _t(self.lang, "Undone: the last step.", "Rückgängig: der letzte Schritt.")),
+                    self._state_reply()]
+        if not self.demos:
+            return [Reply("error", _t(self.lang, "Nothing to undo.", "Nichts rückgängig zu machen."))]
+        self.journal.add(self.config.journal_path, kind="undo")
+        self._rebuild_from_journal()
+        replies = [Reply("info", _t(self.lang, "Undone: the last demonstration or answer.",
+                                    "Rückgängig: die letzte Vorführung oder Antwort."))]
+        return replies + self._after_learning(ask=False)
+
+    def cmd_perturb(self, rest: str) -> list[Reply]:
+        tokens = self.phrases.parse(rest, self.lang) if rest.strip() else []
+        events = [t for t in tokens if t.kind == "event"]
+        if not events:
+            names = ", ".join(en[0] for en, _ in self.world.events.values())
+            return [Reply("error", _t(self.lang, f"Which event? I know: {names}.", f"Welches Ereignis? Ich kenne: {names}."))]
+        return self._teach_actions(rest)
+
+    def cmd_run(self, rest: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
+        tree = self.pruned
+        if tree is None:
+            return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
+                                      "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
+        stop_after = int(rest) if rest.strip().isdigit() else None
+        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=interrupt,
+                                stop_after=stop_after)
+        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
+        replies = [Reply("info", _t(self.lang, f"I did: {done}.", f"Ich habe gemacht: {done}."))]
+        if result.outcome == "success":
+            replies.append(Reply("say", _t(self.lang, "Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")))
+        elif result.outcome == "interrupted":
+            self.open = _OpenDemo([Step(s, self.domain.action(a).id) for s, a in result.steps],
+                                  source=f"correction {len(self.demos) + 1}")
+            replies.append(Reply("say", _t(self.lang, "Stopped. Show me how to go on from here, then say 'done'.",
+                                           "Angehalten. Zeig mir, wie es von hier weitergeht, dann sag 'fertig'.")))
+        else:
+            replies.append(Reply("say", _t(self.lang,
+                                           f"I got stuck ({result.outcome}). Show me what to do from here.",
+                                           f"Ich komme nicht weiter ({result.outcome}). Zeig mir, was ich tun soll.")))
+        return replies + [self._state_reply()]
+
+    def cmd_stop(self, rest: str) -> list[Reply]:
+        return [Reply("info", _t(self.lang, "The robot is not running.", "Der Roboter läuft gerade nicht."))]
+
+    def cmd_show(self, rest: str) -> list[Reply]:
+        if self.pruned is None:
+            return [Reply("info", _t(self.lang, "No tree yet.", "Noch kein Baum."))]
+        tree = self.learner.tree if normalize(rest) in ("full", "ganz", "all") else self.pruned
+        return [Reply("tree", tree=tree)]
+
+    def cmd_state(self, rest: str) -> list[Reply]:
+        return [self._state_reply()]
+
+    def cmd_start(self, rest: str) -> list[Reply]:
+        if self.open is not None and self.open.steps:
+            return [Reply("error", _t(self.lang, "Finish or cancel the open demonstration first.",
+                                      "Beende oder verwirf zuerst die laufende Vorführung."))]
+        names = [w for w in rest.replace(",", " ").split() if w]
+        for name in names:
+            if not self.domain.has_condition(name):
+                raise TeachError(f"unknown condition {name!r} (known: {', '.join(self.domain.condition_names)})")
+        self.world.arrange(self.domain.state(names))
+        return [self._state_reply()]
+
+    def cmd_reset(self, rest: str) -> list[Reply]:
+        self.world.reset(int(rest) if rest.strip().isdigit() else None)
+        return [self._state_reply()]
+
+    def cmd_ask(self, rest: str) -> list[Reply]:
+        replies = self._maybe_ask(force=True)
+        return replies or [Reply("info", self._no_question_text())]
+
+    def cmd_skip(self, rest: str) -> list[Reply]:
+        return [Reply("info", _t(self.lang, "No question is open.", "Es ist keine Frage offen."))]
+
+    def cmd_why(self, rest: str) -> list[Reply]:
+        name = rest.strip()
+        if self.pruned is None:
+            return [Reply("info", _t(self.lang, "No tree yet.", "Noch kein Baum."))]
+        from teach.bt.nodes import Action, Condition, walk
+        matches = [n for n in walk(self.learner.tree) if isinstance(n, (Action, Condition)) and n.name == name]
+        if not matches:
+            return [Reply("error", _t(self.lang, f"No node named {name!r} in the tree.",
+                                      f"Kein Knoten namens {name!r} im Baum."))]
+        return [Reply("info", "\n".join(f"- {self.learner.explain(n.uid)}" for n in matches))]
+
+    def cmd_save(self, rest: str) -> list[Reply]:
+        self.journal.save(self.config.journal_path)
+        return [Reply("info", _t(self.lang, f"Saved: {self.config.demo_dir}, {self.config.tree_dir}, "
+                                            f"{self.config.journal_path}.",
+                                 f"Gespeichert: {self.config.demo_dir}, {self.config.tree_dir}, "
+                                 f"{self.config.journal_path}."))]
+
+    def cmd_quit(self, rest: str) -> list[Reply]:
+        self.finished = True
+        replies = self.cmd_save(rest)
+        return replies + [Reply("say", _t(self.lang, "Goodbye! Resume with: teach session --resume "
+                                          f"{self.config.session}", "Auf Wiedersehen! Weiter mit: teach session "
+                                          f"--resume {self.config.session}"))]
+
+    # --- demonstrations ---------------------------------------------------------------------
+
+    def _teach_actions(self, text: str) -> list[Reply]:
+        tokens = self.phrases.parse(text, self.lang)
+        replies: list[Reply] = []
+        if self.open is None:
+            replies += self.cmd_demonstrate("")
+        assert self.open is not None
+        for token in tokens:
+            if token.kind == "event":
+                result = self.world.perturb(token.name)
+                self.open.steps.append(Step(result.before, EXTERNAL_ACTION))
+                self.observer.on_external(token.name)
+                replies.append(Reply("info", _t(self.lang, f"Event: {token.text}.", f"Ereignis: {token.text}.")))
+                continue
+            result = self.world.act(token.name)
+            label = self.domain.action(token.name).label(self.lang)
+            if not result.ok:
+                replies.append(Reply("error", _t(self.lang, f"I could not {label}: {result.message}",
+                                                 f"„{label}“ ging nicht: {result.message}")))
+                break
+            self.open.steps.append(Step(result.before, self.domain.action(token.name).id))
+            replies.append(Reply("info", f"✓ {label}"))
+        replies.append(self._state_reply())
+        return replies
+
+    def _finish_demo(self) -> list[Reply]:
+        assert self.open is not None
+        started = time.perf_counter()
+        path = next_demo_path(self.config.demo_dir)
+        demo = Demonstration(path.stem, tuple(self.open.steps), path)
+        source = f"{self.open.source} ({path.name})"
+        try:
+            update = self.learner.update(demo, source=source)
+        except LearnError as error:
+            self.open = None
+            return [Reply("error", _t(self.lang, f"I cannot learn this demonstration: {error.message}",
+                                      f"Diese Vorführung kann ich nicht lernen: {error.message}"))]
+        write_demonstration(path, demo)
+        self.open = None
+        self.demos.append(demo)
+        self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+        self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
+        self.observer.on_demonstration(demo.name, demo, self.domain)
+        self.observer.on_learner("specialize", _describe_update(update), _removed_names(update))
+        replies = self._after_learning(ask=True, started=started)
+        return replies
+
+    # --- questions --------------------------------------------------------------------------
+
+    def _maybe_ask(self, force: bool = False, asked_this_turn: int = 0) -> list[Reply]:
+        if self.budget.left <= 0 or self.pending is not None:
+            return []
+        if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or asked_this_turn >= QUESTIONS_PER_TURN):
+            return []
+        question = self.next_question()
+        if question is None:
+            return []
+        self.budget.spend()
+        self.pending = question
+        text = question.text(self.domain, self.lang)
+        self.observer.on_question(text, self.budget.left)
+        options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
+                             [_t(self.lang, "done", "fertig"), _t(self.lang, "skip", "weiter")])
+        return [Reply("question", f"{text}\n   ({options})")]
+
+    def next_question(self) -> Question | None:
+        shown: dict[str, list[State]] = {}
+        for action in self.domain.actions:
+            states = self.learner.shown_states(action.name)
+            if states:
+                shown[action.name] = list(states)
+        return select_question(self.learner.tree, self.domain, self.labelled, self.settled, shown)
+
+    def _answer(self, line: str) -> list[Reply]:
+        question = self.pending
+        assert question is not None
+        key = normalize(line)
+        if key in SKIP_WORDS:
+            self.pending = None
+            self.settled.add((question.action, question.guard_key))
+            self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
+                             action=question.action, guard=question.guard_key, answer="skip",
+                             question=question.text(self.domain, self.lang))
+            self.observer.on_answer(question.text(self.domain, self.lang), line, "nothing (skipped)")
+            return [Reply("info", _t(self.lang, "All right, I keep being careful there.",
+                                     "In Ordnung, da bleibe ich vorsichtig."))]
+        if key in DONE_WORDS:
+            answer: str | None = None
+        else:
+            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
+            if len(tokens) != 1:
+                return [Reply("error", _t(self.lang, "Please answer with one action, 'done' or 'skip'.",
+                                          "Bitte antworte mit einer Handlung, 'fertig' oder 'weiter'."))]
+            answer = tokens[0].name
+        return self.apply_answer(answer, line)
+
+    def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
+        """Learn from the answer to the pending question (None: the task is done there)."""
+        question = self.pending
+        assert question is not None
+        started = time.perf_counter()
+        text = question.text(self.domain, self.lang)
+        source = f"answer to question {self.budget.used}"
+        self.pending = None
+        try:
+            update = self.learner.teach_step(question.state, answer, source=source)
+        except LearnError as error:
+            self.settled.add((question.action, question.guard_key))
+            return [Reply("error", _t(self.lang, f"That contradicts what you showed me: {error.message}",
+                                      f"Das widerspricht dem Gezeigten: {error.message}"))]
+        if answer != question.action:
+            self.settled.add((question.action, question.guard_key))
+        self.labelled.add(question.state)
+        change = _describe_update(update)
+        self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
+                         action=question.action, guard=question.guard_key, answer=answer or "done",
+                         question=text)
+        self.observer.on_answer(text, said, change)
+        self.observer.on_learner("answer", change, _removed_names(update))
+        return [Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))] + \
+            self._after_learning(ask=True, started=started)
+
+    def _no_question_text(self) -> str:
+        if self.budget.left <= 0:
+            return _t(self.lang, "I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
+        return _t(self.lang, "I have no question right now.", "Ich habe gerade keine Frage.")
+
+    # --- learning results -------------------------------------------------------------------
+
+    def _after_learning(self, ask: bool, started: float | None = None) -> list[Reply]:
+        from teach.bt.xml import tree_to_xml, write_tree
+        from teach.learn.prune import prune
+        from teach.replay import replay
+
+        self.pruned = prune(self.learner.tree)
+        self.generation += 1
+        path = self.config.tree_dir / f"gen-{self.generation:02d}.xml"
+        write_tree(path, self.pruned)
+        if started is not None:
+            self.last_learn_ms = (time.perf_counter() - started) * 1000
+        self.observer.on_tree(self.generation, self.pruned, tree_to_xml(self.pruned),
+                              f"generation {self.generation}")
+        report = replay(self.pruned, self.domain, self.demos)
+        self.observer.on_replay(report.reproduced, report.total)
+        summary = _t(self.lang,
+                     f"Generation {self.generation}: {size(self.pruned)} nodes "
+                     f"({size(self.learner.tree)} before pruning), saved as {path}. "
+                     f"I reproduce {report.reproduced} of {report.total} demonstrations.",
+                     f"Generation {self.generation}: {size(self.pruned)} Knoten "
+                     f"({size(self.learner.tree)} vor dem Beschneiden), gespeichert als {path}. "
+                     f"Ich kann {report.reproduced} von {report.total} Vorführungen nachmachen.")
+        replies = [Reply("tree", tree=self.pruned), Reply("info", summary)]
+        if ask:
+            replies += self._maybe_ask()
+        return replies
+
+    # --- resume -----------------------------------------------------------------------------
+
+    def _rebuild_from_journal(self) -> None:
+        """Re-learn everything in the journal (after an undo or on resume), deterministically."""
+        from teach.learn.specialize import Specializer
+
+        events = _effective_events(self.journal.events)
+        self.learner = Specializer(self.domain)
+        self.demos, self.labelled, self.settled = [], set(), set()
+        self.budget = QuestionBudget(self.config.questions)
+        self.generation = sum(1 for e in self.journal.events if e["kind"] in ("demo", "answer", "undo"))
+        for event in events:
+            if event["kind"] == "demo":
+                demo = read_demonstration(self.config.demo_dir / event["file"], self.domain)
+                self.learner.update(demo, source=event.get("source"))
+                self.demos.append(demo)
+                self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+            elif event["kind"] == "answer":
+                self.budget.used += 1
+                state = parse_state_text(event["state"])
+                if event["answer"] != "skip":
+                    answer = None if event["answer"] == "done" else event["answer"]
+                    try:
+                        self.learner.teach_step(state, answer, source=f"answer to question {self.budget.used}")
+                    except LearnError:
+                        pass  # it was rejected when it was given, too
+                    self.labelled.add(state)
+                if event["answer"] != event["action"]:
+                    self.settled.add((event["action"], event["guard"]))
+        from teach.learn.prune import prune
+        self.pruned = prune(self.learner.tree) if self.demos else None
+
+    @classmethod
+    def resume(cls, config: SessionConfig, world: TeachingWorld, observer: Observer | None = None) -> "SessionManager":
+        journal = Journal.load(config.journal_path)
+        manager = cls(config, world, observer, journal)
+        manager._rebuild_from_journal()
+        if manager.demos:
+            last = manager.demos[-1].steps[-1].state
+            world.arrange(last)
+        return manager
+
+    # --- helpers ----------------------------------------------------------------------------
+
+    def _state_reply(self) -> Reply:
+        state = self.world.state()
+        return Reply("state", describe_situation(self.domain, state, self.lang),
+                     state=dict(zip(self.domain.condition_names, state)))
+
+    def _tick_clock(self) -> None:
+        self.step += 1
+        self.observer.set_time(self.step)
+
+    def _say_all(self, replies: list[Reply]) -> None:
+        for reply in replies:
+            if reply.kind in ("say", "question", "info", "error") and reply.text:
+                self.observer.on_dialogue("robot", reply.text, self.budget.left)
+
+
+def _effective_events(events: list[dict]) -> list[dict]:
+    """The journal's learning events with every undone one removed."""
+    kept: list[dict] = []
+    for event in events:
+        if event["kind"] == "undo":
+            if kept:
+                kept.pop()
+        elif event["kind"] in ("demo", "answer"):
+            kept.append(event)
+    return kept
+
+
+def _describe_update(update: object) -> str:
+    return str(getattr(update, "summary", "") or update)
+
+
+def _removed_names(update: object) -> list[str]:
+    return [str(r) for r in getattr(update, "removed", ())]
+
+
+DONE_WORDS = {"done", "finished", "nothing", "nothing task is done", "fertig", "nichts", "ziel erreicht"}
+SKIP_WORDS = {"skip", "dont know", "don t know", "i dont know", "i don t know", "weiter", "weiss nicht",
+              "ich weiss nicht", "keine ahnung", "uberspringen"}
+
+COMMANDS: list[Command] = [
+    Command(("help", "hilfe", "h", "?"), "help", "show this help", "diese Hilfe zeigen", SessionManager.cmd_help),
+    Command(("demonstrate", "demo", "zeigen", "vorfuhren"), "demonstrate [steps]", "start a demonstration",
+            "eine Vorführung beginnen", SessionManager.cmd_demonstrate),
+    Command(("done", "fertig"), "done", "the task is finished: learn this demonstration",
+            "die Aufgabe ist erledigt: diese Vorführung lernen", SessionManager.cmd_done),
+    Command(("cancel", "abbrechen"), "cancel", "discard the open demonstration", "die Vorführung verwerfen",
+            SessionManager.cmd_cancel),
+    Command(("undo", "ruckgangig", "zuruck"), "undo", "undo the last step, demonstration or answer",
+            "letzten Schritt, Vorführung oder Antwort zurücknehmen", SessionManager.cmd_undo),
+    Command(("perturb", "storen", "ereignis"), "perturb EVENT", "something happens (an external action)",
+            "etwas passiert (äußeres Ereignis)", SessionManager.cmd_perturb),
+    Command(("run", "los", "ausfuhren"), "run [N]", "let the robot do the task (N: stop after N actions)",
+            "den Roboter die Aufgabe machen lassen", SessionManager.cmd_run),
+    Command(("stop", "halt"), "stop / Ctrl-C", "interrupt the robot", "den Roboter anhalten", SessionManager.cmd_stop),
+    Command(("show", "zeige", "baum"), "show [full]", "show the learned tree", "den gelernten Baum zeigen",
+            SessionManager.cmd_show),
+    Command(("state", "zustand"), "state", "show the current situation", "die aktuelle Lage zeigen",
+            SessionManager.cmd_state),
+    Command(("start", "situation"), "start COND ...", "put the world in a situation (named conditions true)",
+            "die Welt in eine Lage bringen", SessionManager.cmd_start),
+    Command(("reset", "neu"), "reset [SEED]", "new random start", "neuer zufälliger Start", SessionManager.cmd_reset),
+    Command(("ask", "frag", "frage"), "ask", "let the robot ask a question", "den Roboter fragen lassen",
+            SessionManager.cmd_ask),
+    Command(("skip", "weiter"), "skip", "leave a question unanswered", "eine Frage offen lassen",
+            SessionManager.cmd_skip),
+    Command(("why", "warum"), "why NAME", "why a node is in the tree", "warum ein Knoten im Baum ist",
+            SessionManager.cmd_why),
+    Command(("save", "speichern"), "save", "save everything now", "alles jetzt speichern", SessionManager.cmd_save),
+    Command(("quit", "exit", "beenden", "tschuss"), "quit / Ctrl-D", "save and leave", "speichern und beenden",
+            SessionManager.cmd_quit),
+]

@@ -1,0 +1,129 @@
+"""The worlds a session can teach in, behind one small interface.
+
+``SymbolicWorld`` runs any domain with an action model (``pre``/``ram`` in domain.toml):
+an action whose preconditions hold makes its ramifications true. ``teach.sim`` provides the
+MuJoCo ball-in-bin world through ``MujocoWorld`` (teach/dialogue/mujoco_world.py), whose
+conditions come from physics.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Protocol
+
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import tick
+from teach.domain import Domain, State
+from teach.observe import Observer
+
+
+@dataclass(frozen=True)
+class ActResult:
+    ok: bool
+    before: State
+    after: State
+    message: str = ""
+
+
+@dataclass
+class RunResult:
+    """A run of the learned tree: outcome and the (state, action) steps it executed."""
+
+    outcome: str  # "success" | "failure" | "timeout" | "interrupted"
+    steps: list[tuple[State, str]] = field(default_factory=list)
+    final_state: State = ()
+
+
+class TeachingWorld(Protocol):
+    domain: Domain
+    events: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]
+
+    def state(self) -> State: ...
+
+    def arrange(self, state: State) -> None: ...
+
+    def reset(self, seed: int | None = None) -> None: ...
+
+    def act(self, action: str) -> ActResult: ...
+
+    def perturb(self, event: str) -> ActResult: ...
+
+    def run(self, tree: Node, max_actions: int, interrupt: Callable[[], bool] | None,
+            stop_after: int | None = None) -> RunResult: ...
+
+    def close(self) -> None: ...
+
+
+class SymbolicWorld:
+    """Any domain with an action model, simulated symbolically (no physics)."""
+
+    events = {
+        "toggle": (("change something",), ("etwas ändern",)),
+    }
+
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None):
+        if not domain.has_model:
+            from teach.errors import DomainError
+            raise DomainError("the symbolic world needs an action model (pre/ram) in the domain file", domain.path)
+        self.domain = domain
+        self.observer = observer or Observer()
+        self._rng = random.Random(seed)
+        self._state: State = tuple(False for _ in domain.conditions)
+
+    def state(self) -> State:
+        return self._state
+
+    def arrange(self, state: State) -> None:
+        self._state = tuple(state)
+
+    def reset(self, seed: int | None = None) -> None:
+        if seed is not None:
+            self._rng = random.Random(seed)
+        self._state = tuple(False for _ in self.domain.conditions)
+
+    def act(self, action: str) -> ActResult:
+        before = self._state
+        definition = self.domain.action(action)
+        missing = [lit for lit in definition.pre if not self.domain.holds(lit, before)]
+        if missing:
+            return ActResult(False, before, before, "not possible now: needs " + ", ".join(map(str, missing)))
+        after = list(before)
+        for literal in definition.ram:
+            after[self.domain.index(literal.name)] = literal.value
+        self._state = tuple(after)
+        return ActResult(True, before, self._state)
+
+    def perturb(self, event: str) -> ActResult:
+        """Flip one random condition: something outside the robot changed the world."""
+        before = self._state
+        index = self._rng.randrange(len(before))
+        after = list(before)
+        after[index] = not after[index]
+        self._state = tuple(after)
+        return ActResult(True, before, self._state, f"{self.domain.conditions[index].name} changed")
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None) -> RunResult:
+        names = self.domain.condition_names
+        result = RunResult("timeout")
+        for _ in range(max_actions):
+            if interrupt is not None and interrupt() or stop_after is not None and len(result.steps) >= stop_after:
+                result.outcome = "interrupted"
+                break
+            ticked = tick(tree, dict(zip(names, self._state)))
+            self.observer.on_tick(tree, ticked)
+            if ticked.status is not Status.RUNNING or ticked.action is None:
+                result.outcome = "success" if ticked.status is Status.SUCCESS else "failure"
+                break
+            before = self._state
+            if not self.act(ticked.action).ok:
+                result.outcome = "failure"
+                break
+            result.steps.append((before, ticked.action))
+        result.final_state = self._state
+        return result
+
+    def close(self) -> None:
+        pass
