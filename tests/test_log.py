@@ -1,0 +1,206 @@
+"""The rerun logger writes real ``.rrd`` files that read back with every event, in order."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, size
+from teach.bt.tick import tick_state
+from teach.bt.xml import tree_to_xml
+from teach.demos import parse_demonstration
+from teach.domain import Domain
+from teach.errors import FormatError
+from teach.log import RerunLogger, default_recording_path, node_label, read_recording
+from teach.scene import SceneShape
+from conftest import colledanchise_tree
+
+RERUN = Path(sys.executable).with_name("rerun")
+
+DEMO_1 = "0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;-1\n1;1;0;0;0;3\n1;1;1;0;0;4\n1;1;1;1;0;5\n1;1;1;1;1;0\n"
+DEMO_2 = "1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n1;1;1;1;0;5\n1;1;1;1;1;0\n"
+
+
+def _shapes(t: float) -> list[SceneShape]:
+    return [SceneShape("floor", "box", (2.0, 2.0, 0.01), (0.0, 0.0, -0.01), (1.0, 0.0, 0.0, 0.0), (0.8, 0.8, 0.8, 1.0)),
+            SceneShape("ball", "sphere", (0.04,), (0.5 + t, 0.2, 0.04), (1.0, 0.0, 0.0, 0.0), (1.0, 0.2, 0.2, 1.0)),
+            SceneShape("arm", "capsule", (0.03, 0.2), (0.0, 0.0, 0.5), (0.7071, 0.7071, 0.0, 0.0), (0.3, 0.3, 0.9, 1.0)),
+            SceneShape("bin", "cylinder", (0.15, 0.1), (-0.5, 0.3, 0.1), (1.0, 0.0, 0.0, 0.0), (0.2, 0.6, 0.2, 1.0))]
+
+
+def record_session(path: Path, ball: Domain) -> dict:
+    """Drive a logger through a small session; return what was fed in, for the assertions."""
+    first = Sequence((Fallback((Condition("BallFound"), Action("FindBall"))), Action("ApproachBall")))
+    final = colledanchise_tree()
+    demo_1 = parse_demonstration(DEMO_1, ball, "demo-001.csv", "demo-001")
+    demo_2 = parse_demonstration(DEMO_2, ball, "demo-002.csv", "demo-002")
+    names = ball.condition_names
+    logger = RerunLogger(path, "test-session")
+    step = 0
+
+    def at(sim_time: float | None = None) -> None:
+        nonlocal step
+        step += 1
+        logger.set_time(step, sim_time)
+
+    logger.set_time(0)
+    logger.on_domain(ball)
+    logger.on_tree(0, first, tree_to_xml(first), "start")
+    at()
+    logger.on_dialogue("teacher", "find the ball")
+    logger.on_dialogue("robot", "I find the ball.", budget_left=5)
+    ticks = []
+    for i, line in enumerate(demo_1.steps):
+        at(0.1 * i)
+        logger.on_scene(_shapes(0.1 * i))
+        logger.on_camera(np.full((24, 32, 3), 10 * i, dtype=np.uint8))
+        if line.action == -1:
+            logger.on_external("BallDropped")
+        result = tick_state(first, names, line.state)
+        ticks.append((result.status.name, result.action))
+        logger.on_tick(first, result)
+        logger.on_state(dict(zip(names, line.state)), result.action)
+    logger.on_demonstration("demo-001", demo_1, ball)
+    at()
+    logger.on_learner("specialize", "1 demonstration", removed=["(BinClose)"])
+    logger.on_tree(1, final, tree_to_xml(final), "demonstration demo-001")
+    logger.on_question("Must the ball be in your hand before you go to the bin?", 4)
+    at()
+    logger.on_answer("Must the ball be in your hand before you go to the bin?", "yes", "kept (BallGrasped)")
+    logger.on_learner("prune", "2 nodes", removed=["(BallFound)", "FindBall"])
+    logger.on_replay(1, 1)
+    at(5.0)
+    logger.on_demonstration("demo-002", demo_2, ball)
+    logger.on_question("Do you need to see the ball to grasp it?", 3)
+    logger.on_answer("Do you need to see the ball to grasp it?", "no", "")
+    logger.on_tree(2, final, tree_to_xml(final), "answer")
+    result = tick_state(final, names, ball.state(["BallFound"]))
+    ticks.append((result.status.name, result.action))
+    logger.on_tick(final, result)
+    logger.on_replay(2, 2, lenient=True)
+    logger.close()
+    return {"ticks": ticks, "demos": [demo_1, demo_2], "sizes": [size(first), size(final), size(final)],
+            "xml": tree_to_xml(final)}
+
+
+@pytest.fixture(scope="module")
+def recorded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict]:
+    from teach.domain import load_domain
+    from conftest import BALL_DOMAIN
+
+    path = tmp_path_factory.mktemp("rec") / "session.rrd"
+    return path, record_session(path, load_domain(BALL_DOMAIN))
+
+
+def test_file_is_complete_and_verifies(recorded: tuple[Path, dict]) -> None:
+    path, _ = recorded
+    # the logger renamed its .part file into place and rerun's own verifier accepts it
+    assert path.is_file() and not path.with_name(path.name + ".part").exists()
+    done = subprocess.run([str(RERUN), "rrd", "verify", str(path)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
+def test_tree_comes_first(recorded: tuple[Path, dict]) -> None:
+    contents = read_recording(recorded[0])
+    # after the static domain, the first things logged are the tree graph, its XML and its generation
+    assert contents.first_entities[:3] == ("/tree/graph", "/tree/xml", "/learner/generations")
+    assert contents.session == "test-session"
+    assert contents.domain_name == "ball-in-bin"
+    assert contents.conditions[0] == "BallFound" and "PlaceBall" in contents.actions
+    assert contents.goal == ("BallPlaced",)
+
+
+def test_demonstrations_in_order_with_states(recorded: tuple[Path, dict], ball: Domain) -> None:
+    contents = read_recording(recorded[0])
+    demos = recorded[1]["demos"]
+    assert [d.name for d in contents.demonstrations] == ["demo-001", "demo-002"]
+    for record, demo in zip(contents.demonstrations, demos):
+        assert record.states == tuple(s.state for s in demo.steps)
+        assert record.reached_goal
+    # external actions and the goal line are marked as such
+    assert contents.demonstrations[0].actions == ("FindBall", "ApproachBall", "GraspBall", "external", "GraspBall",
+                                                  "ApproachBin", "PlaceBall", "goal")
+    assert contents.demonstrations[1].csv == DEMO_2
+
+
+def test_questions_with_answers_in_order(recorded: tuple[Path, dict]) -> None:
+    contents = read_recording(recorded[0])
+    assert [(q.question, q.budget_left, q.answer, q.change) for q in contents.questions] == [
+        ("Must the ball be in your hand before you go to the bin?", 4, "yes", "kept (BallGrasped)"),
+        ("Do you need to see the ball to grasp it?", 3, "no", ""),
+    ]
+    kinds = [(d.kind, d.speaker) for d in contents.dialogue]
+    assert kinds == [("line", "teacher"), ("line", "robot"), ("question", "robot"), ("answer", "teacher"),
+                     ("question", "robot"), ("answer", "teacher")]
+    assert contents.dialogue[1].budget_left == 5 and contents.dialogue[0].budget_left is None
+
+
+def test_generations_learner_events_and_replays(recorded: tuple[Path, dict]) -> None:
+    contents = read_recording(recorded[0])
+    fed = recorded[1]
+    assert [(g.generation, g.nodes) for g in contents.generations] == list(zip([0, 1, 2], fed["sizes"]))
+    assert [g.reason for g in contents.generations] == ["start", "demonstration demo-001", "answer"]
+    assert contents.final_tree_xml == fed["xml"]
+    assert [(e.event, e.removed) for e in contents.learner_events] == [
+        ("specialize", ("(BinClose)",)), ("prune", ("(BallFound)", "FindBall"))]
+    assert [(r.reproduced, r.total, r.lenient) for r in contents.replays] == [(1, 1, False), (2, 2, True)]
+
+
+def test_ticks_states_and_externals(recorded: tuple[Path, dict]) -> None:
+    contents = read_recording(recorded[0])
+    fed = recorded[1]
+    assert [(t.status, t.action) for t in contents.ticks] == fed["ticks"]
+    # the first tick in state 00000: (BallFound) fails, FindBall runs, the Fallback and Sequence run
+    assert contents.ticks[0].trace == (("(BallFound)", "FAILURE"), ("FindBall", "RUNNING"), ("?", "RUNNING"),
+                                       ("→", "RUNNING"))
+    assert [t.generation for t in contents.ticks] == [0] * 8 + [2]
+    assert [t.sim_time for t in contents.ticks[:3]] == pytest.approx([0.0, 0.1, 0.2])
+    assert len(contents.states) == 8 and contents.states[1].state["BallFound"] is True
+    assert contents.states[0].action == "FindBall"
+    assert contents.externals == [(5, "BallDropped")]
+
+
+def test_scene_is_throttled_to_frame_rate(recorded: tuple[Path, dict]) -> None:
+    contents = read_recording(recorded[0])
+    # scene offered every 0.1 s of sim time for 8 steps, logged at 10 Hz: all 8; camera at 2 Hz: t=0, 0.5
+    assert contents.scene_frames == 8
+    assert contents.camera_frames == 2
+
+
+def test_truncated_recording_is_one_line_error(recorded: tuple[Path, dict], tmp_path: Path) -> None:
+    data = recorded[0].read_bytes()
+    for cut in (len(data) // 2, len(data) - 7, 100):
+        broken = tmp_path / f"cut{cut}.rrd"
+        broken.write_bytes(data[:cut])
+        with pytest.raises(FormatError) as caught:
+            read_recording(broken)
+        assert str(caught.value).startswith(str(broken)) and "\n" not in str(caught.value)
+
+
+def test_garbage_and_missing_files_are_errors(tmp_path: Path) -> None:
+    garbage = tmp_path / "garbage.rrd"
+    garbage.write_bytes(b"this is not a recording\n" * 10)
+    with pytest.raises(FormatError, match="garbage.rrd"):
+        read_recording(garbage)
+    with pytest.raises(FormatError, match="no such recording"):
+        read_recording(tmp_path / "missing.rrd")
+
+
+def test_default_path_and_labels() -> None:
+    assert default_recording_path("ball 2026/11") == Path("recordings/ball_2026_11.rrd")
+    labels = [node_label(n) for n in (Sequence(()), Fallback(()), Inverter(Action("A")), Condition("C"), Action("A"))]
+    assert labels == ["→", "?", "◇", "(C)", "A"]
+
+
+def test_unknown_shape_kind_is_refused(tmp_path: Path) -> None:
+    logger = RerunLogger(tmp_path / "s.rrd", "shapes")
+    try:
+        logger.set_time(0, 0.0)
+        with pytest.raises(ValueError, match="unknown kind"):
+            logger.on_scene([SceneShape("x", "torus", (1.0,), (0, 0, 0), (1, 0, 0, 0), (1, 1, 1, 1))])
+    finally:
+        logger.close()
