@@ -1,0 +1,254 @@
+"""Pruning of redundant nodes (thesis §4.2.2, Algorithms 4.1–4.4), sound by construction.
+
+The thesis walks up from every condition to see whether the same condition was already
+evaluated on every path that reaches it. We compute the same knowledge top-down in one
+pass per round: for every node the literals that hold whenever a tick reaches it (the
+*context*), and for every subtree the literals that hold when it returns SUCCESS or
+FAILURE. A subtree whose result the context already decides is then
+
+- *neutral* (SUCCESS under a Sequence, FAILURE under a Fallback): removed, the parent
+  goes on exactly as before (the thesis's redundant condition, Inverters included);
+- *decisive* (FAILURE under a Sequence, SUCCESS under a Fallback): kept, and the
+  siblings to its right, which no tick can reach, are removed.
+
+Inside a Parallel every child is ticked, so a decided child is removed only with the
+success threshold adjusted so that the Parallel's result cannot change. An action that
+returned SUCCESS guarantees its ramifications (and nothing else about the state); in
+the symbolic world actions only return RUNNING, so everything learned from an action's
+success is vacuous there and the pruned tree ticks exactly like the original in every
+state. Rounds repeat until nothing changes; control nodes left with one child (not
+Inverters) are replaced by that child. docs/reproduction.md lists where this departs
+from the printed pseudo-code and why.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence as Seq
+from dataclasses import replace
+from functools import reduce
+from types import MappingProxyType
+
+from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
+                            walk)
+from teach.domain import Domain, Literal
+from teach.errors import LearnError
+
+Facts = dict[str, bool]
+"""Literals known to hold, as condition name -> value. ``None`` stands for "impossible"."""
+
+_NO_RAMIFICATIONS: Mapping[str, Seq[Literal]] = MappingProxyType({})
+
+
+def prune(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _NO_RAMIFICATIONS) -> Node:
+    """The tree without redundant and unreachable nodes; it ticks like ``tree`` in every state.
+
+    ``ramifications`` maps an action name to the literals its success makes true (the
+    domain's action model, see :func:`ramifications_of`); without it actions teach nothing.
+    """
+    return prune_with_report(tree, ramifications)[0]
+
+
+def prune_with_report(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _NO_RAMIFICATIONS
+                      ) -> tuple[Node, list[str]]:
+    """:func:`prune` plus the removed nodes as ``Kind:name#uid`` labels, in tree order."""
+    rounds = _Pruner(_facts_of_ramifications(ramifications))
+    while True:
+        before = len(rounds.removed)
+        tree = rounds.run(tree)
+        if len(rounds.removed) == before:
+            return tree, rounds.removed
+
+
+def ramifications_of(domain: Domain) -> dict[str, tuple[Literal, ...]]:
+    """The action model's ramifications by action name, as :func:`prune` takes them."""
+    return {a.name: a.ram for a in domain.actions if a.ram}
+
+
+def label(node: Node) -> str:
+    """``Condition:BallFound#12`` or ``Sequence#3``: how removed nodes are reported."""
+    kind = type(node).__name__
+    if isinstance(node, (Condition, Action)):
+        return f"{kind}:{node.name}#{node.uid}"
+    return f"{kind}#{node.uid}"
+
+
+def _facts_of_ramifications(ramifications: Mapping[str, Seq[Literal]]) -> dict[str, Facts]:
+    result: dict[str, Facts] = {}
+    for action in sorted(ramifications):
+        facts: Facts = {}
+        for literal in ramifications[action]:
+            if facts.get(literal.name, literal.value) is not literal.value:
+                raise LearnError(f"action {action} has both {literal.name} and !{literal.name} "
+                                 "as ramifications")
+            facts[literal.name] = literal.value
+        result[action] = facts
+    return result
+
+
+def _meet(a: Facts | None, b: Facts | None) -> Facts | None:
+    """What holds on either of two paths (``None``, an impossible path, adds nothing)."""
+    if a is None:
+        return b
+    if b is None:
+        return a
+    return {name: value for name, value in a.items() if b.get(name) is value}
+
+
+def _join(a: Facts | None, b: Facts | None) -> Facts | None:
+    """What holds when both hold; ``None`` if they contradict."""
+    if a is None or b is None:
+        return None
+    for name, value in b.items():
+        if a.get(name, value) is not value:
+            return None
+    return a | b
+
+
+def _with(facts: Facts, name: str, value: bool) -> Facts | None:
+    known = facts.get(name)
+    if known is None:
+        return facts | {name: value}
+    return facts if known is value else None
+
+
+_SWAP = {Status.SUCCESS: Status.FAILURE, Status.FAILURE: Status.SUCCESS, None: None}
+
+
+class _Outcome:
+    """One analysed and rebuilt subtree: its replacement, its result if the context decides
+    it (no action can tick then), the literals holding after SUCCESS and after FAILURE, and
+    whether it contains an action (which may change the world mid-tick)."""
+
+    __slots__ = ("node", "known", "success", "failure", "acts")
+
+    def __init__(self, node: Node, known: Status | None, success: Facts | None,
+                 failure: Facts | None, acts: bool):
+        self.node, self.known, self.success, self.failure, self.acts = node, known, success, failure, acts
+
+
+class _Pruner:
+    """One round = one top-down pass that analyses and rebuilds the tree together."""
+
+    def __init__(self, ramifications: dict[str, Facts]):
+        self.ramifications = ramifications
+        self.removed: list[str] = []
+
+    def run(self, tree: Node) -> Node:
+        return self.visit(tree, {}).node
+
+    def drop(self, node: Node) -> None:
+        self.removed.extend(label(n) for n in walk(node))
+
+    def visit(self, node: Node, context: Facts) -> _Outcome:
+        if isinstance(node, Condition):
+            value = context.get(node.name)
+            known = None if value is None else (Status.SUCCESS if value else Status.FAILURE)
+            return _Outcome(node, known, _with(context, node.name, True),
+                            _with(context, node.name, False), False)
+        if isinstance(node, Action):
+            # Only SUCCESS says anything, and only the ramifications: the action may have
+            # changed everything else. (In the symbolic world it never returns either.)
+            return _Outcome(node, None, dict(self.ramifications.get(node.name, {})), {}, True)
+        if isinstance(node, Inverter):
+            inner = self.visit(node.child, context)
+            rebuilt = node if inner.node is node.child else replace(node, child=inner.node)
+            return _Outcome(rebuilt, _SWAP[inner.known], inner.failure, inner.success, inner.acts)
+        if isinstance(node, (Sequence, Fallback)):
+            return self.chain(node, context)
+        if isinstance(node, Parallel):
+            return self.parallel(node, context)
+        raise TypeError(f"not a node: {node!r}")  # pragma: no cover
+
+    def chain(self, node: Sequence | Fallback, context: Facts) -> _Outcome:
+        """Sequence and Fallback are duals: a Sequence passes the tick on after SUCCESS
+        (its *neutral* result) and stops at anything else; a Fallback after FAILURE."""
+        is_sequence = isinstance(node, Sequence)
+        neutral = Status.SUCCESS if is_sequence else Status.FAILURE
+        current: Facts | None = context       # what holds when the next child is reached
+        exits: Facts | None = None            # what holds when some child stopped the chain
+        decided = True                        # every child so far had a known result
+        known: Status | None = neutral
+        kept: list[Node] = []
+        neutral_dropped: list[Node] = []
+        acts = False
+        kids = node.children
+        reached = 0
+        for kid in kids:
+            if current is None:               # no tick gets here: the rest is unreachable
+                break
+            reached += 1
+            out = self.visit(kid, current)
+            acts = acts or out.acts
+            passes, leaves = (out.success, out.failure) if is_sequence else (out.failure, out.success)
+            if out.known is neutral:
+                neutral_dropped.append(out.node)
+                current = passes
+                continue
+            kept.append(out.node)
+            exits = _meet(exits, leaves)
+            if out.known is not None:         # decisive: the later siblings are unreachable
+                if decided:
+                    known = out.known
+                current = None
+                break
+            decided = False
+            known = None
+            current = passes
+        if not kept and neutral_dropped:      # every child neutral: one keeps the result
+            kept.append(neutral_dropped.pop(0))
+        for gone in neutral_dropped:
+            self.drop(gone)
+        for gone in kids[reached:]:
+            self.drop(gone)
+        success, failure = (current, exits) if is_sequence else (exits, current)
+        rebuilt = self.rebuilt(node, kids, kept)
+        return _Outcome(rebuilt, known, success, failure, acts)
+
+    def parallel(self, node: Parallel, context: Facts) -> _Outcome:
+        """Every child is ticked, so a child with a known result is removed only where the
+        threshold can absorb it: M of N with one sure success is M-1 of N-1, with one sure
+        failure M of N-1."""
+        outcomes: list[_Outcome] = []
+        acts = False
+        for kid in node.children:
+            # After an action has ticked, the state it was reached in may have changed.
+            outcomes.append(self.visit(kid, {} if acts else context))
+            acts = acts or outcomes[-1].acts
+        n, m = len(outcomes), node.success_threshold
+        if all(o.known is not None for o in outcomes):
+            successes = sum(o.known is Status.SUCCESS for o in outcomes)
+            known: Status | None = Status.SUCCESS if successes >= m else Status.FAILURE
+        else:
+            known = None
+        kept: list[Node] = []
+        for out in outcomes:
+            if out.known is Status.SUCCESS and m >= 2 and n >= 2:
+                m, n = m - 1, n - 1
+                self.drop(out.node)
+            elif out.known is Status.FAILURE and m <= n - 1:
+                n -= 1
+                self.drop(out.node)
+            else:
+                kept.append(out.node)
+        success: Facts | None = {}
+        failure: Facts | None = {}
+        if not acts:  # all N succeed (M = N) or all fail (M = 1), else at least one of them
+            everyone = len(outcomes)
+            success = reduce(_join if node.success_threshold == everyone else _meet,
+                             (o.success for o in outcomes), {} if node.success_threshold == everyone else None)
+            failure = reduce(_join if node.success_threshold == 1 else _meet,
+                             (o.failure for o in outcomes), {} if node.success_threshold == 1 else None)
+        rebuilt = self.rebuilt(node, node.children, kept, m)
+        return _Outcome(rebuilt, known, success, failure, acts)
+
+    def rebuilt(self, node: Sequence | Fallback | Parallel, kids: tuple[Node, ...], kept: list[Node],
+                threshold: int | None = None) -> Node:
+        """The control node with ``kept`` children (same uid), or its only child."""
+        if len(kept) == 1:
+            self.removed.append(label(node))
+            return kept[0]
+        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids)):
+            return node
+        if isinstance(node, Parallel):
+            return replace(node, children=tuple(kept), success_threshold=threshold)
+        return replace(node, children=tuple(kept))
