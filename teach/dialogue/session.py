@@ -107,6 +107,7 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.finished = False
         self.step = 0
+        self._turn_questions = 0
         self.last_learn_ms = 0.0
         self.journal = journal or Journal(config.session, str(config.domain.path or ""), config.lang,
                                           config.questions, config.world, config.seed)
@@ -155,8 +156,10 @@ class SessionManager:
             if self.pending is not None and (command is None or command.names[0] in ("done", "skip")):
                 replies = self._answer(line)
             elif command is not None:
+                self._turn_questions = 0
                 replies = command.handler(self, rest)
             else:
+                self._turn_questions = 0
                 replies = self._teach_actions(line)
         except UnknownPhrase as unknown:
             replies = [Reply("error", unknown.message)]
@@ -365,17 +368,33 @@ class SessionManager:
         replies = self._after_learning(ask=True, started=started)
         return replies
 
+    def import_demonstrations(self, demos: list[Demonstration]) -> list[Reply]:
+        """Learn demonstrations recorded elsewhere (one generation for all of them)."""
+        started = time.perf_counter()
+        for demo in demos:
+            path = next_demo_path(self.config.demo_dir)
+            source = f"imported {demo.name} ({path.name})"
+            self.learner.update(demo, source=source)
+            write_demonstration(path, demo)
+            self.demos.append(demo)
+            self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+            self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
+            self.observer.on_demonstration(demo.name, demo, self.domain)
+        return self._after_learning(ask=False, started=started)
+
     # --- questions --------------------------------------------------------------------------
 
-    def _maybe_ask(self, force: bool = False, asked_this_turn: int = 0) -> list[Reply]:
+    def _maybe_ask(self, force: bool = False) -> list[Reply]:
+        """Ask the best question if the budget allows; unforced, at most QUESTIONS_PER_TURN in a row."""
         if self.budget.left <= 0 or self.pending is not None:
             return []
-        if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or asked_this_turn >= QUESTIONS_PER_TURN):
+        if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or self._turn_questions >= QUESTIONS_PER_TURN):
             return []
         question = self.next_question()
         if question is None:
             return []
         self.budget.spend()
+        self._turn_questions += 1
         self.pending = question
         text = question.text(self.domain, self.lang)
         self.observer.on_question(text, self.budget.left)

@@ -1,0 +1,81 @@
+"""Building a session from command-line choices: domain, world, recording, resume."""
+
+from __future__ import annotations
+
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+from teach.dialogue.session import SessionConfig, SessionManager
+from teach.dialogue.worlds import OfflineWorld, SymbolicWorld, TeachingWorld
+from teach.domain import Domain, load_domain
+from teach.errors import TeachError
+from teach.observe import Observer, Observers
+
+DEFAULT_DOMAIN = Path("demos/ball/domain.toml")
+WORLDS = ("mujoco", "symbolic", "offline")
+
+
+@dataclass
+class SessionOptions:
+    session: str
+    domain: Path | None = None
+    lang: str = "en"
+    questions: int = 5
+    seed: int = 0
+    world: str = "mujoco"
+    base: Path = Path(".")
+    record: bool = True
+    spawn: bool = False
+    resume: bool = False
+    fresh: bool = False
+
+
+def default_domain() -> Domain:
+    if DEFAULT_DOMAIN.is_file():
+        return load_domain(DEFAULT_DOMAIN)
+    from importlib.resources import files
+
+    return load_domain(Path(str(files("teach.sim") / "assets" / "ball_in_bin.toml")))
+
+
+def make_world(kind: str, domain: Domain, seed: int, observer: Observer) -> TeachingWorld:
+    if kind == "mujoco":
+        from teach.dialogue.mujoco_world import MujocoWorld
+
+        return MujocoWorld(domain, seed, observer)
+    if kind == "symbolic":
+        return SymbolicWorld(domain, seed, observer)
+    if kind == "offline":
+        return OfflineWorld(domain)
+    raise TeachError(f"unknown world {kind!r} (choose from {', '.join(WORLDS)})")
+
+
+def open_session(options: SessionOptions) -> SessionManager:
+    """A new or resumed session with its world and its recording."""
+    domain = load_domain(options.domain) if options.domain else default_domain()
+    if options.lang not in ("en", "de"):
+        raise TeachError(f"unknown language {options.lang!r} (choose en or de)")
+    if options.questions < 0:
+        raise TeachError("--questions must be 0 or more")
+    config = SessionConfig(options.session, domain, options.lang, options.questions, options.seed,
+                           options.world, options.base)
+    if options.fresh and not options.resume:
+        for stale in (config.demo_dir, config.tree_dir):
+            shutil.rmtree(stale, ignore_errors=True)
+        config.journal_path.unlink(missing_ok=True)
+    elif not options.resume and config.journal_path.exists():
+        raise TeachError(f"session {options.session!r} exists already: resume it with --resume {options.session}",
+                         config.journal_path)
+    observers: list[Observer] = []
+    if options.record:
+        from teach.log import RerunLogger
+
+        rrd = config.base / "recordings" / f"{options.session}.rrd"
+        rrd.parent.mkdir(parents=True, exist_ok=True)
+        observers.append(RerunLogger(rrd, options.session, spawn=options.spawn))
+    observer = Observers(*observers)
+    world = make_world(options.world, domain, options.seed, observer)
+    if options.resume:
+        return SessionManager.resume(config, world, observer)
+    return SessionManager(config, world, observer)

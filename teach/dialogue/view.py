@@ -1,0 +1,35 @@
+"""How replies look: pure functions from ``Reply`` to rich renderables, shared by the
+terminal and by scripted replays (so a transcript shows exactly what the terminal shows)."""
+
+from __future__ import annotations
+
+from rich.console import RenderableType
+from rich.panel import Panel
+from rich.text import Text
+
+from teach.dialogue.session import Reply
+from teach.domain import Domain
+
+STYLES = {"say": "bold cyan", "info": "white", "error": "bold red", "question": "bold magenta"}
+PREFIX = {"say": "robot: ", "question": "robot asks: ", "error": "! "}
+
+
+def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableType:
+    if reply.kind == "tree" and reply.tree is not None:
+        from teach.bt.render import render_tree
+
+        labels = None
+        return Panel(render_tree(reply.tree, labels=labels), title="learned tree", expand=False)
+    if reply.kind == "state" and reply.state is not None:
+        text = Text("  state: ", style="dim")
+        for name, value in reply.state.items():
+            text.append(f"{name}", style="green" if value else "red")
+            text.append("=1 " if value else "=0 ", style="dim")
+        return text
+    return Text(PREFIX.get(reply.kind, "") + reply.text, style=STYLES.get(reply.kind, ""))
+
+
+def render_teacher(line: str) -> Text:
+    text = Text("teacher> ", style="bold green")
+    text.append(line)
+    return text
