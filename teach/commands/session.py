@@ -1,0 +1,51 @@
+"""Teach the robot live in the terminal.
+
+Example:
+    teach session                      # English, ball-in-bin world in MuJoCo, 5 questions
+    teach session --lang de --questions 3
+    teach session --resume session-20261122-101500
+
+Type what the robot should do ("find the ball, go to the ball, ..."), `done` when the task
+is finished, `help` for all commands. Ctrl-C interrupts a robot run, Ctrl-D saves and leaves.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+NAME = "session"
+HELP = "teach the robot live in the terminal"
+ORDER = 10
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--session", help="session name (default: session-<date>-<time>)")
+    parser.add_argument("--resume", metavar="SESSION", help="continue a saved or crashed session")
+    parser.add_argument("--domain", type=Path, help="domain.toml (default: the ball-in-bin domain)")
+    parser.add_argument("--lang", choices=("en", "de"), default="en", help="language of the dialogue")
+    parser.add_argument("--questions", type=int, default=5, help="most questions the robot may ask (default 5)")
+    parser.add_argument("--world", choices=("mujoco", "symbolic", "offline"), default="mujoco",
+                        help="where demonstrations happen (default mujoco)")
+    parser.add_argument("--seed", type=int, default=0, help="random seed of the world")
+    parser.add_argument("--spawn", action="store_true", help="also stream to a live rerun viewer")
+    parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
+    parser.add_argument("--viewer", action="store_true", help="show the MuJoCo viewer (needs a display)")
+    parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
+
+
+def run(args: argparse.Namespace) -> int:
+    from teach.dialogue.setup import SessionOptions, open_session
+    from teach.dialogue.terminal import Terminal
+
+    name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
+    options = SessionOptions(session=name, domain=args.domain, lang=args.lang, questions=args.questions,
+                             seed=args.seed, world=args.world, base=args.base, record=not args.no_record,
+                             spawn=args.spawn, resume=bool(args.resume))
+    manager = open_session(options)
+    try:
+        Terminal(manager, history=args.base / "recordings" / ".teach_history").run()
+    finally:
+        manager.close()
+    return 0

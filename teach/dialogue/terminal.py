@@ -1,0 +1,74 @@
+"""The terminal front-end: prompt_toolkit for input (completion, history, toolbar), rich for
+output. A thin driver of the session manager.
+
+Ctrl-C interrupts a robot run (not the program) and clears the line at the prompt;
+Ctrl-D saves and leaves.
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+from pathlib import Path
+
+from prompt_toolkit import PromptSession
+from prompt_toolkit.history import FileHistory, InMemoryHistory
+from prompt_toolkit.input import Input
+from prompt_toolkit.output import Output
+from rich.console import Console
+
+from teach.dialogue.completion import TeachCompleter, command_words
+from teach.dialogue.drive import show
+from teach.dialogue.session import COMMANDS, SessionManager
+
+RUN_WORDS = {"run", "los", "ausfuhren"}
+
+
+class Terminal:
+    def __init__(self, manager: SessionManager, console: Console | None = None,
+                 input: Input | None = None, output: Output | None = None, history: Path | None = None):
+        self.manager = manager
+        self.console = console or Console(highlight=False)
+        words = command_words(c.usage for c in COMMANDS) + [n for c in COMMANDS for n in c.names if n.isalpha()]
+        self.prompt = PromptSession(
+            completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang)),
+            history=FileHistory(str(history)) if history else InMemoryHistory(),
+            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
+        self._interrupt = threading.Event()
+
+    def _toolbar(self) -> str:
+        m = self.manager
+        state = " ".join(f"{n}={int(v)}" for n, v in zip(m.domain.condition_names, m.world.state()))
+        return f" {m.mode} | {state} | questions left {m.budget.left} | generation {m.generation} | Ctrl-D: save & quit"
+
+    def run(self) -> None:
+        show(self.console, self.manager, self.manager.greet())
+        while not self.manager.finished:
+            prompt = "answer> " if self.manager.pending is not None else "teach> "
+            try:
+                line = self.prompt.prompt(prompt)
+            except KeyboardInterrupt:
+                continue
+            except EOFError:
+                show(self.console, self.manager, self.manager.handle("quit"))
+                break
+            show(self.console, self.manager, self._handle(line))
+
+    def _handle(self, line: str) -> list:
+        words = line.strip().split()
+        if words and words[0].lower() in RUN_WORDS and self.manager.pending is None:
+            return self._run_robot(" ".join(words[1:]))
+        return self.manager.handle(line)
+
+    def _run_robot(self, rest: str) -> list:
+        """Run the tree; Ctrl-C sets the interrupt flag instead of ending the program."""
+        self._interrupt.clear()
+        self.console.print("[dim]robot running, Ctrl-C interrupts ...[/dim]")
+        in_main = threading.current_thread() is threading.main_thread()
+        previous = signal.signal(signal.SIGINT, lambda *_: self._interrupt.set()) if in_main else None
+        try:
+            self.manager.observer.on_dialogue("teacher", f"run {rest}".strip(), self.manager.budget.left)
+            return self.manager.cmd_run(rest, interrupt=self._interrupt.is_set)
+        finally:
+            if in_main:
+                signal.signal(signal.SIGINT, previous)
