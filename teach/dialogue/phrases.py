@@ -98,7 +98,7 @@ class PhraseBook:
         segmented = self._segment(key.split())
         if segmented is not None:
             return segmented
-        close = difflib.get_close_matches(key, self._phrases, n=3, cutoff=0.6)
+        close = difflib.get_close_matches(key, self._phrases, n=3, cutoff=0.45)
         if close and self._clear_typo(key, close):
             return [self._phrases[close[0]]]
         raise UnknownPhrase(chunk.strip(), [self._pretty(c, lang) for c in close], lang)
