@@ -4,8 +4,9 @@
 no display needed) and, with ``spawn=True``, also streams to a live viewer. Like
 BehaviorTree.CPP's file logger it writes what explains the rest first (blueprint, domain,
 tree), then the events. Entity paths are namespaced: ``scene/...`` and ``camera/image`` (the
-world), ``state`` (symbolic state, running action, external actions), ``tree/graph``,
-``tree/xml``, ``tree/tick``, ``dialogue``, ``learner/...``, ``demos``. Each event row carries
+world), ``state`` (symbolic state and running action), ``state/external``, ``tree/graph`` (the
+tree, coloured by each tick, with the tick's trace), ``tree/xml``, ``dialogue``, ``learner/...``,
+``demos``. Each event row carries
 ``AnyValues`` with plain fields, so ``read_recording`` gets the session back without parsing
 display text; rows are put back in order by their rerun row ids, which increase monotonically
 within the logging process.
@@ -30,7 +31,8 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, children, walk
+from teach.bt.nodes import Node, Status, children, walk
+from teach.bt.render import symbol
 from teach.errors import FormatError, TeachError
 from teach.observe import Observer
 
@@ -55,22 +57,6 @@ def default_recording_path(session_name: str) -> Path:
     return RECORDINGS / f"{safe}.rrd"
 
 
-def node_label(node: Node) -> str:
-    """The thesis's symbols: → Sequence, ? Fallback, ⇉ Parallel (with M), ◇ Inverter, (Condition)."""
-    if isinstance(node, Sequence):
-        return "→"
-    if isinstance(node, Fallback):
-        return "?"
-    if isinstance(node, Parallel):
-        return f"⇉{node.success_threshold}"
-    if isinstance(node, Inverter):
-        return "◇"
-    if isinstance(node, Condition):
-        return f"({node.name})"
-    assert isinstance(node, Action)
-    return node.name
-
-
 def blueprint() -> rrb.Blueprint:
     """Scene and camera, tree graph, state, dialogue: the layout the viewer opens with."""
     return rrb.Blueprint(
@@ -79,7 +65,7 @@ def blueprint() -> rrb.Blueprint:
                          rrb.Spatial2DView(name="Camera", origin="camera"), row_shares=[3, 2]),
             rrb.Vertical(rrb.GraphView(name="Behaviour tree", origin="tree/graph"),
                          rrb.Tabs(rrb.TextDocumentView(name="State", origin="state"),
-                                  rrb.TimeSeriesView(name="State over time", origin="state/plot"),
+                                  rrb.TimeSeriesView(name="State over time", origin="state"),
                                   rrb.TextDocumentView(name="Tree XML", origin="tree/xml"),
                                   rrb.TextDocumentView(name="Demonstration", origin="demos/table"),
                                   rrb.TextDocumentView(name="Domain", origin="domain")),
@@ -87,7 +73,7 @@ def blueprint() -> rrb.Blueprint:
             rrb.Vertical(rrb.TextLogView(name="Dialogue", origin="dialogue"),
                          rrb.TextLogView(name="Learner and events",
                                          contents=["learner/**", "demos", "state/external"]),
-                         rrb.TextLogView(name="Ticks", origin="tree/tick"), row_shares=[3, 2, 1]),
+                         rrb.TextLogView(name="Ticks", origin="tree/graph"), row_shares=[3, 2, 1]),
             column_shares=[3, 3, 2]),
         rrb.TimePanel(timeline="step"),
         collapse_panels=True,
@@ -113,7 +99,7 @@ class _TreeView:
         nodes = list(walk(tree))
         index = {node.uid: i for i, node in enumerate(nodes)}
         edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
-        return cls(tree, index, [node_label(n) for n in nodes], edges, _layout(tree, index))
+        return cls(tree, index, [symbol(n) for n in nodes], edges, _layout(tree, index))
 
 
 def _layout(tree: Node, index: Mapping[int, int]) -> np.ndarray:
@@ -170,7 +156,7 @@ class RerunLogger(Observer):
         self._generation = -1
         self._last_scene: float | None = None
         self._last_camera: float | None = None
-        self._scene_kinds: set[str] = set()
+        self._scene_geometry: dict[str, tuple] = {}  # kind -> names, sizes, colours last logged
         self._closed = False
         atexit.register(self.close)
 
@@ -209,11 +195,11 @@ class RerunLogger(Observer):
         if domain.goal:
             lines += ["", "Goal: " + " ".join(map(str, domain.goal))]
         self._log("domain", rr.TextDocument("\n".join(lines), media_type=rr.MediaType.MARKDOWN),
-                  rr.AnyValues(name=domain.name, conditions=names, actions=list(domain.action_names),
+                  _values(name=domain.name, conditions=names, actions=list(domain.action_names),
                                action_ids=[a.id for a in domain.actions],
                                goal=[str(g) for g in domain.goal] or None),
                   static=True)
-        self._log("state/plot", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
+        self._log("state", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
 
     def on_tree(self, generation: int, tree: "Node", xml: str, reason: str) -> None:
         self._generation = generation
@@ -223,7 +209,7 @@ class RerunLogger(Observer):
         self._log("tree/xml", rr.TextDocument(xml, media_type=rr.MediaType.TEXT))
         self._log("learner/generations",
                   rr.TextLog(f"generation {generation}: {nodes} nodes ({reason})", level="generation"),
-                  rr.AnyValues(generation=generation, reason=reason, nodes=nodes, xml=xml))
+                  _values(generation=generation, reason=reason, nodes=nodes, xml=xml))
 
     def _log_graph(self, view: _TreeView) -> None:
         self._log("tree/graph",
@@ -247,13 +233,12 @@ class RerunLogger(Observer):
                 colours[view.index[uid]] = _STATUS_COLOURS[status]
         trace = [(view.index[uid], status.name) for uid, status in result.trace if uid in view.index]
         action = result.action or ""
-        self._log("tree/graph", rr.GraphNodes.from_fields(colors=colours))
-        self._log("tree/tick",
+        self._log("tree/graph", rr.GraphNodes.from_fields(colors=colours),
                   rr.TextLog(f"{result.status.name} {action}".rstrip(), level=result.status.name),
-                  rr.AnyValues(status=result.status.name, action=action, generation=self._generation,
-                               trace_nodes=[i for i, _ in trace] or None,
-                               trace_labels=[view.labels[i] for i, _ in trace] or None,
-                               trace_status=[s for _, s in trace] or None))
+                  _values(status=result.status.name, action=action, generation=self._generation,
+                          trace_nodes=[i for i, _ in trace] or None,
+                          trace_labels=[view.labels[i] for i, _ in trace] or None,
+                          trace_status=[s for _, s in trace] or None))
 
     # --- the world --------------------------------------------------------------------------
 
@@ -263,13 +248,12 @@ class RerunLogger(Observer):
         doc = [f"**Running:** {action or '—'}", "", "| condition | value |", "|---|---|"]
         doc += [f"| {n} | {'✔ true' if v else '✘ false'} |" for n, v in zip(names, values)]
         self._log("state", rr.TextDocument("\n".join(doc), media_type=rr.MediaType.MARKDOWN),
-                  rr.AnyValues(conditions=names or None, values=values or None, action=action or ""))
-        if values:
-            self._log("state/plot", rr.Scalars(np.asarray(values, dtype=np.float64)))
+                  *([rr.Scalars(np.asarray(values, dtype=np.float64))] if values else []),
+                  _values(conditions=names or None, values=values or None, action=action or ""))
 
     def on_external(self, name: str) -> None:
         self._log("state/external", rr.TextLog(f"external action: {name}", level="EXTERNAL"),
-                  rr.AnyValues(external=name))
+                  _values(external=name))
 
     def on_scene(self, shapes: Seq["SceneShape"]) -> None:
         sim_time = self._clock[2]
@@ -281,11 +265,14 @@ class RerunLogger(Observer):
             if shape.kind not in _SHAPE_ENTITIES:
                 raise ValueError(f"scene shape {shape.name!r} has unknown kind {shape.kind!r}")
             groups.setdefault(shape.kind, []).append(shape)
-        for kind in sorted(self._scene_kinds - groups.keys()):
+        for kind in sorted(self._scene_geometry.keys() - groups.keys()):
             self._log(_SHAPE_ENTITIES[kind], rr.Clear(recursive=False))
-        self._scene_kinds = set(groups)
+            del self._scene_geometry[kind]
         for kind in sorted(groups):
-            self._log(_SHAPE_ENTITIES[kind], _shape_batch(kind, groups[kind]))
+            geometry = tuple((s.name, s.size, s.rgba) for s in groups[kind])
+            full = self._scene_geometry.get(kind) != geometry
+            self._scene_geometry[kind] = geometry
+            self._log(_SHAPE_ENTITIES[kind], _shape_batch(kind, groups[kind], full))
 
     def on_camera(self, image: Any) -> None:
         sim_time = self._clock[2]
@@ -304,7 +291,7 @@ class RerunLogger(Observer):
     def _dialogue(self, kind: str, speaker: str, shown: str, level: str, *, text: str = "",
                   budget_left: int | None = None, question: str = "", answer: str = "", change: str = "") -> None:
         self._log("dialogue", rr.TextLog(shown, level=level),
-                  rr.AnyValues(kind=kind, speaker=speaker, text=text,
+                  _values(kind=kind, speaker=speaker, text=text,
                                budget_left=-1 if budget_left is None else budget_left,
                                question=question, answer=answer, change=change))
 
@@ -334,7 +321,7 @@ class RerunLogger(Observer):
                   for i, (state, label) in enumerate(zip(states, labels), 1)]
         self._log("demos", rr.TextLog(f"demonstration {name}: {' → '.join(robot) or '(no actions)'} ({ending})",
                                       level="demonstration"),
-                  rr.AnyValues(name=name, conditions=list(domain.condition_names), states=states,
+                  _values(name=name, conditions=list(domain.condition_names), states=states,
                                step_actions=[s.action for s in demo.steps], step_labels=labels,
                                reached_goal=demo.reached_goal, csv=format_demonstration(demo)))
         self._log("demos/table", rr.TextDocument(f"# {name}\n\n" + "\n".join(table),
@@ -343,12 +330,12 @@ class RerunLogger(Observer):
     def on_learner(self, event: str, detail: str, removed: Seq[str] = ()) -> None:
         text = f"{event}: {detail}" + (f" (removed {', '.join(removed)})" if removed else "")
         self._log("learner/events", rr.TextLog(text, level=event),
-                  rr.AnyValues(event=event, detail=detail, removed=list(removed) or None))
+                  _values(event=event, detail=detail, removed=list(removed) or None))
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         mode = "lenient" if lenient else "strict"
         self._log("learner/replay", rr.TextLog(f"replay: reproduced {reproduced}/{total} ({mode})", level="replay"),
-                  rr.AnyValues(reproduced=reproduced, total=total, lenient=lenient))
+                  _values(reproduced=reproduced, total=total, lenient=lenient))
 
     def close(self) -> None:
         """Flush, finish the file (rerun writes its footer on disconnect) and move it into place."""
@@ -367,6 +354,12 @@ class RerunLogger(Observer):
         self.close()
 
 
+def _values(**fields: Any) -> rr.AnyValues:
+    """Plain fields for reading back. Each is passed as a list: on a bare scalar rerun's AnyValues
+    takes ~8x longer (pyarrow's scalar path probes for pandas on every call)."""
+    return rr.AnyValues(**{k: v if isinstance(v, list) else [v] for k, v in fields.items() if v is not None})
+
+
 def _step_label(action: int, domain: "Domain") -> str:
     if action == 0:
         return "goal"
@@ -375,29 +368,36 @@ def _step_label(action: int, domain: "Domain") -> str:
     return domain.action(action).name
 
 
-def _shape_batch(kind: str, shapes: list["SceneShape"]) -> Any:
-    """One rerun archetype for all shapes of a kind (one ``log`` call per kind per frame)."""
+def _shape_batch(kind: str, shapes: list["SceneShape"], full: bool) -> Any:
+    """One rerun archetype for all shapes of a kind (one ``log`` call per kind per frame).
+
+    Sizes, colours and names are logged only when they change (``full``); other frames carry
+    the poses alone, which rerun combines with the latest geometry: a seventh of the cost.
+    """
     pos = np.array([s.pos for s in shapes], dtype=np.float32)
     wxyz = np.array([s.quat for s in shapes], dtype=np.float32)
-    xyzw = wxyz[:, [1, 2, 3, 0]]
-    colours = np.clip(np.array([s.rgba for s in shapes], dtype=np.float32) * 255.0, 0, 255).astype(np.uint8)
-    labels = [s.name for s in shapes]
-    solid = rr.components.FillMode.Solid
+    poses: dict[str, Any] = {"quaternions": wxyz[:, [1, 2, 3, 0]]}
+    geometry: dict[str, Any] = {}
+    if full:
+        geometry = {"colors": np.clip(np.array([s.rgba for s in shapes]) * 255.0, 0, 255).astype(np.uint8),
+                    "labels": [s.name for s in shapes], "show_labels": False,
+                    "fill_mode": rr.components.FillMode.Solid}
     if kind == "box":
-        return rr.Boxes3D(half_sizes=[s.size[:3] for s in shapes], centers=pos, quaternions=xyzw, colors=colours,
-                          labels=labels, show_labels=False, fill_mode=solid)
+        if full:
+            geometry["half_sizes"] = np.array([s.size[:3] for s in shapes], dtype=np.float32)
+        return rr.Boxes3D.from_fields(centers=pos, **poses, **geometry)
     if kind == "sphere":
-        return rr.Ellipsoids3D(half_sizes=[(s.size[0],) * 3 for s in shapes], centers=pos, quaternions=xyzw,
-                               colors=colours, labels=labels, show_labels=False, fill_mode=solid)
-    radii = np.array([s.size[0] for s in shapes], dtype=np.float32)
+        if full:
+            geometry["half_sizes"] = np.array([(s.size[0],) * 3 for s in shapes], dtype=np.float32)
+        return rr.Ellipsoids3D.from_fields(centers=pos, **poses, **geometry)
     half = np.array([s.size[1] for s in shapes], dtype=np.float32)
+    if full:
+        geometry["radii"] = np.array([s.size[0] for s in shapes], dtype=np.float32)
+        geometry["lengths"] = 2 * half
     if kind == "cylinder":
-        return rr.Cylinders3D(lengths=2 * half, radii=radii, centers=pos, quaternions=xyzw, colors=colours,
-                              labels=labels, show_labels=False, fill_mode=solid)
+        return rr.Cylinders3D.from_fields(centers=pos, **poses, **geometry)
     # rerun's capsule runs from its translation along +z; MuJoCo's is centred on its position
-    axis = _rotate_z(wxyz)
-    return rr.Capsules3D(lengths=2 * half, radii=radii, translations=pos - axis * half[:, None], quaternions=xyzw,
-                         colors=colours, labels=labels, show_labels=False, fill_mode=solid)
+    return rr.Capsules3D.from_fields(translations=pos - _rotate_z(wxyz) * half[:, None], **poses, **geometry)
 
 
 def _rotate_z(wxyz: np.ndarray) -> np.ndarray:
@@ -512,7 +512,7 @@ class RecordingContents:
         return self.generations[-1].xml if self.generations else None
 
 
-_EVENT_ENTITIES = ("/tree/graph", "/tree/xml", "/tree/tick", "/learner/generations", "/learner/events",
+_EVENT_ENTITIES = ("/tree/graph", "/tree/xml", "/learner/generations", "/learner/events",
                    "/learner/replay", "/dialogue", "/demos", "/state", "/state/external", "/domain")
 _FRAME_ENTITIES = tuple("/" + e for e in _SHAPE_ENTITIES.values())
 
@@ -590,7 +590,9 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
     open_questions: list[QuestionRecord] = []
     for _rid, entity, row in rows:
         step = row.get("step")
-        if entity != "/domain" and len(first) < 8 and (not first or first[-1] != entity):
+        if step is None and entity != "/domain":
+            continue  # static display settings
+        if step is not None and len(first) < 8 and (not first or first[-1] != entity):
             first.append(entity)
         if entity == "/domain" and "conditions" in row:
             contents.domain_name = _one(row, "name")
@@ -606,7 +608,7 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
         elif entity == "/learner/replay":
             contents.replays.append(ReplayRecord(_one(row, "reproduced", 0), _one(row, "total", 0),
                                                  bool(_one(row, "lenient", False)), step))
-        elif entity == "/tree/tick":
+        elif entity == "/tree/graph" and "status" in row:
             trace = tuple(zip(_many(row, "trace_labels"), _many(row, "trace_status")))
             contents.ticks.append(TickRecord(step, row.get("sim_time"), _one(row, "generation", -1),
                                              _one(row, "status", ""), _one(row, "action") or None, trace))

@@ -9,13 +9,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, size
+from teach.bt.nodes import Action, Condition, Fallback, Sequence, size
 from teach.bt.tick import tick_state
 from teach.bt.xml import tree_to_xml
 from teach.demos import parse_demonstration
 from teach.domain import Domain
 from teach.errors import FormatError
-from teach.log import RerunLogger, default_recording_path, node_label, read_recording
+from teach.log import RerunLogger, default_recording_path, read_recording
 from teach.scene import SceneShape
 from conftest import colledanchise_tree
 
@@ -190,10 +190,8 @@ def test_garbage_and_missing_files_are_errors(tmp_path: Path) -> None:
         read_recording(tmp_path / "missing.rrd")
 
 
-def test_default_path_and_labels() -> None:
+def test_default_path() -> None:
     assert default_recording_path("ball 2026/11") == Path("recordings/ball_2026_11.rrd")
-    labels = [node_label(n) for n in (Sequence(()), Fallback(()), Inverter(Action("A")), Condition("C"), Action("A"))]
-    assert labels == ["→", "?", "◇", "(C)", "A"]
 
 
 def test_unknown_shape_kind_is_refused(tmp_path: Path) -> None:
