@@ -146,18 +146,31 @@ class _Pruner:
             return _Outcome(node, known, _with(context, node.name, True),
                             _with(context, node.name, False), False)
         if isinstance(node, Action):
-            # Only SUCCESS says anything, and only the ramifications: the action may have
-            # changed everything else. (In the symbolic world it never returns either.)
-            return _Outcome(node, None, dict(self.ramifications.get(node.name, {})), {}, True)
+            # The action model's frame assumption: an action changes its ramifications and
+            # nothing else; SUCCESS means they hold, FAILURE that they may hold or not. (In
+            # the symbolic world an action returns neither, so nothing here can matter.)
+            ram = self.ramifications.get(node.name, {})
+            untouched = {name: value for name, value in context.items() if name not in ram}
+            return _Outcome(node, None, untouched | ram, untouched, True)
         if isinstance(node, Inverter):
             inner = self.visit(node.child, context)
             rebuilt = node if inner.node is node.child else replace(node, child=inner.node)
             return _Outcome(rebuilt, _SWAP[inner.known], inner.failure, inner.success, inner.acts)
         if isinstance(node, (Sequence, Fallback)):
-            return self.chain(node, context)
-        if isinstance(node, Parallel):
-            return self.parallel(node, context)
-        raise TypeError(f"not a node: {node!r}")  # pragma: no cover
+            out = self.chain(node, context)
+        elif isinstance(node, Parallel):
+            out = self.parallel(node, context)
+        else:
+            raise TypeError(f"not a node: {node!r}")  # pragma: no cover
+        if not out.acts:
+            # Conditions alone change nothing, so the context still holds afterwards, and a
+            # result that is impossible leaves the other one certain: Fallback(c, !c) succeeds.
+            out.success, out.failure = _join(context, out.success), _join(context, out.failure)
+            if out.known is None and out.failure is None:
+                out.known = Status.SUCCESS
+            elif out.known is None and out.success is None:
+                out.known = Status.FAILURE
+        return out
 
     def chain(self, node: Sequence | Fallback, context: Facts) -> _Outcome:
         """Sequence and Fallback are duals: a Sequence passes the tick on after SUCCESS

@@ -1,0 +1,51 @@
+"""Remove redundant and unreachable nodes from a tree without changing what it does (thesis §4.2.2).
+
+Example:
+    teach prune trees/ball/pabt.xml -o trees/ball/pabt-pruned.xml --domain demos/ball/domain.toml
+
+With --domain, an action's ramifications count as known once it has succeeded (a condition
+right after Fallback(BallFound, FindBall) need not test BallFound again); without it only the
+conditions themselves are used. The pruned tree ticks like the original in every state.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+NAME = "prune"
+HELP = "remove redundant nodes from a tree (same behaviour in every state)"
+ORDER = 25
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("tree", type=Path, help="behaviour tree (BehaviorTree.CPP v4 XML)")
+    parser.add_argument("-o", "--output", type=Path, required=True, help="where to write the pruned tree")
+    parser.add_argument("--domain", type=Path,
+                        help="domain.toml whose action model (ramifications) the pruning may use")
+    parser.add_argument("--verbose", "-v", action="store_true", help="list every removed node")
+
+
+def run(args: argparse.Namespace) -> int:
+    from teach.bt.nodes import action_names, condition_names, size
+    from teach.bt.xml import read_tree, write_tree
+    from teach.domain import load_domain
+    from teach.errors import DomainError
+    from teach.learn.prune import prune_with_report, ramifications_of
+
+    tree = read_tree(args.tree)
+    ramifications = {}
+    if args.domain:
+        domain = load_domain(args.domain)
+        for name in sorted(condition_names(tree) - set(domain.condition_names)):
+            raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", args.tree)
+        for name in sorted(action_names(tree) - set(domain.action_names)):
+            raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", args.tree)
+        ramifications = ramifications_of(domain)
+    pruned, removed = prune_with_report(tree, ramifications)
+    write_tree(args.output, pruned)
+    if args.verbose:
+        for node in removed:
+            print(f"  removed {node}")
+    print(f"{args.tree}: {size(tree)} -> {size(pruned)} nodes, written to {args.output}")
+    return 0
