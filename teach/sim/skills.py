@@ -1,0 +1,308 @@
+"""Skills: the domain's actions as controllers over the robot's actuators.
+
+Each skill advances physics one control period (20 ms) per ``tick`` and returns RUNNING while
+it moves, SUCCESS once its effect holds, and FAILURE when it cannot work (nothing to grasp,
+nothing to place, the ball unknown) or after its timeout. Skills re-read the world every
+period, so a perturbation in the middle is answered by the controller, not by a script.
+
+- FindBall: turns a full circle on the spot; if the ball stays unseen it backs up 0.8 m and
+  turns again, then visits room waypoints; a ball held in the gripper is found by touch.
+- ApproachBall: drives until the grasp point is within ``ALIGNED`` of the remembered ball.
+- GraspBall: aligns to within 2 cm, lowers the lift, closes the fingers, lifts to carry height.
+- ApproachBin: raises the lift and drives until the grasp point is within ``ALIGNED`` of the bin.
+- PlaceBall: aligns over the bin to within 3 cm and opens the fingers; SUCCESS once the ball
+  rests inside the bin.
+
+Approaching the ball moves the robot, so BinClose may become false on the way (the thesis's
+special case in Δ2): that is physics, not a rule.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from teach.bt.nodes import Status
+from teach.errors import DomainError
+from teach.observe import Observer
+from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, GRASP_OFFSET, LIFT_CARRY, ROOM, World,
+                             _wrap)
+
+ALIGNED = 0.05        # approaches end with the grasp point this close to the target (m)
+MAX_SPEED = 1.0       # m/s
+MAX_TURN = 2.5        # rad/s
+FRAME_HZ = 10.0       # observer scene frames per simulated second
+CAMERA_HZ = 2.0       # observer camera images per simulated second
+
+RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+
+
+class Skill:
+    """A controller for one action; subclasses implement ``update`` (one control period)."""
+
+    name = ""
+    timeout = 20.0  # simulated seconds
+
+    def __init__(self, world: World):
+        self.world = world
+        self.started = world.sim_time
+        self.result: Status | None = None
+
+    def tick(self) -> Status:
+        """Advance physics one control period under this skill; the status after it."""
+        if self.result is not None:
+            return self.result
+        status = self.update()
+        if status is RUNNING and self.world.sim_time - self.started > self.timeout:
+            status = FAILURE
+        if status is RUNNING:
+            self.world.step(CONTROL_STEPS)
+        else:
+            self.halt()
+            self.result = status
+        return status
+
+    def update(self) -> Status:
+        """Look at the world, set the actuator commands for the next period, say how it goes."""
+        raise NotImplementedError
+
+    def halt(self) -> None:
+        """Stop the base; lift and fingers hold where they are commanded."""
+        self.world.drive(0.0, 0.0)
+
+    def go_to(self, target: np.ndarray, offset: float = GRASP_OFFSET) -> float:
+        """Steer so the point ``offset`` ahead of the base reaches ``target``; its distance left."""
+        x, y, yaw = self.world.base_pose()
+        dx, dy = float(target[0]) - x, float(target[1]) - y
+        heading = _wrap(math.atan2(dy, dx) - yaw)
+        along = math.hypot(dx, dy) - offset
+        turn = max(-MAX_TURN, min(MAX_TURN, 5.0 * heading))
+        forward = 0.0 if abs(heading) > 0.3 else max(-0.5, min(MAX_SPEED, 2.5 * along)) * math.cos(heading)
+        self.world.drive(forward, turn)
+        lateral = math.hypot(dx, dy) * math.sin(heading)
+        return math.hypot(along, lateral)
+
+    def lift_ready(self, height: float = LIFT_CARRY) -> bool:
+        self.world.set_lift(height)
+        return abs(self.world.lift_height() - height) < 0.02
+
+
+class FindBall(Skill):
+    name = "FindBall"
+    timeout = 40.0
+
+    def __init__(self, world: World):
+        super().__init__(world)
+        x, y, _ = world.base_pose()
+        here, spot = np.array([x, y]), 0.6 * ROOM
+        waypoints = sorted((np.array(p) for p in ((0.0, 0.0), (spot, spot), (-spot, spot), (-spot, -spot), (spot, -spot))
+                            if np.linalg.norm(np.array(p) - here) > 0.5),
+                           key=lambda p: float(np.linalg.norm(p - here)))
+        self.plan: list[tuple[str, np.ndarray | None]] = [("turn", None), ("back", None), ("turn", None)]
+        for point in waypoints:
+            self.plan += [("go", point), ("turn", None)]
+        self._begin()
+
+    def _begin(self) -> None:
+        x, y, yaw = self.world.base_pose()
+        self.since, self.origin, self.last_yaw, self.turned = self.world.sim_time, np.array([x, y]), yaw, 0.0
+
+    def update(self) -> Status:
+        world = self.world
+        if world.ball_found() or world.localise_by_touch():
+            return SUCCESS
+        if not self.plan:
+            return FAILURE  # looked everywhere
+        world.set_lift(LIFT_CARRY)
+        x, y, yaw = world.base_pose()
+        kind, point = self.plan[0]
+        elapsed = world.sim_time - self.since
+        if kind == "turn":
+            self.turned += abs(_wrap(yaw - self.last_yaw))
+            self.last_yaw = yaw
+            done = self.turned >= 2 * math.pi
+            world.drive(0.0, 2.0)
+        elif kind == "back":
+            done = float(np.linalg.norm(np.array([x, y]) - self.origin)) > 0.8 or elapsed > 1.5
+            world.drive(-0.8, 0.0)
+        else:
+            assert point is not None
+            done = self.go_to(point, 0.0) < 0.15 or elapsed > 8.0
+        if done:
+            self.plan.pop(0)
+            self._begin()
+        return RUNNING
+
+
+class ApproachBall(Skill):
+    name = "ApproachBall"
+
+    def update(self) -> Status:
+        world = self.world
+        target = world.known_ball()
+        if world.ball_grasped() or target is None:
+            return FAILURE  # the ball is in the hand, or nobody knows where it is
+        world.set_fingers(FINGER_OPEN)
+        if world.lift_height() < LIFT_CARRY - 0.15:
+            world.drive(0.0, 0.0)
+            world.set_lift(LIFT_CARRY)
+            return RUNNING
+        world.set_lift(LIFT_CARRY)
+        if self.go_to(target) < ALIGNED and world.ball_close():
+            return SUCCESS
+        return RUNNING
+
+
+class GraspBall(Skill):
+    name = "GraspBall"
+    timeout = 8.0
+
+    def __init__(self, world: World):
+        super().__init__(world)
+        self.phase = "align"
+        self.since = world.sim_time
+
+    def _enter(self, phase: str) -> None:
+        self.phase, self.since = phase, self.world.sim_time
+
+    def update(self) -> Status:
+        world = self.world
+        elapsed = world.sim_time - self.since
+        if self.phase == "align":
+            if world.ball_grasped():
+                return SUCCESS
+            target = world.known_ball()
+            if target is None or not world.ball_close():
+                return FAILURE  # nothing known within reach
+            world.set_fingers(FINGER_OPEN)
+            if not self.lift_ready():
+                world.drive(0.0, 0.0)
+                return RUNNING
+            if self.go_to(target) < 0.02:
+                world.drive(0.0, 0.0)
+                self._enter("lower")
+        elif self.phase == "lower":
+            if self.lift_ready(0.0) or elapsed > 1.0:
+                self._enter("close")
+        elif self.phase == "close":
+            world.set_fingers(FINGER_CLOSED)
+            if world.finger_closure() > FINGER_CLOSED - 0.01:
+                return FAILURE  # closed on nothing
+            if world.ball_grasped() and elapsed > 0.2:
+                self._enter("lift")
+            elif elapsed > 1.0:
+                return FAILURE
+        elif self.phase == "lift":
+            if not world.ball_grasped():
+                return FAILURE  # slipped out
+            if self.lift_ready():
+                return SUCCESS
+        return RUNNING
+
+
+class ApproachBin(Skill):
+    name = "ApproachBin"
+
+    def update(self) -> Status:
+        world = self.world
+        if not self.lift_ready():
+            world.drive(0.0, 0.0)
+            return RUNNING
+        if self.go_to(world.bin_position()) < ALIGNED and world.bin_close():
+            return SUCCESS
+        return RUNNING
+
+
+class PlaceBall(Skill):
+    name = "PlaceBall"
+    timeout = 8.0
+
+    def __init__(self, world: World):
+        super().__init__(world)
+        self.releasing: float | None = None
+
+    def update(self) -> Status:
+        world = self.world
+        if self.releasing is None:
+            if world.ball_placed():
+                return SUCCESS
+            if not world.ball_grasped() or not world.bin_close():
+                return FAILURE  # nothing to place, or no bin within reach
+            if not self.lift_ready():
+                world.drive(0.0, 0.0)
+                return RUNNING
+            if self.go_to(world.bin_position()) < 0.03:
+                world.drive(0.0, 0.0)
+                self.releasing = world.sim_time
+            return RUNNING
+        world.set_fingers(FINGER_OPEN)
+        if world.ball_placed() and world.ball_speed() < 0.05:
+            return SUCCESS
+        if world.sim_time - self.releasing > 2.0:
+            return FAILURE
+        return RUNNING
+
+
+SKILLS: dict[str, type[Skill]] = {}
+
+
+def register(skill: type[Skill]) -> type[Skill]:
+    """Make a skill available under its action name (tests may register scripted ones)."""
+    SKILLS[skill.name] = skill
+    return skill
+
+
+for _skill in (FindBall, ApproachBall, GraspBall, ApproachBin, PlaceBall):
+    register(_skill)
+
+
+def skill_for(name: str) -> type[Skill]:
+    try:
+        return SKILLS[name]
+    except KeyError:
+        raise DomainError(f"the simulation has no skill for action {name!r} "
+                          f"(it has {', '.join(sorted(SKILLS))})") from None
+
+
+class FrameClock:
+    """Reports scene frames and camera images to an observer at fixed rates of simulated time."""
+
+    def __init__(self, world: World, observer: Observer | None):
+        self.world, self.observer = world, observer
+        self.frame = 0
+        self.next_frame = world.sim_time
+        self.next_camera = world.sim_time
+
+    def __call__(self, action: str | None) -> None:
+        world, observer = self.world, self.observer
+        if observer is None or world.sim_time + 1e-9 < self.next_frame:
+            return
+        self.frame += 1
+        self.next_frame = world.sim_time + 1.0 / FRAME_HZ
+        observer.set_time(self.frame, world.sim_time)
+        observer.on_state(world.conditions(), action)
+        observer.on_scene(world.shapes())
+        if world.sim_time + 1e-9 >= self.next_camera:
+            self.next_camera = world.sim_time + 1.0 / CAMERA_HZ
+            image = world.camera_image()
+            if image is not None:
+                observer.on_camera(image)
+
+
+def run_skill(world: World, name: str, observer: Observer | None = None, max_seconds: float = 60.0,
+              frames: Callable[[str | None], None] | None = None) -> Status:
+    """Run the skill for action ``name`` to completion (or FAILURE after ``max_seconds``)."""
+    skill = skill_for(name)(world)
+    report = frames or FrameClock(world, observer)
+    deadline = world.sim_time + max_seconds
+    status = RUNNING
+    while status is RUNNING:
+        report(name)
+        if world.sim_time >= deadline:
+            skill.halt()
+            return FAILURE
+        status = skill.tick()
+    report(name)
+    return status
