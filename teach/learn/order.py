@@ -1,0 +1,104 @@
+"""The action order of Approach 3 (thesis §4.3.1): a topological order of demonstrated sequences.
+
+Every demonstration gives edges a_i -> a_(i+1) between its consecutive robot actions. An
+external action (-1) ends the chain: it may undo what the robot did (a dropped ball is
+grasped again), so the actions after it start a new sequence rather than follow the ones
+before it; this is what lets Δ5's perturbed demonstrations keep the order of Δ2 (§6.4). Ties are broken by first appearance (demonstrations in the order given,
+steps in file order), so the same demonstrations always give the same order. When no order
+exists (a cycle, or an action repeated), the error names the actions and, for each direction,
+the demonstration file and line that shows it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence as Seq
+
+import networkx as nx
+
+from teach.demos import Demonstration
+from teach.domain import Domain
+from teach.errors import LearnError
+
+
+def demo_source(demo: Demonstration) -> str:
+    """How a demonstration is named in messages: its file, or its name."""
+    return str(demo.path) if demo.path is not None else demo.name
+
+
+class OrderGraph:
+    """The order edges seen so far, where each was first seen, and each action's first appearance."""
+
+    def __init__(self) -> None:
+        self.graph: nx.DiGraph = nx.DiGraph()
+        self.first_seen: dict[str, int] = {}
+        self.evidence: dict[tuple[str, str], str] = {}
+
+    def copy(self) -> "OrderGraph":
+        other = OrderGraph()
+        other.graph = self.graph.copy()
+        other.first_seen = dict(self.first_seen)
+        other.evidence = dict(self.evidence)
+        return other
+
+    def add_action(self, name: str) -> bool:
+        """Add an action without edges; True if it is new."""
+        if name in self.first_seen:
+            return False
+        self.first_seen[name] = len(self.first_seen)
+        self.graph.add_node(name)
+        return True
+
+    def add_demo(self, domain: Domain, demo: Demonstration, source: str | None = None) -> bool:
+        """Add a demonstration's actions and edges; True if anything was new. Raises
+        ``LearnError`` (leaving the graph possibly changed: call it on a copy) if no order fits."""
+        where = source or demo_source(demo)
+        changed = False
+        previous: tuple[str, int] | None = None
+        for step in demo.steps:
+            if step.action < 0:
+                previous = None
+            if step.action <= 0:
+                continue
+            name = domain.action(step.action).name
+            changed |= self.add_action(name)
+            if previous is not None:
+                edge = (previous[0], name)
+                if edge not in self.evidence:
+                    self.evidence[edge] = f"{where}:{previous[1]}"
+                    self.graph.add_edge(*edge)
+                    changed = True
+            previous = (name, step.line)
+        if changed:
+            self._check_acyclic()
+        return changed
+
+    def _check_acyclic(self) -> None:
+        try:
+            cycle = nx.find_cycle(self.graph)
+        except nx.NetworkXNoCycle:
+            return
+        if len(cycle) == 1:
+            (a, _b) = cycle[0][:2]
+            raise LearnError(f"no action order fits the demonstrations: {a} follows itself "
+                             f"({self.evidence[(a, a)]}), and an order cannot repeat an action")
+        shown = ", ".join(f"{u} before {v} ({self.evidence[(u, v)]})" for u, v in (e[:2] for e in cycle))
+        names = sorted({e[0] for e in cycle})
+        raise LearnError(f"no action order fits the demonstrations: {', '.join(names)} appear in "
+                         f"contradicting orders: {shown}")
+
+    def order(self) -> list[str]:
+        """The topological order, ties broken by first appearance."""
+        return list(nx.lexicographical_topological_sort(self.graph, key=self.first_seen.__getitem__))
+
+    def violated_by(self, order: Seq[str]) -> bool:
+        """True if ``order`` (covering every action) puts some edge backwards."""
+        position = {name: i for i, name in enumerate(order)}
+        return any(position[u] > position[v] for u, v in self.graph.edges)
+
+
+def action_order(domain: Domain, demos: Seq[Demonstration]) -> list[str]:
+    """The demonstrated actions in one order consistent with every demonstration."""
+    graph = OrderGraph()
+    for demo in demos:
+        graph.add_demo(domain, demo)
+    return graph.order()
