@@ -67,8 +67,8 @@ class Cell:
 
     generated_from: str
     tested_on: str
-    strict: int
-    lenient: int
+    strict: int | None   # None: the learner could not learn from ``generated_from``
+    lenient: int | None
     total: int
     thesis: int
 
@@ -80,6 +80,7 @@ class CrossTable:
     key: str
     title: str
     cells: tuple[Cell, ...]
+    errors: tuple[tuple[str, str], ...] = ()   # (set, why the learner failed on it)
 
     def cell(self, generated_from: str, tested_on: str) -> Cell:
         return next(c for c in self.cells if c.generated_from == generated_from and c.tested_on == tested_on)
@@ -88,17 +89,21 @@ class CrossTable:
         """How many cells equal the thesis's under one reading."""
         return sum((c.lenient if lenient else c.strict) == c.thesis for c in self.cells)
 
+    def error(self, generated_from: str) -> str | None:
+        return dict(self.errors).get(generated_from)
+
 
 @dataclass(frozen=True)
 class NodeCount:
     approach: str
     source: str
-    before: int
-    after: int
+    before: int | None   # None: the learner failed (see ``error``)
+    after: int | None
     equals_colledanchise: bool
     thesis_before: int | None
     thesis_after: int | None
     thesis_equals_colledanchise: bool
+    error: str | None = None
 
 
 @dataclass(frozen=True)
@@ -149,16 +154,15 @@ def evaluate(demos_root: str | Path = "demos/ball", study: str | Path = "dialogu
     every_goal = tuple(Literal(name) for name in hard_coded.condition_names)
     nodes.append(_count("approach1", "all five goals", approach1(hard_coded, every_goal), reference))
 
-    learned2: dict[str, Learned] = {}
-    learned3: dict[str, Learned] = {}
-    for name in SETS:
-        tell(f"Approach 2 on {SET_LABELS[name]}")
-        learned2[name] = approach2(domain, sets[name])
-        nodes.append(_count("approach2", name, learned2[name], reference))
-    for name in SETS:
-        tell(f"Approach 3 on {SET_LABELS[name]}")
-        learned3[name] = approach3(domain, sets[name])
-        nodes.append(_count("approach3", name, learned3[name], reference))
+    learned: dict[str, dict[str, Learned | str]] = {"approach2": {}, "approach3": {}}
+    for approach, learner in (("approach2", approach2), ("approach3", approach3)):
+        for name in SETS:
+            tell(f"Approach {approach[-1]} on {SET_LABELS[name]}")
+            try:
+                learned[approach][name] = learner(domain, sets[name])
+            except LearnError as error:  # an outcome to report, as the thesis reports unusable tables
+                learned[approach][name] = str(error)
+            nodes.append(_count(approach, name, learned[approach][name], reference))
 
     participants = []
     for number in PARTICIPANTS:
@@ -167,9 +171,9 @@ def evaluate(demos_root: str | Path = "demos/ball", study: str | Path = "dialogu
 
     return Evaluation(
         cross_table("table_6_2", "Table 6.2: Approach 2 (PA-BT with action and goal detection)",
-                    domain, sets, {k: v.pruned for k, v in learned2.items()}, THESIS_TABLE_6_2),
+                    domain, sets, learned["approach2"], THESIS_TABLE_6_2),
         cross_table("table_6_3", "Table 6.3: Approach 3 (action order and BT specialization)",
-                    domain, sets, {k: v.pruned for k, v in learned3.items()}, THESIS_TABLE_6_3),
+                    domain, sets, learned["approach3"], THESIS_TABLE_6_3),
         tuple(nodes), tuple(participants))
 
 
@@ -216,25 +220,36 @@ def approach3(domain: Domain, demos: list[Demonstration]) -> Learned:
     return Learned(tree, prune(tree, ramifications_of(detect_model(domain, demos))))
 
 
-def _count(approach: str, source: str, learned: Learned, reference: Node) -> NodeCount:
+def _count(approach: str, source: str, learned: Learned | str, reference: Node) -> NodeCount:
     before, after = THESIS_NODES.get((approach, source), (None, None))
+    thesis_equal = (approach, source) in THESIS_EQUALS_COLLEDANCHISE
+    if isinstance(learned, str):
+        return NodeCount(approach, source, None, None, False, before, after, thesis_equal, learned)
     return NodeCount(approach, source, size(learned.tree), size(learned.pruned), learned.pruned == reference,
-                     before, after, (approach, source) in THESIS_EQUALS_COLLEDANCHISE)
+                     before, after, thesis_equal)
 
 
 def cross_table(key: str, title: str, domain: Domain, sets: dict[str, list[Demonstration]],
-                trees: dict[str, Node], thesis: dict[str, tuple[int, ...]]) -> CrossTable:
+                learned: dict[str, Learned | str], thesis: dict[str, tuple[int, ...]]) -> CrossTable:
+    """Each set's pruned tree replayed on every set; a set the learner failed on gives a row
+    without figures and its error."""
     from teach.bt.tick import compile_tree
 
-    cells = []
+    cells, errors = [], []
     for source in SETS:
-        compiled = compile_tree(trees[source], domain.condition_names)
+        result = learned[source]
+        if isinstance(result, str):
+            errors.append((source, result))
+            cells += [Cell(source, target, None, None, len(sets[target]), thesis[source][column])
+                      for column, target in enumerate(SETS)]
+            continue
+        compiled = compile_tree(result.pruned, domain.condition_names)
         for column, target in enumerate(SETS):
             demos = sets[target]
             cells.append(Cell(source, target, count_reproduced(compiled, domain, demos),
                               count_reproduced(compiled, domain, demos, lenient=True), len(demos),
                               thesis[source][column]))
-    return CrossTable(key, title, tuple(cells))
+    return CrossTable(key, title, tuple(cells), tuple(errors))
 
 
 def participant_result(path: Path, number: int) -> ParticipantResult:
@@ -287,6 +302,7 @@ def as_json(evaluation: Evaluation) -> dict:
     def table(t: CrossTable) -> dict:
         return {"title": t.title,
                 "matches_thesis": {"strict": t.matches(False), "lenient": t.matches(True), "cells": len(t.cells)},
+                "errors": dict(t.errors),
                 "cells": [{"generated_from": c.generated_from, "tested_on": c.tested_on, "strict": c.strict,
                            "lenient": c.lenient, "total": c.total, "thesis": c.thesis} for c in t.cells]}
 
@@ -295,7 +311,8 @@ def as_json(evaluation: Evaluation) -> dict:
         "table_6_3": table(evaluation.table_6_3),
         "nodes": [{"approach": n.approach, "source": n.source, "before": n.before, "after": n.after,
                    "equals_colledanchise": n.equals_colledanchise, "thesis_before": n.thesis_before,
-                   "thesis_after": n.thesis_after, "thesis_equals_colledanchise": n.thesis_equals_colledanchise}
+                   "thesis_after": n.thesis_after, "thesis_equals_colledanchise": n.thesis_equals_colledanchise,
+                   "error": n.error}
                   for n in evaluation.nodes],
         "participants": [{"participant": p.participant, "usable": p.usable, "reason": p.reason, "nodes": p.nodes,
                           "thesis_usable": p.thesis_usable, "thesis_reason": p.thesis_reason}

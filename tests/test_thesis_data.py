@@ -103,7 +103,6 @@ def test_participant_tables_as_transcribed():
 
 
 def test_approach1_usable_for_participants_4_5_7_8_only():
-    pytest.importorskip("teach.learn.pabt")
     from teach.evaluate import participant_result
 
     results = {n: participant_result(STUDY / f"participant{n}.toml", n) for n in range(1, 9)}

@@ -70,8 +70,10 @@ def render(evaluation: "Evaluation") -> list[object]:
     for cross in (evaluation.table_6_2, evaluation.table_6_3):
         for lenient in (False, True):
             reading = "lenient reading" if lenient else "strict reading"
-            table = Table(title=f"{cross.title}, {reading}: ours (thesis)",
-                          caption=f"{cross.matches(lenient)}/{len(cross.cells)} cells equal the thesis's")
+            caption = f"{cross.matches(lenient)}/{len(cross.cells)} cells equal the thesis's"
+            for source, error in cross.errors:
+                caption += f"\n{SET_LABELS[source]}: no tree: {error}"
+            table = Table(title=f"{cross.title}, {reading}: ours (thesis)", caption=caption)
             table.add_column("generated from \\ tested on")
             for target in SETS:
                 table.add_column(SET_LABELS[target], justify="right")
@@ -80,6 +82,9 @@ def render(evaluation: "Evaluation") -> list[object]:
                 for target in SETS:
                     cell = cross.cell(source, target)
                     ours = cell.lenient if lenient else cell.strict
+                    if ours is None:
+                        row.append(f"[red]—[/] ({cell.thesis})")
+                        continue
                     style = "green" if ours == cell.thesis else "yellow"
                     row.append(f"[{style}]{ours}/{cell.total}[/] ({cell.thesis})")
                 table.add_row(*row)
@@ -92,6 +97,10 @@ def render(evaluation: "Evaluation") -> list[object]:
         source = SET_LABELS.get(n.source, n.source)
         same = ("yes" if n.equals_colledanchise else "no") + (
             " (yes)" if n.thesis_equals_colledanchise else "")
+        if n.error is not None:
+            nodes.add_row(n.approach.replace("approach", "Approach "), source, "[red]—[/]", "[red]—[/]",
+                          f"no tree: {n.error}")
+            continue
         nodes.add_row(n.approach.replace("approach", "Approach "), source,
                       _vs(n.before, n.thesis_before), _vs(n.after, n.thesis_after), same)
     out.append(nodes)
