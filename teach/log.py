@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import atexit
 import os
+import shutil
+import subprocess
 import sys
 import threading
 import warnings
@@ -80,8 +82,22 @@ def blueprint() -> rrb.Blueprint:
     )
 
 
-def _has_display() -> bool:
+def has_display() -> bool:
+    """Whether a viewer window can open (Linux needs X11 or Wayland; macOS and Windows always can)."""
     return sys.platform != "linux" or bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def open_viewer(path: Path) -> subprocess.Popen:
+    """Start the installed rerun viewer on a recording, detached from this process."""
+    if not has_display():
+        raise TeachError("cannot open the rerun viewer: no display (DISPLAY or WAYLAND_DISPLAY is not set); "
+                         "copy the recording to a machine with a screen and run `rerun FILE.rrd` there", path)
+    viewer = shutil.which("rerun") or str(Path(sys.executable).with_name("rerun"))
+    if not Path(viewer).exists():
+        raise TeachError("cannot open the rerun viewer: the `rerun` executable is not installed "
+                         "(it comes with `pip install rerun-sdk`)", path)
+    return subprocess.Popen([viewer, str(path)], start_new_session=True, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
 
 
 @dataclass
@@ -131,7 +147,7 @@ class RerunLogger(Observer):
 
     def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *,
                  scene_hz: float = 10.0, camera_hz: float = 2.0, jpeg_quality: int = 80):
-        if spawn and not _has_display():
+        if spawn and not has_display():
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
         self.path = Path(path) if path is not None else default_recording_path(session_name)

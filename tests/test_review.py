@@ -1,0 +1,75 @@
+"""`teach review` summarises a real recording read back with rerun, and refuses damaged ones."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from rich.console import Console
+
+from conftest import BALL_DOMAIN
+from teach.cli import main
+from teach.domain import load_domain
+from teach.log import read_recording
+from teach.review import summary
+from test_log import record_session
+
+
+@pytest.fixture(scope="module")
+def recording(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("review") / "session.rrd"
+    record_session(path, load_domain(BALL_DOMAIN))
+    return path
+
+
+def _text(path: Path) -> str:
+    console = Console(record=True, width=160, color_system=None)
+    console.print(summary(read_recording(path)))
+    return console.export_text()
+
+
+def test_summary_lists_everything_in_order(recording: Path) -> None:
+    text = _text(recording)
+    # each section appears once, in the order a researcher reads them
+    headings = ["Demonstrations", "Questions", "Tree generations", "Learner events", "Final tree", "Replay"]
+    assert [text.index(h) for h in headings] == sorted(text.index(h) for h in headings)
+    # demonstrations as action sequences, in order, with their states and the external action marked
+    first = text.index("demo-001: FindBall → ApproachBall → GraspBall → GraspBall → ApproachBin → PlaceBall")
+    assert first < text.index("demo-002: ApproachBall → GraspBall → ApproachBin → PlaceBall (goal reached)")
+    assert re.search(r"4 +BallFound BallClose BallGrasped +external", text)
+    # questions with their answers and the budget left
+    assert text.index("Must the ball be in your hand") < text.index("Do you need to see the ball")
+    assert "kept (BallGrasped)" in text
+    # generations with node counts: 0 has 5 nodes, 1 and 2 the 16-node reference tree
+    rows = [line.split() for line in text.splitlines() if line.strip()[:1].isdigit() and "nodes" not in line]
+    assert ["0", "5", "0", "start"] in rows and ["2", "16"] == next(r[:2] for r in rows if r[:1] == ["2"] and
+                                                                    r[-1] == "answer")
+    assert "removed: (BallFound), FindBall" in text
+    # the final tree rendered with the thesis's symbols, and the replay result
+    tree = text[text.index("Final tree"):text.index("Replay")]
+    assert "→" in tree and "(BallPlaced)" in tree and "PlaceBall" in tree
+    assert "reproduced 2/2 demonstrations (lenient); over the session: 1/1 → 2/2" in text
+
+
+def test_cli_prints_summary(recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["review", str(recording)]) == 0
+    out = capsys.readouterr().out
+    assert "session test-session" in out and "demo-002" in out
+
+
+def test_cli_truncated_recording_is_one_line_status_2(recording: Path, tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    broken = tmp_path / "broken.rrd"
+    broken.write_bytes(recording.read_bytes()[:-200])
+    assert main(["review", str(broken)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"teach: {broken}: ") and "Traceback" not in err
+
+
+def test_open_without_display_is_a_clear_error(recording: Path, monkeypatch: pytest.MonkeyPatch,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert main(["review", str(recording), "--open"]) == 2
+    assert "no display" in capsys.readouterr().err
