@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence as Seq
 from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
 
 from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
                             children)
@@ -96,33 +97,44 @@ def tick_state(root: Node, names: Seq[str], state: Seq[bool]) -> TickResult:
 _MAX_NESTING = 12  # Python allows 20 statically nested blocks; deeper subtrees become functions
 
 
-class CompiledTree:
+@runtime_checkable
+class CompiledTree(Protocol):
     """A tree compiled once into straight-line Python over state tuples, with a memo table.
 
     Calling it with a state returns ``(status, action)`` for the symbolic world (actions
-    return RUNNING). The learners and the replay call it millions of times.
+    return RUNNING). The learners and the replay call it millions of times, so a compiled
+    tree is the memoising function itself (no method dispatch between caller and memo);
+    ``raw`` is the generated function without the memo, ``source`` its code.
     """
 
-    __slots__ = ("_fn", "_memo", "source", "names")
+    source: str
+    names: tuple[str, ...]
+    raw: Callable[[tuple[bool, ...]], tuple[Status, str | None]]
 
-    def __init__(self, root: Node, names: Seq[str]):
-        self.names = tuple(names)
-        self.source, namespace = _generate(root, {n: i for i, n in enumerate(self.names)})
-        self._fn: Callable[[tuple[bool, ...]], tuple[Status, str | None]] = namespace["tick"]
-        self._memo: dict[tuple[bool, ...], tuple[Status, str | None]] = {}
+    def __call__(self, state: tuple[bool, ...]) -> tuple[Status, str | None]: ...
 
-    def __call__(self, state: tuple[bool, ...]) -> tuple[Status, str | None]:
-        try:
-            return self._memo[state]
-        except KeyError:
-            result = self._memo[state] = self._fn(state)
-            if len(self._memo) > 1 << 20:
-                self._memo.clear()
-            return result
+
+_MEMO_LIMIT = 1 << 20
 
 
 def compile_tree(root: Node, names: Seq[str]) -> CompiledTree:
-    return CompiledTree(root, names)
+    source, namespace = _generate(root, {n: i for i, n in enumerate(names)})
+    raw: Callable[[tuple[bool, ...]], tuple[Status, str | None]] = namespace["tick"]
+    memo: dict[tuple[bool, ...], tuple[Status, str | None]] = {}
+
+    def compiled(state: tuple[bool, ...]) -> tuple[Status, str | None]:
+        try:
+            return memo[state]
+        except KeyError:
+            if len(memo) >= _MEMO_LIMIT:
+                memo.clear()
+            result = memo[state] = raw(state)
+            return result
+
+    compiled.source = source  # type: ignore[attr-defined]
+    compiled.names = tuple(names)  # type: ignore[attr-defined]
+    compiled.raw = raw  # type: ignore[attr-defined]
+    return compiled  # type: ignore[return-value]
 
 
 def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
@@ -169,9 +181,20 @@ def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
             else:
                 out.append(f"{inner}break")
         elif isinstance(node, Parallel):
-            helper = constant(_parallel_helper(node, index), "_par")
-            out.append(f"{pad}r = {helper}(s)")
-            out.append(f"{pad}if r.__class__ is tuple: return r")
+            # every child is ticked (each in its own function, so an action returns from it
+            # alone); the first running one is reported only if the Parallel keeps running
+            ok, no, running = fresh("_ok"), fresh("_no"), fresh("_going")
+            out.append(f"{pad}{ok} = {no} = 0")
+            out.append(f"{pad}{running} = None")
+            for kid in node.children:
+                out.append(f"{pad}x = {function(kid)}(s)")
+                out.append(f"{pad}if x.__class__ is tuple: {running} = {running} or x")
+                out.append(f"{pad}elif x: {ok} += 1")
+                out.append(f"{pad}else: {no} += 1")
+            limit = len(node.children) - node.success_threshold
+            out.append(f"{pad}if {ok} >= {node.success_threshold}: r = True")
+            out.append(f"{pad}elif {no} > {limit}: r = False")
+            out.append(f"{pad}else: return {running}")
         else:  # pragma: no cover
             raise TypeError(f"not a node: {node!r}")
 
@@ -189,16 +212,3 @@ def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
     source = "\n\n".join(functions + ["\n".join(main)]) + "\n"
     exec(compile(source, "<compiled behaviour tree>", "exec"), namespace)  # noqa: S102 - our own generated code
     return source, namespace
-
-
-def _parallel_helper(node: Parallel, index: Mapping[str, int]) -> Callable[[tuple[bool, ...]], object]:
-    """Parallel nodes keep ticking after a child runs, so they use the traced tick."""
-    names = sorted(index, key=index.__getitem__)
-
-    def run(state: tuple[bool, ...]) -> object:
-        result = tick(node, dict(zip(names, state)))
-        if result.status is Status.RUNNING:
-            return (Status.RUNNING, result.action)
-        return result.status is Status.SUCCESS
-
-    return run
