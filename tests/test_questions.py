@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import pytest
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence
-from teach.dialogue.questions import (BudgetExhausted, QuestionBudget, describe_situation, guard_key,
+from teach.demos import read_demo_set
+from teach.learn.specialize import specialize
+
+from conftest import ROOT
+from teach.dialogue.questions import (BudgetExhausted, QuestionBudget, describe_situation, effects_from, prior_real,
                                       select_question)
 
 
@@ -18,11 +21,6 @@ def test_budget_is_never_exceeded():
     assert budget.left == 0
 
 
-def test_guard_keys():
-    assert guard_key(Inverter(Condition("A"))) == "!A"
-    assert guard_key(Sequence((Condition("A"), Inverter(Condition("B"))))) == "A&!B"
-
-
 def test_situation_in_words(ball):
     state = ball.state(["BallGrasped"])
     assert describe_situation(ball, state) == ("the ball is in your hand, but you cannot see the ball, the ball is "
@@ -30,18 +28,32 @@ def test_situation_in_words(ball):
     assert describe_situation(ball, state, "de").startswith("du hast den Ball in der Hand, aber du siehst den Ball nicht")
 
 
-def test_asks_about_the_guard_with_most_doubt(ball):
-    # PlaceBall is guarded by !BallFound (it was only shown while the ball was visible) and by !BinClose.
-    tree = Sequence((Fallback((Inverter(Condition("BallFound")), Inverter(Condition("BinClose")),
-                               Condition("BallPlaced"), Action("PlaceBall"))),))
-    shown = {"PlaceBall": [ball.state(["BallFound", "BallClose", "BallGrasped", "BinClose"])]}
-    question = select_question(tree, ball, [shown["PlaceBall"][0]], set(), shown)
-    assert question is not None and question.action == "PlaceBall"
-    # dropping either guard lets PlaceBall run in 4 more unseen states; the first in tree order wins the tie
-    assert question.guard_key == "!BallFound" and question.impact == 4
-    # the situation is the shown one with only the doubtful condition changed
-    assert question.state == ball.state(["BallClose", "BallGrasped", "BinClose"])
-    # once settled, the other guard is asked about
-    again = select_question(tree, ball, [shown["PlaceBall"][0]], {("PlaceBall", "!BallFound")}, shown)
-    assert again is not None and again.guard_key == "!BinClose"
-    assert "what should I do?" in question.text(ball)
+def test_causal_prior_from_demonstrations(ball):
+    _, demos = read_demo_set(ROOT / "demos" / "ball" / "delta4")
+    effects = effects_from(ball, demos)
+    # GraspBall's own effect, the effect of ApproachBall just before it, the task's last effect
+    assert prior_real(ball, "GraspBall", [("BallGrasped", True)], False, effects) > 0.9
+    assert prior_real(ball, "GraspBall", [("BallClose", False)], False, effects) > 0.8
+    assert prior_real(ball, "FindBall", [("BallPlaced", True)], False, effects) > 0.8
+    # a guard only there because both demonstrations happened to have the bin far away
+    assert prior_real(ball, "GraspBall", [("BinClose", True)], False, effects) < 0.5
+    # a guard a demonstration needs is certain
+    assert prior_real(ball, "GraspBall", [("BinClose", True)], True, effects) == 1.0
+
+
+def test_first_question_targets_an_accidental_guard(ball):
+    _, demos = read_demo_set(ROOT / "demos" / "ball" / "delta4")
+    learner = specialize(ball, demos)
+    labels = {}
+    for demo in demos:
+        for step in demo.steps:
+            labels[step.state] = None if step.action == 0 else ball.action(step.action).name
+    question = select_question(learner, demos, labels)
+    assert question is not None and question.state not in labels
+    # in the asked situation the robot now does nothing, yet some committee members would act
+    assert any(answer != "done" for answer, _ in question.expected)
+    # deterministic: the same inputs give the same question
+    assert select_question(learner, demos, labels) == question
+    # nothing is asked about a situation already asked
+    other = select_question(learner, demos, labels, asked=[question.state])
+    assert other is None or other.state != question.state

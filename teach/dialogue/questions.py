@@ -3,28 +3,58 @@
 The specialization learner keeps a guard in front of an action whenever every demonstration
 of that action happened to agree on it. Some of those guards are real preconditions, others
 are accidents of the few demonstrations seen. People answer concrete situations with actions
-far more reliably than yes/no questions about preconditions (thesis §6.1), so a question here
-is a situation: "If <state>, what should I do?".
+far more reliably than yes/no questions about preconditions (thesis §6.1), so a question is
+a situation: "If <state>, what should I do?", answered with an action or "done".
 
-Selection is a pure function of the current tree and what has been taught: for every guard,
-count the unseen states whose behaviour would change if that guard were dropped (the weight
-of the doubt), and ask about the guard with the most, in the state closest to where the
-action was actually shown. It never looks at an answer before asking.
+Choosing the situation is active learning by *expected model change* over a committee:
+
+1. A prior says how likely each guard is real, from what the demonstrations show about
+   cause and effect: a guard that is the action's own effect (do not redo what is done), the
+   effect of the action just before it (it enables this one), or an effect that completed
+   the task (do nothing once done) is probably real; any other guard is probably an accident.
+   Guards that a demonstration or answer needs are certainly real.
+2. A committee of trees is sampled by dropping guards at random under that prior, keeping
+   only trees that still do what every demonstration and answer says.
+3. For each unseen situation, the committee's votes estimate what the teacher will answer;
+   for each likely answer, the learner is updated on a copy, and the change of behaviour is
+   measured over the situations the robot is likely to pass through (simulated from every
+   start with the effects seen in the demonstrations).
+4. The situation with the largest expected change is asked.
+
+It never looks at an answer before asking, and it works for any domain: nothing in it knows
+the ball task.
 """
 
 from __future__ import annotations
 
+import copy
 import itertools
 import random
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, children, replace_node, walk
-from teach.bt.tick import compile_tree
+from teach.bt.nodes import Node, Status, transform
+from teach.bt.tick import CompiledTree, compile_tree
+from teach.demos import Demonstration
 from teach.domain import Domain, State
+from teach.errors import LearnError
 
-EXHAUSTIVE_UP_TO = 12
-SAMPLE_SIZE = 1024
+if TYPE_CHECKING:
+    from teach.learn.specialize import Specializer
+
+EXHAUSTIVE_UP_TO = 10
+STATE_SAMPLE = 512
+COMMITTEE_DRAWS = 300
+COMMITTEE_FOR_VISITS = 40
+CANDIDATE_LIMIT = 64
+
+PRIOR_REAL_OWN_EFFECT = 0.95
+PRIOR_REAL_ENABLING = 0.9
+PRIOR_REAL_TASK_DONE = 0.9
+PRIOR_REAL_OTHER = 0.3
+
+Answer = str | None  # an action name, or None: the task is done here
 
 
 class BudgetExhausted(RuntimeError):
@@ -52,12 +82,11 @@ class QuestionBudget:
 
 @dataclass(frozen=True)
 class Question:
-    """A situation the robot asks about, with the guard that made it doubtful."""
+    """A situation the robot asks about, with what it expects the answer could be."""
 
     state: State
-    action: str        # the action the doubt is about
-    guard_key: str     # the guard that blocks it in this state, as text ("!BallFound")
-    impact: int        # unseen states whose behaviour hinges on this guard
+    score: float
+    expected: tuple[tuple[str, float], ...] = ()  # (answer or "done", committee share)
 
     def text(self, domain: Domain, lang: str = "en") -> str:
         situation = describe_situation(domain, self.state, lang)
@@ -80,75 +109,177 @@ def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     return join(true or false)
 
 
-def guard_key(guard: Node) -> str:
-    """A guard as stable text, the same across processes: "BallFound", "!BallFound", "A&!B"."""
-    if isinstance(guard, Condition):
-        return guard.name
-    if isinstance(guard, Inverter) and isinstance(guard.child, Condition):
-        return f"!{guard.child.name}"
-    if isinstance(guard, Sequence):
-        return "&".join(guard_key(kid) for kid in guard.children)
-    if isinstance(guard, Fallback):
-        return "(" + "|".join(guard_key(kid) for kid in guard.children) + ")"
-    return repr(guard)
+# --- what the demonstrations say about cause and effect ---------------------------------------
+
+Lit = tuple[int, bool]  # (condition index, value)
 
 
-def action_guards(tree: Node) -> dict[str, list[Node]]:
-    """For each action, the guards to its left in its Fallback (the nodes that can skip it)."""
-    guards: dict[str, list[Node]] = {}
-    for node in walk(tree):
-        if isinstance(node, Fallback):
-            kids = children(node)
-            for index, kid in enumerate(kids):
-                if isinstance(kid, Action):
-                    guards.setdefault(kid.name, []).extend(kids[:index])
-    return guards
+@dataclass
+class Effects:
+    """Per action, the literals it made true in every demonstrated transition; which actions
+    came right before it; and the effects that completed the task."""
+
+    made: dict[str, frozenset[Lit]] = field(default_factory=dict)
+    before: dict[str, set[str]] = field(default_factory=dict)
+    finishing: set[Lit] = field(default_factory=set)
+
+    def apply(self, state: State, action: str) -> State:
+        after = list(state)
+        for index, value in self.made.get(action, ()):
+            after[index] = value
+        return tuple(after)
 
 
-def candidate_states(n: int, seed: int = 0) -> list[State]:
+def effects_from(domain: Domain, demos: Iterable[Demonstration]) -> Effects:
+    effects = Effects()
+    for demo in demos:
+        previous: str | None = None
+        for step, following in zip(demo.steps, demo.steps[1:]):
+            if step.action <= 0:
+                previous = None
+                continue
+            name = domain.action(step.action).name
+            changed = frozenset((i, after) for i, (now, after) in enumerate(zip(step.state, following.state))
+                                if now != after)
+            effects.made[name] = effects.made[name] & changed if name in effects.made else changed
+            if previous is not None:
+                effects.before.setdefault(name, set()).add(previous)
+            if following.action == 0:
+                effects.finishing |= changed
+            previous = name
+    return effects
+
+
+def prior_real(domain: Domain, action: str, literals: Sequence[tuple[str, bool]], needed: bool,
+               effects: Effects) -> float:
+    """How likely a guard is a real precondition rather than an accident of the demonstrations."""
+    if needed or len(literals) != 1:
+        return 1.0
+    name, value = literals[0]
+    literal = (domain.index(name), value)
+    if literal in effects.made.get(action, ()):
+        return PRIOR_REAL_OWN_EFFECT
+    if literal in effects.finishing:
+        return PRIOR_REAL_TASK_DONE
+    opposite = (literal[0], not value)
+    if any(opposite in effects.made.get(b, ()) for b in effects.before.get(action, ())):
+        return PRIOR_REAL_ENABLING
+    return PRIOR_REAL_OTHER
+
+
+# --- selection --------------------------------------------------------------------------------
+
+def _answer(tree: CompiledTree, state: State) -> Answer | bool:
+    """What a tree does in a state: an action, None for SUCCESS, False for FAILURE."""
+    status, action = tree(state)
+    if status is Status.RUNNING:
+        return action
+    return None if status is Status.SUCCESS else False
+
+
+def all_states(n: int, seed: int = 0) -> list[State]:
     """Every state for small domains, a fixed sample for large ones."""
     if n <= EXHAUSTIVE_UP_TO:
         return [tuple(bits) for bits in itertools.product((False, True), repeat=n)]
     rng = random.Random(seed)
-    return sorted({tuple(rng.random() < 0.5 for _ in range(n)) for _ in range(SAMPLE_SIZE)})
+    return sorted({tuple(rng.random() < 0.5 for _ in range(n)) for _ in range(STATE_SAMPLE)})
 
 
-def select_question(tree: Node, domain: Domain, labelled: Iterable[State],
-                    settled_guards: Iterable[tuple[str, str]], shown: Mapping[str, Sequence[State]]) -> Question | None:
-    """The most useful situation question, or None when nothing is in doubt.
-
-    ``labelled``: states whose right behaviour is known (demonstrated or answered);
-    ``settled_guards``: (action, guard key) pairs an answer already confirmed; ``shown``: per action,
-    the states where it was demonstrated.
-    """
+def committee(learner: "Specializer", labels: Mapping[State, Answer], effects: Effects,
+              rng: random.Random) -> list[CompiledTree]:
+    """Trees the learner's guards could really stand for, each consistent with every label."""
+    domain = learner.domain
     names = domain.condition_names
-    known = set(labelled)
-    settled = set(settled_guards)
-    states = [s for s in candidate_states(len(names)) if s not in known]
-    if not states:
+    guards = []
+    for action in learner.order:
+        for guard in learner.guards(action):
+            literals = [(lit.name, lit.value) for lit in guard.literals]
+            guards.append((guard.uid, prior_real(domain, action, literals, bool(guard.needed_by), effects)))
+    tree = learner.tree
+    members = [compile_tree(tree, names)]
+    seen: set[frozenset[int]] = {frozenset()}
+    for _ in range(COMMITTEE_DRAWS):
+        drop = frozenset(uid for uid, p in guards if rng.random() >= p)
+        if drop in seen:
+            continue
+        seen.add(drop)
+        relaxed = transform(tree, lambda node: None if node.uid in drop else node)
+        if relaxed is None:
+            continue
+        member = compile_tree(relaxed, names)
+        if all(_answer(member, s) == label for s, label in labels.items()):
+            members.append(member)
+    return members
+
+
+def visit_weights(trees: Sequence[CompiledTree], starts: Sequence[State], effects: Effects,
+                  horizon: int) -> dict[State, int]:
+    """How often each state is passed through when the trees run from every start, with the
+    effects the demonstrations showed."""
+    weights: dict[State, int] = {}
+    for tree in trees:
+        for state in starts:
+            for _ in range(horizon):
+                weights[state] = weights.get(state, 0) + 1
+                action = _answer(tree, state)
+                if not isinstance(action, str):
+                    break
+                following = effects.apply(state, action)
+                if following == state:
+                    break
+                state = following
+    return weights
+
+
+def select_question(learner: "Specializer", demos: Sequence[Demonstration], labels: Mapping[State, Answer],
+                    asked: Iterable[State] = (), seed: int = 0) -> Question | None:
+    """The situation whose answer is expected to change the robot's behaviour most, or None.
+
+    ``labels``: the right answer in every situation known so far (demonstrated or answered);
+    ``asked``: situations already asked about (also the skipped ones), never asked again.
+    """
+    domain = learner.domain
+    if not learner.order:
         return None
-    current = compile_tree(tree, names)
-    before = {s: current(s) for s in states}
+    names = domain.condition_names
+    rng = random.Random(seed * 7919 + len(labels))
+    effects = effects_from(domain, demos)
+    members = committee(learner, labels, effects, rng)
+    states = all_states(len(names), seed)
+    excluded = set(labels) | set(asked)
+    unseen = [s for s in states if s not in excluded]
+    if not unseen:
+        return None
+    weights = visit_weights(members[:COMMITTEE_FOR_VISITS], states, effects, 2 * len(learner.order) + 2)
+    current = members[0]
+    now = {s: _answer(current, s) for s in unseen}
+    candidates = sorted(unseen, key=lambda s: (-weights.get(s, 0), s))[:CANDIDATE_LIMIT]
     best: Question | None = None
-    for action, guards in sorted(action_guards(tree).items()):
-        for guard in guards:
-            key = guard_key(guard)
-            if (action, key) in settled:
-                continue
-            relaxed_tree = replace_node(tree, guard.uid, None)
-            if relaxed_tree is None:
-                continue
-            relaxed = compile_tree(relaxed_tree, names)
-            changed = [s for s in states if relaxed(s) != before[s] and relaxed(s)[1] == action]
-            if not changed or (best is not None and len(changed) <= best.impact):
-                continue
-            anchor = shown.get(action, ())
-            state = min(changed, key=lambda s: (_distance(s, anchor), s))
-            best = Question(state, action, key, len(changed))
+    for state in candidates:
+        votes: dict[Answer, int] = {}
+        for member in members:
+            vote = _answer(member, state)
+            if vote is not False:
+                votes[vote] = votes.get(vote, 0) + 1  # type: ignore[index]
+        total = sum(votes.values())
+        score = 0.0
+        for answer, count in sorted(votes.items(), key=lambda item: (item[0] is None, item[0] or "")):
+            if answer == now[state]:
+                continue  # the robot already does this: no change
+            score += count / total * _change(learner, state, answer, unseen, now, weights)
+        if score > 0 and (best is None or score > best.score + 1e-9):
+            shares = tuple((a or "done", c / total) for a, c in sorted(votes.items(), key=lambda i: -i[1]))
+            best = Question(state, score, shares)
     return best
 
 
-def _distance(state: State, anchors: Sequence[State]) -> int:
-    if not anchors:
-        return 0
-    return min(sum(a != b for a, b in zip(state, anchor)) for anchor in anchors)
+def _change(learner: "Specializer", state: State, answer: Answer, unseen: Sequence[State],
+            now: Mapping[State, Answer | bool], weights: Mapping[State, int]) -> float:
+    """Weighted number of unseen situations whose behaviour would change after this answer."""
+    trial = copy.deepcopy(learner)
+    try:
+        trial.teach_step(state, answer, source="a possible answer")
+    except LearnError:
+        return 0.0
+    after = compile_tree(trial.tree, learner.domain.condition_names)
+    return float(sum(weights.get(s, 0) for s in unseen if _answer(after, s) != now[s]))

@@ -16,16 +16,20 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step, next_demo_path, read_demonstration, write_demonstration
 from teach.dialogue.journal import Journal, parse_state_text, state_text
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
-from teach.dialogue.questions import Question, QuestionBudget, describe_situation, guard_key, select_question
+from teach.dialogue.questions import Answer, Question, QuestionBudget, describe_situation, select_question
 from teach.dialogue.worlds import TeachingWorld
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import LearnError, TeachError
 from teach.observe import Observer
+
+if TYPE_CHECKING:
+    from teach.learn.specialize import Update
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
@@ -99,8 +103,8 @@ class SessionManager:
         self.learner = Specializer(self.domain)
         self.budget = QuestionBudget(config.questions)
         self.demos: list[Demonstration] = []
-        self.labelled: set[State] = set()
-        self.settled: set[tuple[str, str]] = set()
+        self.labels: dict[State, Answer] = {}
+        self.asked: set[State] = set()
         self.generation = 0
         self.pruned: Node | None = None
         self.pending: Question | None = None
@@ -360,8 +364,7 @@ class SessionManager:
                                       f"Diese Vorführung kann ich nicht lernen: {error.message}"))]
         write_demonstration(path, demo)
         self.open = None
-        self.demos.append(demo)
-        self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+        self._remember(demo)
         self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
         self.observer.on_demonstration(demo.name, demo, self.domain)
         self.observer.on_learner("specialize", _describe_update(update), _removed_names(update))
@@ -376,8 +379,7 @@ class SessionManager:
             source = f"imported {demo.name} ({path.name})"
             self.learner.update(demo, source=source)
             write_demonstration(path, demo)
-            self.demos.append(demo)
-            self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+            self._remember(demo)
             self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
             self.observer.on_demonstration(demo.name, demo, self.domain)
         return self._after_learning(ask=False, started=started)
@@ -396,6 +398,7 @@ class SessionManager:
         self.budget.spend()
         self._turn_questions += 1
         self.pending = question
+        self.asked.add(question.state)
         text = question.text(self.domain, self.lang)
         self.observer.on_question(text, self.budget.left)
         options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
@@ -403,12 +406,7 @@ class SessionManager:
         return [Reply("question", f"{text}\n   ({options})")]
 
     def next_question(self) -> Question | None:
-        shown: dict[str, list[State]] = {}
-        for action in self.domain.actions:
-            states = self.learner.shown_states(action.name)
-            if states:
-                shown[action.name] = list(states)
-        return select_question(self.learner.tree, self.domain, self.labelled, self.settled, shown)
+        return select_question(self.learner, self.demos, self.labels, self.asked, self.config.seed)
 
     def _answer(self, line: str) -> list[Reply]:
         question = self.pending
@@ -416,10 +414,8 @@ class SessionManager:
         key = normalize(line)
         if key in SKIP_WORDS:
             self.pending = None
-            self.settled.add((question.action, question.guard_key))
             self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
-                             action=question.action, guard=question.guard_key, answer="skip",
-                             question=question.text(self.domain, self.lang))
+                             answer="skip", question=question.text(self.domain, self.lang))
             self.observer.on_answer(question.text(self.domain, self.lang), line, "nothing (skipped)")
             return [Reply("info", _t(self.lang, "All right, I keep being careful there.",
                                      "In Ordnung, da bleibe ich vorsichtig."))]
@@ -444,16 +440,12 @@ class SessionManager:
         try:
             update = self.learner.teach_step(question.state, answer, source=source)
         except LearnError as error:
-            self.settled.add((question.action, question.guard_key))
             return [Reply("error", _t(self.lang, f"That contradicts what you showed me: {error.message}",
                                       f"Das widerspricht dem Gezeigten: {error.message}"))]
-        if answer != question.action:
-            self.settled.add((question.action, question.guard_key))
-        self.labelled.add(question.state)
+        self.labels[question.state] = answer
         change = _describe_update(update)
         self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
-                         action=question.action, guard=question.guard_key, answer=answer or "done",
-                         question=text)
+                         answer=answer or "done", question=text)
         self.observer.on_answer(text, said, change)
         self.observer.on_learner("answer", change, _removed_names(update))
         return [Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))] + \
@@ -501,27 +493,25 @@ class SessionManager:
 
         events = _effective_events(self.journal.events)
         self.learner = Specializer(self.domain)
-        self.demos, self.labelled, self.settled = [], set(), set()
+        self.demos, self.labels, self.asked = [], {}, set()
         self.budget = QuestionBudget(self.config.questions)
         self.generation = sum(1 for e in self.journal.events if e["kind"] in ("demo", "answer", "undo"))
         for event in events:
             if event["kind"] == "demo":
                 demo = read_demonstration(self.config.demo_dir / event["file"], self.domain)
                 self.learner.update(demo, source=event.get("source"))
-                self.demos.append(demo)
-                self.labelled.update(s.state for s in demo.steps if s.action != EXTERNAL_ACTION)
+                self._remember(demo)
             elif event["kind"] == "answer":
                 self.budget.used += 1
                 state = parse_state_text(event["state"])
+                self.asked.add(state)
                 if event["answer"] != "skip":
                     answer = None if event["answer"] == "done" else event["answer"]
                     try:
                         self.learner.teach_step(state, answer, source=f"answer to question {self.budget.used}")
+                        self.labels[state] = answer
                     except LearnError:
                         pass  # it was rejected when it was given, too
-                    self.labelled.add(state)
-                if event["answer"] != event["action"]:
-                    self.settled.add((event["action"], event["guard"]))
         from teach.learn.prune import prune
         self.pruned = prune(self.learner.tree) if self.demos else None
 
@@ -535,7 +525,16 @@ class SessionManager:
             world.arrange(last)
         return manager
 
-    # --- helpers ----------------------------------------------------------------------------
+    # --- helpers ---------------------------------------------------------------------------
+
+    def _remember(self, demo: Demonstration) -> None:
+        """Keep a learned demonstration and what it says about each of its situations."""
+        self.demos.append(demo)
+        for step in demo.steps:
+            if step.action == GOAL_ACTION:
+                self.labels[step.state] = None
+            elif step.action != EXTERNAL_ACTION:
+                self.labels[step.state] = self.domain.action(step.action).name
 
     def _state_reply(self) -> Reply:
         state = self.world.state()
@@ -564,12 +563,12 @@ def _effective_events(events: list[dict]) -> list[dict]:
     return kept
 
 
-def _describe_update(update: object) -> str:
-    return str(getattr(update, "summary", "") or update)
+def _describe_update(update: "Update") -> str:
+    return update.sentence or "Nothing changed."
 
 
-def _removed_names(update: object) -> list[str]:
-    return [str(r) for r in getattr(update, "removed", ())]
+def _removed_names(update: "Update") -> list[str]:
+    return [change.text for change in update.removed]
 
 
 DONE_WORDS = {"done", "finished", "nothing", "nothing task is done", "fertig", "nichts", "ziel erreicht"}
