@@ -211,7 +211,13 @@ class SessionManager:
         if self.open is None or not self.open.steps:
             return [Reply("error", _t(self.lang, "No demonstration is open: show me some steps first.",
                                       "Es läuft keine Vorführung: zeig mir erst ein paar Schritte."))]
-        self.open.steps.append(Step(self.world.state(), GOAL_ACTION))
+        state = self.world.state()
+        missing = [lit for lit in self.domain.goal if not self.domain.holds(lit, state)]
+        if missing:
+            unmet = ", ".join(self.domain.condition(lit.name).label(self.lang, lit.value) for lit in missing)
+            return [Reply("error", _t(self.lang, f"The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
+                                      f"Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'."))]
+        self.open.steps.append(Step(state, GOAL_ACTION))
         return self._finish_demo()
 
     def cmd_cancel(self, rest: str) -> list[Reply]:

@@ -1,0 +1,88 @@
+"""The MuJoCo ball-in-bin world behind the session's ``TeachingWorld`` interface.
+
+Demonstrated actions run as skills in physics and every state is read from physics; runs of
+the learned tree go through the simulation's executor. No mujoco call lives here: this only
+adapts ``teach.sim`` to the session.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import TickResult
+from teach.dialogue.worlds import ActResult, RunResult
+from teach.domain import Domain, State
+from teach.observe import Observer, Observers
+from teach.sim.executor import run_tree
+from teach.sim.perturb import PERTURBATIONS
+from teach.sim.skills import FrameClock, run_skill
+from teach.sim.world import World
+
+TICK_HZ = 10.0
+SECONDS_PER_ACTION = 30.0
+
+
+class _ActionCounter(Observer):
+    """Counts the actions a run starts, so ``run N`` can stop after N of them."""
+
+    def __init__(self) -> None:
+        self.started = 0
+        self._last: str | None = None
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        if result.action is not None and result.action != self._last:
+            self.started += 1
+        self._last = result.action
+
+
+class MujocoWorld:
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None):
+        self.world = World(seed, domain)
+        self.domain = self.world.domain
+        self.observer = observer or Observer()
+        self.frames = FrameClock(self.world, self.observer)
+        self.events = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}
+
+    def state(self) -> State:
+        return self.world.state()
+
+    def arrange(self, state: State) -> None:
+        self.world.arrange(state)
+        self.frames(None)
+
+    def reset(self, seed: int | None = None) -> None:
+        self.world.reset(seed)
+        self.frames(None)
+
+    def act(self, action: str) -> ActResult:
+        before = self.world.state()
+        status = run_skill(self.world, action, self.observer, frames=self.frames)
+        after = self.world.state()
+        if status is Status.SUCCESS:
+            return ActResult(True, before, after)
+        return ActResult(False, before, after, "the robot could not finish it in the simulation")
+
+    def perturb(self, event: str) -> ActResult:
+        before = self.world.state()
+        PERTURBATIONS[event].apply(self.world, self.world.rng)
+        self.frames(None)
+        return ActResult(True, before, self.world.state())
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None) -> RunResult:
+        counter = _ActionCounter()
+
+        def stop() -> bool:
+            return (interrupt is not None and interrupt()) or (stop_after is not None and counter.started > stop_after)
+
+        trace = run_tree(self.world, tree, Observers(self.observer, counter),
+                         max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ), tick_hz=TICK_HZ, interrupt=stop)
+        steps = [(state, action) for state, action, fresh in zip(trace.states, trace.actions, trace.started)
+                 if fresh and action is not None]
+        if stop_after is not None and trace.outcome == "interrupted":
+            steps = steps[:stop_after]
+        return RunResult(trace.outcome, steps, self.world.state())
+
+    def close(self) -> None:
+        self.world.close()
