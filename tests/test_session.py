@@ -1,0 +1,181 @@
+"""The session manager as a state machine, in the symbolic world (fast, no physics):
+demonstrations, online learning, the question budget, runs with corrections, undo, resume."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from teach.demos import read_demo_set
+from teach.dialogue.session import SessionConfig, SessionManager
+from teach.dialogue.worlds import SymbolicWorld
+from teach.observe import Observer
+
+SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
+SECOND = "go to the ball, grasp the ball, go to the bin, put the ball in the bin"
+
+
+class Events(Observer):
+    def __init__(self):
+        self.questions: list[str] = []
+        self.trees: list[int] = []
+        self.dialogue: list[tuple[str, str]] = []
+
+    def on_question(self, question, budget_left):
+        self.questions.append(question)
+
+    def on_tree(self, generation, tree, xml, reason):
+        self.trees.append(generation)
+
+    def on_dialogue(self, speaker, text, budget_left=None):
+        self.dialogue.append((speaker, text))
+
+
+def new_session(ball, tmp_path, questions=5, lang="en", observer=None):
+    config = SessionConfig("t", ball, lang, questions, base=tmp_path, world="symbolic")
+    return SessionManager(config, SymbolicWorld(ball), observer)
+
+
+def kinds(replies):
+    return [r.kind for r in replies]
+
+
+def test_demonstration_learns_saves_and_replays(ball, tmp_path):
+    events = Events()
+    session = new_session(ball, tmp_path, observer=events)
+    session.greet()
+    replies = session.handle(SEQUENCE)
+    assert session.mode == "demonstrating" and "error" not in kinds(replies)
+    replies = session.handle("done")
+    # the tree is shown at once, saved as a generation, and replayed against the demonstrations
+    assert "tree" in kinds(replies) and events.trees == [1]
+    assert (tmp_path / "trees" / "t" / "gen-01.xml").is_file()
+    assert any("reproduce 1 of 1" in r.text for r in replies)
+    domain, demos = read_demo_set(tmp_path / "demos" / "t")
+    assert [d.actions for d in demos] == [(1, 2, 3, 4, 5)] and demos[0].reached_goal
+    journal = json.loads((tmp_path / "recordings" / "t.journal.json").read_text())
+    assert [e["kind"] for e in journal["events"]] == ["demo"]
+    # every line of the dialogue reaches the observer
+    assert ("teacher", SEQUENCE) in events.dialogue and any(s == "robot" for s, _ in events.dialogue)
+
+
+def test_done_is_refused_before_the_goal(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    replies = session.handle("done")
+    assert kinds(replies) == ["error"] and "not finished" in replies[0].text
+    assert session.mode == "demonstrating"
+
+
+def test_unknown_words_never_crash(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    replies = session.handle("fly to the moon")
+    assert kinds(replies) == ["error"]
+    replies = session.handle("start Nonsense")
+    assert kinds(replies) == ["error"] and "unknown condition" in replies[0].text
+
+
+def test_questions_never_exceed_the_budget(ball, tmp_path):
+    events = Events()
+    session = new_session(ball, tmp_path, questions=2, observer=events)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    session.handle("done")
+    asked = 0
+    for _ in range(10):
+        if session.pending is None:
+            session.handle("ask")
+        if session.pending is None:
+            break
+        asked += 1
+        session.handle("skip")
+    assert asked == len(events.questions) <= 2 and session.budget.left == 0
+    assert any("used all my questions" in r.text for r in session.handle("ask"))
+
+
+def test_an_answer_changes_the_tree(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    replies = session.handle("done")
+    assert session.pending is not None, "two demonstrations leave guards in doubt: the robot asks"
+    before = session.learner.tree
+    question = session.pending
+    state = question.state
+    answer = next(a for a, _ in question.expected if a != "done")
+    replies = session.handle(ball.action(answer).label("en"))
+    assert session.learner.tree != before
+    assert any(r.text.startswith("Thank you.") for r in replies)
+    assert session.labels[state] == answer
+
+
+def test_run_interrupt_and_correction(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start")
+    replies = session.handle("run 2")
+    # stopped after two actions: the teacher continues from here as a correction
+    assert session.mode == "demonstrating"
+    assert [s.action for s in session.open.steps] == [1, 2]
+    session.handle("grasp the ball, go to the bin, put the ball in the bin")
+    session.handle("done")
+    _, demos = read_demo_set(tmp_path / "demos" / "t")
+    assert demos[-1].actions == (1, 2, 3, 4, 5)
+    replies = session.handle("start")
+    replies = session.handle("run")
+    assert any("finished" in r.text for r in replies)
+
+
+def test_undo_a_step_and_a_demonstration(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    session.handle("undo")
+    assert [s.action for s in session.open.steps] == [1]
+    assert session.world.state() == ball.state(["BallFound"])
+    session.handle("cancel")
+    session.handle("start")
+    session.handle(SEQUENCE)
+    session.handle("done")
+    assert len(session.demos) == 1
+    session.handle("undo")
+    assert session.demos == [] and session.pruned is None or len(session.demos) == 0
+
+
+def test_resume_after_a_killed_session(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    session.handle("done")
+    if session.pending is not None:
+        session.handle("skip")
+    tree, used = session.learner.tree, session.budget.used
+    # no close(), no save: as if the process was killed here
+    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
+    resumed = SessionManager.resume(config, SymbolicWorld(ball))
+    assert resumed.learner.tree == tree and resumed.budget.used == used
+    assert len(resumed.demos) == 2
+    assert "Resumed" in resumed.greet()[0].text
+
+
+def test_german_session(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle("Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, Ball in den Eimer legen")
+    replies = session.handle("fertig")
+    assert any("Generation 1" in r.text for r in replies)
+    assert "Hilfe" in session.handle("hilfe")[0].text or "hilfe" in session.handle("hilfe")[0].text
+
+
+@pytest.mark.parametrize("line", ["why FindBall", "show", "show full", "state", "save", "help"])
+def test_commands_answer(ball, tmp_path, line):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    assert "error" not in kinds(session.handle(line))
