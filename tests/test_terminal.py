@@ -1,0 +1,52 @@
+"""The terminal front-end driven through prompt_toolkit's pipe input, as a person would type."""
+
+from __future__ import annotations
+
+import io
+
+from prompt_toolkit.input import create_pipe_input
+from prompt_toolkit.output import DummyOutput
+from rich.console import Console
+
+from teach.dialogue.session import SessionConfig, SessionManager
+from teach.dialogue.terminal import Terminal
+from teach.dialogue.worlds import SymbolicWorld
+
+
+def drive(ball, tmp_path, keys: str, lang: str = "de") -> tuple[str, SessionManager]:
+    config = SessionConfig("term", ball, lang, 5, base=tmp_path, world="symbolic")
+    manager = SessionManager(config, SymbolicWorld(ball))
+    buffer = io.StringIO()
+    console = Console(file=buffer, width=100, color_system=None)
+    with create_pipe_input() as pipe:
+        pipe.send_text(keys)
+        Terminal(manager, console=console, input=pipe, output=DummyOutput()).run()
+    return buffer.getvalue(), manager
+
+
+def test_german_sentence_teaches_a_tree_and_ctrl_d_saves(ball, tmp_path):
+    keys = ("Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, Ball in den Eimer legen\r"
+            "fertig\r"
+            "\x04")  # Ctrl-D
+    out, manager = drive(ball, tmp_path, keys)
+    assert "Generation 1" in out and "learned tree" in out
+    assert "Auf Wiedersehen" in out  # Ctrl-D leaves after saving
+    assert manager.finished and (tmp_path / "recordings" / "term.journal.json").is_file()
+    assert (tmp_path / "demos" / "term" / "demo-001.csv").is_file()
+
+
+def test_tab_completion_and_help(ball, tmp_path):
+    # "Ball fi" + Tab completes to "Ball finden"
+    keys = "Ball fi\t\rhilfe\rquit\r"
+    out, manager = drive(ball, tmp_path, keys)
+    assert "✓ Ball finden" in out
+    assert "demonstrate" in out  # the help lists the commands
+    assert manager.finished
+
+
+def test_run_and_unknown_words(ball, tmp_path):
+    keys = ("find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "done\rstart\rrun\rfly away\rquit\r")
+    out, _ = drive(ball, tmp_path, keys, lang="en")
+    assert "Done! The task is finished." in out
+    assert "I don't know “fly away”" in out
