@@ -18,13 +18,14 @@ to ``camera_hz`` frames per second of simulated time and each shape kind is one 
 from __future__ import annotations
 
 import atexit
+import functools
 import os
 import shutil
 import subprocess
 import sys
 import threading
 import warnings
-from collections.abc import Mapping, Sequence as Seq
+from collections.abc import Callable, Mapping, Sequence as Seq
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -146,7 +147,7 @@ class RerunLogger(Observer):
     """
 
     def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *,
-                 scene_hz: float = 10.0, camera_hz: float = 2.0, jpeg_quality: int = 80):
+                 scene_hz: float = 10.0, camera_hz: float = 2.0, jpeg_quality: int = 80, batch_rows: int | None = None):
         if spawn and not has_display():
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
@@ -156,6 +157,7 @@ class RerunLogger(Observer):
         self._scene_period = 1.0 / scene_hz
         self._camera_period = 1.0 / camera_hz
         self._jpeg_quality = jpeg_quality
+        self._batch_rows = batch_rows or (3 if spawn else 20)  # a live viewer should lag little
         self._rec = rr.RecordingStream(APPLICATION_ID, recording_id=session_name)
         self._rec.set_log_time_enabled(False)
         self._rec.set_log_tick_enabled(False)
@@ -166,6 +168,9 @@ class RerunLogger(Observer):
             self._rec.save(self._part, default_blueprint=blueprint())
         self._rec.send_recording_name(session_name)
         self._clock: tuple[int, int, float | None] = (0, 0, None)  # version, step, sim_time
+        self._sim_time: float | None = None  # the last sim_time given: rerun's clocks are sticky too
+        self._batches: dict[str, _Batch] = {}
+        self._last_state: tuple | None = None
         self._local = threading.local()
         self._lock = threading.Lock()
         self._view: _TreeView | None = None
@@ -181,6 +186,8 @@ class RerunLogger(Observer):
     def set_time(self, step: int, sim_time: float | None = None) -> None:
         with self._lock:
             self._clock = (self._clock[0] + 1, step, sim_time)
+            if sim_time is not None:
+                self._sim_time = sim_time
         self._stamp()
 
     def _stamp(self) -> None:
@@ -193,11 +200,44 @@ class RerunLogger(Observer):
         if sim_time is not None:
             self._rec.set_time("sim_time", duration=sim_time)
 
-    def _log(self, entity: str, *parts: Any, static: bool = False) -> None:
+    def _log(self, entity: str, *parts: Any, static: bool = False, flush: bool = True) -> None:
+        """Log one row now; ``flush`` first sends the batched rows, so row ids keep the calls' order."""
         if self._closed:
             return
+        if flush:
+            self._flush()
         self._stamp()
         self._rec.log(entity, *parts, static=static)
+
+    def _queue(self, entity: str, columns: Callable[[list[tuple]], list[Any]], row: tuple) -> None:
+        """Batch one row of a high-rate stream (scene poses, ticks); sent as columns, one rerun call per batch."""
+        if self._closed:
+            return
+        with self._lock:
+            batch = self._batches.get(entity)
+            if batch is not None and (batch.times[0] is None) != (self._sim_time is None):
+                self._send(entity)
+                batch = None
+            if batch is None:
+                batch = self._batches[entity] = _Batch(columns)
+            batch.steps.append(self._clock[1])
+            batch.times.append(self._sim_time)
+            batch.rows.append(row)
+            if len(batch.rows) >= self._batch_rows:
+                self._send(entity)
+
+    def _flush(self, entity: str | None = None) -> None:
+        with self._lock:
+            for name in [entity] if entity is not None else sorted(self._batches):
+                if name in self._batches:
+                    self._send(name)
+
+    def _send(self, entity: str) -> None:
+        batch = self._batches.pop(entity)
+        indexes = [rr.TimeColumn("step", sequence=batch.steps)]
+        if batch.times[0] is not None:
+            indexes.append(rr.TimeColumn("sim_time", duration=batch.times))
+        self._rec.send_columns(entity, indexes=indexes, columns=batch.columns(batch.rows))
 
     # --- vocabulary and trees ---------------------------------------------------------------
 
@@ -249,23 +289,25 @@ class RerunLogger(Observer):
                 colours[view.index[uid]] = _STATUS_COLOURS[status]
         trace = [(view.index[uid], status.name) for uid, status in result.trace if uid in view.index]
         action = result.action or ""
-        self._log("tree/graph", rr.GraphNodes.from_fields(colors=colours),
-                  rr.TextLog(f"{result.status.name} {action}".rstrip(), level=result.status.name),
-                  _values(status=result.status.name, action=action, generation=self._generation,
-                          trace_nodes=[i for i, _ in trace] or None,
-                          trace_labels=[view.labels[i] for i, _ in trace] or None,
-                          trace_status=[s for _, s in trace] or None))
+        self._queue("tree/graph", _tick_columns,
+                    (colours, result.status.name, action, self._generation, [i for i, _ in trace],
+                     [view.labels[i] for i, _ in trace], [s for _, s in trace]))
 
     # --- the world --------------------------------------------------------------------------
 
     def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
+        """Logged when the state or the action changes (the viewer holds a value until the next)."""
         names = list(state)
         values = [bool(state[n]) for n in names]
+        key = (tuple(names), tuple(values), action)
+        if key == self._last_state:
+            return
+        self._last_state = key
         doc = [f"**Running:** {action or '—'}", "", "| condition | value |", "|---|---|"]
         doc += [f"| {n} | {'✔ true' if v else '✘ false'} |" for n, v in zip(names, values)]
         self._log("state", rr.TextDocument("\n".join(doc), media_type=rr.MediaType.MARKDOWN),
                   *([rr.Scalars(np.asarray(values, dtype=np.float64))] if values else []),
-                  _values(conditions=names or None, values=values or None, action=action or ""))
+                  _values(conditions=names or None, values=values or None, action=action or ""), flush=False)
 
     def on_external(self, name: str) -> None:
         self._log("state/external", rr.TextLog(f"external action: {name}", level="EXTERNAL"),
@@ -276,26 +318,35 @@ class RerunLogger(Observer):
         if not self._due(sim_time, self._last_scene, self._scene_period):
             return
         self._last_scene = sim_time
-        groups: dict[str, list[SceneShape]] = {}
-        for shape in shapes:
+        groups: dict[str, list[int]] = {}
+        for i, shape in enumerate(shapes):
             if shape.kind not in _SHAPE_ENTITIES:
                 raise ValueError(f"scene shape {shape.name!r} has unknown kind {shape.kind!r}")
-            groups.setdefault(shape.kind, []).append(shape)
+            groups.setdefault(shape.kind, []).append(i)
+        positions = np.array([s.pos for s in shapes], dtype=np.float32).reshape(-1, 3)
+        rotations = np.array([s.quat for s in shapes], dtype=np.float32).reshape(-1, 4)
         for kind in sorted(self._scene_geometry.keys() - groups.keys()):
-            self._log(_SHAPE_ENTITIES[kind], rr.Clear(recursive=False))
+            self._flush(_SHAPE_ENTITIES[kind])
+            self._log(_SHAPE_ENTITIES[kind], rr.Clear(recursive=False), flush=False)
             del self._scene_geometry[kind]
         for kind in sorted(groups):
-            geometry = tuple((s.name, s.size, s.rgba) for s in groups[kind])
-            full = self._scene_geometry.get(kind) != geometry
-            self._scene_geometry[kind] = geometry
-            self._log(_SHAPE_ENTITIES[kind], _shape_batch(kind, groups[kind], full))
+            entity, index = _SHAPE_ENTITIES[kind], groups[kind]
+            geometry = tuple((shapes[i].name, shapes[i].size, shapes[i].rgba) for i in index)
+            poses = _poses(kind, geometry, positions[index], rotations[index])
+            if self._scene_geometry.get(kind) == geometry:
+                self._queue(entity, _POSE_COLUMNS[kind], poses)
+            else:  # sizes, colours and names only when they change; poses alone otherwise
+                self._flush(entity)
+                self._scene_geometry[kind] = geometry
+                self._log(entity, _shape_batch(kind, geometry, poses), flush=False)
 
     def on_camera(self, image: Any) -> None:
         sim_time = self._clock[2]
         if not self._due(sim_time, self._last_camera, self._camera_period):
             return
         self._last_camera = sim_time
-        self._log("camera/image", rr.Image(np.ascontiguousarray(image)).compress(jpeg_quality=self._jpeg_quality))
+        self._log("camera/image", rr.Image(np.ascontiguousarray(image)).compress(jpeg_quality=self._jpeg_quality),
+                  flush=False)
 
     @staticmethod
     def _due(now: float | None, last: float | None, period: float) -> bool:
@@ -357,6 +408,7 @@ class RerunLogger(Observer):
         """Flush, finish the file (rerun writes its footer on disconnect) and move it into place."""
         if self._closed:
             return
+        self._flush()
         self._closed = True
         atexit.unregister(self.close)
         self._rec.flush()
@@ -368,6 +420,16 @@ class RerunLogger(Observer):
 
     def __exit__(self, *_exc: object) -> None:
         self.close()
+
+
+@dataclass
+class _Batch:
+    """Rows of one high-rate entity waiting to go out together as columns."""
+
+    columns: Callable[[list[tuple]], list[Any]]
+    steps: list[int] = field(default_factory=list)
+    times: list[float | None] = field(default_factory=list)
+    rows: list[tuple] = field(default_factory=list)
 
 
 def _values(**fields: Any) -> rr.AnyValues:
@@ -384,36 +446,64 @@ def _step_label(action: int, domain: "Domain") -> str:
     return domain.action(action).name
 
 
-def _shape_batch(kind: str, shapes: list["SceneShape"], full: bool) -> Any:
-    """One rerun archetype for all shapes of a kind (one ``log`` call per kind per frame).
+def _poses(kind: str, geometry: tuple, pos: np.ndarray, wxyz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where each shape sits as rerun places it, and its rotation (x, y, z, w)."""
+    if kind == "capsule":  # rerun's capsule runs from its translation along +z; MuJoCo's is centred
+        half = np.array([size[1] for _name, size, _rgba in geometry], dtype=np.float32)
+        pos = pos - _rotate_z(wxyz) * half[:, None]
+    return pos, wxyz[:, [1, 2, 3, 0]]
 
-    Sizes, colours and names are logged only when they change (``full``); other frames carry
-    the poses alone, which rerun combines with the latest geometry: a seventh of the cost.
-    """
-    pos = np.array([s.pos for s in shapes], dtype=np.float32)
-    wxyz = np.array([s.quat for s in shapes], dtype=np.float32)
-    poses: dict[str, Any] = {"quaternions": wxyz[:, [1, 2, 3, 0]]}
-    geometry: dict[str, Any] = {}
-    if full:
-        geometry = {"colors": np.clip(np.array([s.rgba for s in shapes]) * 255.0, 0, 255).astype(np.uint8),
-                    "labels": [s.name for s in shapes], "show_labels": False,
-                    "fill_mode": rr.components.FillMode.Solid}
+
+_ARCHETYPES: dict[str, Any] = {"box": rr.Boxes3D, "sphere": rr.Ellipsoids3D, "capsule": rr.Capsules3D,
+                               "cylinder": rr.Cylinders3D}
+
+
+def _where(kind: str) -> str:
+    return "translations" if kind == "capsule" else "centers"
+
+
+def _shape_batch(kind: str, geometry: tuple, poses: tuple[np.ndarray, np.ndarray]) -> Any:
+    """All shapes of a kind (``geometry``: name, size, rgba of each) with their poses, as one archetype."""
+    sizes = [size for _name, size, _rgba in geometry]
+    fields: dict[str, Any] = {
+        _where(kind): poses[0], "quaternions": poses[1],
+        "colors": np.clip(np.array([rgba for _n, _s, rgba in geometry]) * 255.0, 0, 255).astype(np.uint8),
+        "labels": [name for name, _s, _rgba in geometry], "show_labels": False,
+        "fill_mode": rr.components.FillMode.Solid}
     if kind == "box":
-        if full:
-            geometry["half_sizes"] = np.array([s.size[:3] for s in shapes], dtype=np.float32)
-        return rr.Boxes3D.from_fields(centers=pos, **poses, **geometry)
-    if kind == "sphere":
-        if full:
-            geometry["half_sizes"] = np.array([(s.size[0],) * 3 for s in shapes], dtype=np.float32)
-        return rr.Ellipsoids3D.from_fields(centers=pos, **poses, **geometry)
-    half = np.array([s.size[1] for s in shapes], dtype=np.float32)
-    if full:
-        geometry["radii"] = np.array([s.size[0] for s in shapes], dtype=np.float32)
-        geometry["lengths"] = 2 * half
-    if kind == "cylinder":
-        return rr.Cylinders3D.from_fields(centers=pos, **poses, **geometry)
-    # rerun's capsule runs from its translation along +z; MuJoCo's is centred on its position
-    return rr.Capsules3D.from_fields(translations=pos - _rotate_z(wxyz) * half[:, None], **poses, **geometry)
+        fields["half_sizes"] = np.array([size[:3] for size in sizes], dtype=np.float32)
+    elif kind == "sphere":
+        fields["half_sizes"] = np.array([(size[0],) * 3 for size in sizes], dtype=np.float32)
+    else:
+        fields["radii"] = np.array([size[0] for size in sizes], dtype=np.float32)
+        fields["lengths"] = 2 * np.array([size[1] for size in sizes], dtype=np.float32)
+    return _ARCHETYPES[kind].from_fields(**fields)
+
+
+def _pose_columns(kind: str, rows: list[tuple]) -> list[Any]:
+    """Frames of poses for one shape kind as partitioned columns; rerun joins them with the geometry."""
+    columns = _ARCHETYPES[kind].columns(**{_where(kind): np.concatenate([r[0] for r in rows]),
+                                           "quaternions": np.concatenate([r[1] for r in rows])})
+    return list(columns.partition([len(r[0]) for r in rows]))
+
+
+_POSE_COLUMNS: dict[str, Callable[[list[tuple]], list[Any]]] = {
+    kind: functools.partial(_pose_columns, kind) for kind in _ARCHETYPES}
+
+
+def _tick_columns(rows: list[tuple]) -> list[Any]:
+    """Ticks as columns: node colours on the graph, a text line, and the fields read back."""
+    colours, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows)
+    columns = [*rr.GraphNodes.columns(colors=[c for row in colours for c in row]).partition(
+                   [len(row) for row in colours]),
+               *rr.TextLog.columns(text=[f"{s} {a}".rstrip() for s, a in zip(statuses, actions)], level=statuses),
+               *rr.AnyValues.columns(status=list(statuses), action=list(actions), generation=list(generations))]
+    lengths = [len(row) for row in nodes]
+    if any(lengths):
+        columns += rr.AnyValues.columns(trace_nodes=[n for row in nodes for n in row],
+                                        trace_labels=[n for row in labels for n in row],
+                                        trace_status=[n for row in trace_statuses for n in row]).partition(lengths)
+    return columns
 
 
 def _rotate_z(wxyz: np.ndarray) -> np.ndarray:
