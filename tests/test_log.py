@@ -202,3 +202,69 @@ def test_unknown_shape_kind_is_refused(tmp_path: Path) -> None:
             logger.on_scene([SceneShape("x", "torus", (1.0,), (0, 0, 0), (1, 0, 0, 0), (1, 1, 1, 1))])
     finally:
         logger.close()
+
+
+def test_batches_keep_every_tick_in_order_around_events(tmp_path: Path, ball: Domain) -> None:
+    # ticks are batched (3 rows per rerun call here) but events between them flush the batch first,
+    # so reading back gives every tick, and every event, in the order they were reported
+    path = tmp_path / "batched.rrd"
+    tree = colledanchise_tree()
+    names = ball.condition_names
+    states = [ball.state(names[:k]) for k in range(len(names) + 1)]
+    with RerunLogger(path, "batched", batch_rows=3) as logger:
+        logger.on_domain(ball)
+        logger.on_tree(0, tree, tree_to_xml(tree), "start")
+        for step in range(40):
+            logger.set_time(step, step * 0.1)
+            logger.on_tick(tree, tick_state(tree, names, states[step % len(states)]))
+            if step % 7 == 0:
+                logger.on_dialogue("robot", f"line {step}")
+    contents = read_recording(path)
+    expected = [tick_state(tree, names, states[s % len(states)]).action for s in range(40)]
+    assert [t.action for t in contents.ticks] == expected
+    assert [t.step for t in contents.ticks] == list(range(40))
+    assert [d.text for d in contents.dialogue] == [f"line {s}" for s in range(0, 40, 7)]
+    assert [d.step for d in contents.dialogue] == list(range(0, 40, 7))
+
+
+def test_state_is_logged_when_it_changes(tmp_path: Path, ball: Domain) -> None:
+    path = tmp_path / "state.rrd"
+    names = ball.condition_names
+    with RerunLogger(path, "state") as logger:
+        for step, (true, action) in enumerate([([], "FindBall")] * 5 + [(["BallFound"], "FindBall")] * 3
+                                              + [(["BallFound"], "ApproachBall")] * 4):
+            logger.set_time(step, step * 0.1)
+            logger.on_state(dict(zip(names, ball.state(true))), action)
+    contents = read_recording(path)
+    # twelve reports, three distinct (state, action) pairs: the viewer holds each until the next
+    assert [(s.step, s.action, s.state["BallFound"]) for s in contents.states] == [
+        (0, "FindBall", False), (5, "FindBall", True), (8, "ApproachBall", True)]
+
+
+def test_scene_geometry_changes_and_vanishing_kinds(tmp_path: Path) -> None:
+    path = tmp_path / "scene.rrd"
+    with RerunLogger(path, "scene", batch_rows=2) as logger:
+        for frame in range(12):
+            logger.set_time(frame, frame * 0.1)
+            shapes = _shapes(frame * 0.1)
+            if frame >= 6:  # the ball is gone (placed out of sight), the bin changes colour
+                shapes = [s for s in shapes if s.kind != "sphere"]
+                shapes[-1] = SceneShape("bin", "cylinder", (0.15, 0.1), (-0.5, 0.3, 0.1), (1.0, 0.0, 0.0, 0.0),
+                                        (0.9, 0.1, 0.1, 1.0))
+            logger.on_scene(shapes)
+            logger.on_scene(shapes)  # a second report at the same sim time is dropped (10 Hz)
+    assert read_recording(path).scene_frames == 12
+    done = subprocess.run([str(RERUN), "rrd", "verify", str(path)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
+def test_capsule_is_placed_from_its_end() -> None:
+    from teach.log import _poses
+
+    # a capsule centred at (0, 0, 0.5), half length 0.2, turned 90° about x: its axis points along -y,
+    # and rerun draws it from the end at +y towards -y
+    geometry = (("arm", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),)
+    pos, xyzw = _poses("capsule", geometry, np.array([[0.0, 0.0, 0.5]], dtype=np.float32),
+                       np.array([[0.70710678, 0.70710678, 0.0, 0.0]], dtype=np.float32))
+    assert pos[0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)
+    assert xyzw[0] == pytest.approx([0.70710678, 0.0, 0.0, 0.70710678])
