@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence as Seq
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
-                            children)
+                            children, walk)
 
 
 def always_running(_action: str) -> Status:
@@ -103,8 +103,9 @@ class CompiledTree(Protocol):
 
     Calling it with a state returns ``(status, action)`` for the symbolic world (actions
     return RUNNING). The learners and the replay call it millions of times, so a compiled
-    tree is the memoising function itself (no method dispatch between caller and memo);
-    ``raw`` is the generated function without the memo, ``source`` its code.
+    tree is a plain function (no method dispatch per call): the generated code itself, or
+    a memo table in front of it for large trees; ``raw`` is the generated function without
+    any memo, ``source`` its code.
     """
 
     source: str
@@ -115,26 +116,42 @@ class CompiledTree(Protocol):
 
 
 _MEMO_LIMIT = 1 << 20
+_MEMO_MIN_SIZE = 256
 
 
-def compile_tree(root: Node, names: Seq[str]) -> CompiledTree:
+def compile_tree(root: Node, names: Seq[str], memoise: bool | None = None) -> CompiledTree:
+    """Compile ``root`` over states in ``names`` order.
+
+    ``memoise`` None decides by the tree: hashing a state for the memo table costs more than
+    running the straight-line code of a tree without Parallel nodes and with up to 256 nodes
+    (measured in bench/bench_tick.py and bench/bench_replay.py), so only larger trees and
+    trees with Parallel nodes get a memo table.
+    """
     source, namespace = _generate(root, {n: i for i, n in enumerate(names)})
     raw: Callable[[tuple[bool, ...]], tuple[Status, str | None]] = namespace["tick"]
+    if memoise is None:
+        nodes = list(walk(root))
+        memoise = len(nodes) > _MEMO_MIN_SIZE or any(isinstance(n, Parallel) for n in nodes)
+    compiled: Any = _memoised(raw) if memoise else raw
+    compiled.source = source
+    compiled.names = tuple(names)
+    compiled.raw = raw
+    return compiled
+
+
+def _memoised(raw: Callable[[tuple[bool, ...]], tuple[Status, str | None]]) -> Callable[..., object]:
     memo: dict[tuple[bool, ...], tuple[Status, str | None]] = {}
+    lookup = memo.get
 
     def compiled(state: tuple[bool, ...]) -> tuple[Status, str | None]:
-        try:
-            return memo[state]
-        except KeyError:
+        result = lookup(state)
+        if result is None:
             if len(memo) >= _MEMO_LIMIT:
                 memo.clear()
             result = memo[state] = raw(state)
-            return result
+        return result
 
-    compiled.source = source  # type: ignore[attr-defined]
-    compiled.names = tuple(names)  # type: ignore[attr-defined]
-    compiled.raw = raw  # type: ignore[attr-defined]
-    return compiled  # type: ignore[return-value]
+    return compiled
 
 
 def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
