@@ -84,8 +84,9 @@ def domain_states(domain: Domain) -> Iterator[State]:
 
 def btcpp_tick(tree: Node, domain: Domain, states: list[State]) -> list[tuple[Status, str | None]]:
     """BehaviorTree.CPP's (status, running action) for each state, from our XML of ``tree``."""
+    text = tree_to_xml(tree)  # first, so a name BT.CPP reserves is reported as such
     harness = _harness(domain.condition_names, domain.action_names)
-    live = harness.factory.create_tree_from_text(tree_to_xml(tree))
+    live = harness.factory.create_tree_from_text(text)
     return [harness.tick(live, state) for state in states]
 
 

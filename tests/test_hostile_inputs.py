@@ -110,6 +110,8 @@ CASES = [
     Case("tree action unknown to the domain", {**demo_set(), "tree.xml": tree_to_xml(colledanchise_tree())
                                                 .replace("PlaceBall", "ThrowBall")},
          TEST, "tree.xml", None, "'ThrowBall'"),
+    Case("dot output is not written for a bad tree", show(tree_file("<Inverter/>")),
+         ("dot", "tree.xml", "-o", "tree.dot"), "tree.xml", 3, "<Inverter> has no children"),
     # --- CSV -------------------------------------------------------------------------------------
     Case("wrong field count", demo_set("0;0;0;0;0;1\n1;0;0;0;2\n"), TEST, CSV, 2, "expected 6 fields"),
     Case("value other than 0/1", demo_set("0;0;0;0;0;1\n1;0;2;0;0;2\n"), TEST, CSV, 2, "must be 0 or 1"),

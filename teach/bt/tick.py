@@ -12,8 +12,7 @@ from collections.abc import Callable, Mapping, Sequence as Seq
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
-from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
-                            children, walk)
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, walk
 
 
 def always_running(_action: str) -> Status:
