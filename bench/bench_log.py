@@ -1,6 +1,6 @@
 """Logging overhead and recording size of a ten-minute session.
 
-Run: .venv/bin/python bench/bench_log.py [--minutes 10]
+Run: .venv/bin/python bench/bench_log.py [--minutes 10] [--sim-minutes 2]
 
 Feeds the event stream of a session at realistic rates (per second of simulated time: 10
 scene frames of 15 shapes, 10 states, 10 ticks of a 16-node tree, 2 camera images of
@@ -11,6 +11,10 @@ to a ``RerunLogger`` and once to the no-op ``Observer``, side by side, and print
 - the ratio against the bare event loop with no physics or rendering in it (an upper bound:
   a real session's loop also steps the physics and renders the camera);
 - the size of the recording for the whole run.
+Then it runs the real MuJoCo world fast-forward (the five skills of the ball task, again and
+again, as a scripted session does) with and without the logger, alternating, and prints the
+best-of-three ratio of wall and CPU time (CPU includes rerun's background encoder thread): the overhead of
+a session that runs faster than real time, physics and camera rendering included.
 Targets (issue 5): overhead at most 20% of a session's wall time, at most 50 MB for ten minutes.
 """
 
@@ -118,9 +122,32 @@ def run(observer: Observer, minutes: float) -> float:
     return spent + time.perf_counter() - start
 
 
+def sim_session(observer: Observer, minutes: float) -> tuple[float, float]:
+    """Run the ball task's skills in the MuJoCo world for ``minutes`` of simulated time:
+    (wall seconds, CPU seconds)."""
+    from teach.sim.skills import run_skill
+    from teach.sim.world import World
+
+    domain = load_domain(ROOT / "demos" / "ball" / "domain.toml")
+    world = World(seed=0, domain=domain)
+    simulated, seed = 0.0, 0
+    wall, cpu = time.perf_counter(), time.process_time()
+    while simulated < minutes * 60:
+        world.reset(seed=seed)
+        seed += 1
+        start = world.sim_time
+        for action in domain.action_names:
+            run_skill(world, action, observer)
+        simulated += world.sim_time - start
+    observer.close()
+    return time.perf_counter() - wall, time.process_time() - cpu
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--minutes", type=float, default=10.0, help="simulated session length")
+    parser.add_argument("--sim-minutes", type=float, default=2.0,
+                        help="simulated minutes of the MuJoCo fast-forward comparison (0 skips it)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "bench.rrd"
@@ -141,6 +168,18 @@ def main() -> None:
           f"{session:.0f} s wall time (target <= 20%)")
     print(f"recording size:    {size_mb:7.1f} MB for {args.minutes:g} min "
           f"(= {size_mb * 10 / args.minutes:.1f} MB per ten minutes, target <= 50 MB)")
+    if args.sim_minutes > 0:
+        with tempfile.TemporaryDirectory() as folder:
+            runs: dict[str, list[tuple[float, float]]] = {"bare": [], "logged": []}
+            for round_ in range(3):  # alternating, and the best of three, against other load on the machine
+                runs["bare"].append(sim_session(Observer(), args.sim_minutes / 3))
+                runs["logged"].append(sim_session(RerunLogger(Path(folder) / f"sim{round_}.rrd", "sim"),
+                                                  args.sim_minutes / 3))
+        bare_wall, bare_cpu = (min(r[i] for r in runs["bare"]) for i in (0, 1))
+        log_wall, log_cpu = (min(r[i] for r in runs["logged"]) for i in (0, 1))
+        print(f"MuJoCo fast-forward, best of 3 x {args.sim_minutes / 3:.2g} simulated min: bare {bare_wall:.2f} s wall "
+              f"{bare_cpu:.2f} s CPU, logged {log_wall:.2f} s wall {log_cpu:.2f} s CPU: overhead "
+              f"{100 * (log_wall / bare_wall - 1):.0f}% wall, {100 * (log_cpu / bare_cpu - 1):.0f}% CPU (target <= 20%)")
 
 
 if __name__ == "__main__":
