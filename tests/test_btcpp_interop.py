@@ -71,3 +71,24 @@ def test_large_domains_are_checked_on_a_fixed_sample() -> None:
     assert len(states) == 4096 and states == list(domain_states(domain))
     tree = Fallback((Sequence((C("C0"), C("C13"))), Parallel((Inverter(C("C7")), A("Do1"), A("Do2")), 2)))
     assert_matches_btcpp(tree, domain)
+
+
+def test_bt_cpp_parallel_remembers_finished_children_unless_halted(ball: Domain) -> None:
+    """Why the harness halts between states: BT.CPP's Parallel does not re-tick a child that
+    finished while the Parallel keeps running, so without a halt it is not memoryless."""
+    import behaviortreepy as btcpp
+
+    from btcpp import _harness
+    from teach.bt.xml import tree_to_xml
+
+    tree = Parallel((C("BallFound"), A("FindBall")), 2)
+    harness = _harness(ball.condition_names, ball.action_names)
+    live = harness.factory.create_tree_from_text(tree_to_xml(tree))
+    harness.state = ball.state(["BallFound"])
+    assert live.tick_exactly_once() == btcpp.NodeStatus.RUNNING
+    harness.state = ball.state([])
+    # expectation: Table 2.2 says FAILURE (BallFound now fails); BT.CPP still remembers its SUCCESS
+    assert live.tick_exactly_once() == btcpp.NodeStatus.RUNNING
+    live.halt_tree()
+    assert live.tick_exactly_once() == btcpp.NodeStatus.FAILURE
+    live.halt_tree()
