@@ -10,8 +10,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, renumber, size,
-                            walk)
+from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, renumber,
+                            size, walk)
+from teach.bt.tick import tick
 from teach.domain import Literal
 from teach.errors import LearnError
 from teach.learn.prune import label, prune, prune_with_report, ramifications_of
@@ -112,6 +113,37 @@ def test_many_conditions_keep_their_behaviour(tree: Node) -> None:
     check(tree, WIDE)
 
 
+def _run_in_world(tree: Node, state: dict[str, bool], outcomes: list[tuple[Status, bool]]) -> tuple:
+    """Tick once in a world where actions may also succeed (making their ramifications true)
+    or fail (leaving them either way), as the action model's frame assumption allows."""
+    world, calls = dict(state), []
+
+    def act(name: str) -> Status:
+        status, value = outcomes[len(calls) % len(outcomes)]
+        calls.append(name)
+        for literal in RAMS.get(name, ()):
+            if status is Status.SUCCESS:
+                world[literal.name] = literal.value
+            elif status is Status.FAILURE:
+                world[literal.name] = value
+        return status
+
+    result = tick(tree, world.__getitem__, act)
+    return result.status, calls, world
+
+
+@settings(max_examples=300, deadline=None)
+@given(trees(CONDITIONS, ACTIONS, max_leaves=30), st.lists(st.booleans(), min_size=4, max_size=4),
+       st.lists(st.tuples(st.sampled_from(list(Status)), st.booleans()), min_size=1, max_size=6))
+def test_same_behaviour_when_actions_succeed_or_fail(tree: Node, values: list[bool],
+                                                     outcomes: list[tuple[Status, bool]]) -> None:
+    # beyond the symbolic world: the same actions in the same order, the same result, the same
+    # world afterwards, whatever the actions return (given that they change only their ramifications)
+    state = dict(zip(CONDITIONS, values))
+    pruned = prune(tree, RAMS)
+    assert _run_in_world(pruned, state, outcomes) == _run_in_world(tree, state, outcomes)
+
+
 def test_the_checker_can_fail() -> None:
     # dropping a condition that still matters must be caught
     tree = Sequence((Condition("a"), Fallback((Condition("b"), Action("X")))))
@@ -163,6 +195,17 @@ def test_ramification_of_an_action_that_succeeded() -> None:
     assert check(tree, CONDITIONS) == tree  # without the action model nothing is known after X
 
 
+def test_exact_stage_sees_a_disjunction() -> None:
+    # past Fallback(a, b, X), a or b holds (X makes a true): where !a would succeed, b does
+    tree = Sequence((Fallback((Condition("a"), Condition("b"), Action("X"))),
+                     Fallback((Inverter(Condition("a")), Condition("b"), Action("Y")))))
+    expected = Sequence((Fallback((Condition("a"), Condition("b"), Action("X"))),
+                         Fallback((Condition("b"), Action("Y")))))
+    assert check(tree, CONDITIONS, RAMS) == expected
+    # without the action model, X may have left a and b false, so !a must stay
+    assert check(tree, CONDITIONS) == tree
+
+
 def test_a_running_or_failed_action_guarantees_nothing() -> None:
     # under a Fallback the action before `a` failed: its ramification does not hold
     tree = Fallback((Action("X"), Condition("a"), Action("Y")))
@@ -191,7 +234,7 @@ def test_fig_4_7_initial_tree_always_succeeds() -> None:
     guards = tuple(Condition(c) for c in CONDITIONS) + tuple(Inverter(Condition(c)) for c in CONDITIONS)
     tree = Sequence(tuple(Fallback((*guards, Action(a))) for a in ACTIONS))
     pruned = check(tree, CONDITIONS)
-    assert pruned == Fallback(guards[:5])  # a, b, c, d, !a: after !a nothing is reached
+    assert pruned == Fallback((Condition("a"), Inverter(Condition("a"))))
 
 
 def test_colledanchise_tree_is_already_minimal(ball) -> None:  # type: ignore[no-untyped-def]

@@ -29,7 +29,7 @@ from functools import reduce
 from types import MappingProxyType
 
 from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
-                            walk)
+                            action_names, condition_names, walk)
 from teach.domain import Domain, Literal
 from teach.errors import LearnError
 
@@ -51,10 +51,18 @@ def prune(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _NO_RAMIFICATI
 def prune_with_report(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _NO_RAMIFICATIONS
                       ) -> tuple[Node, list[str]]:
     """:func:`prune` plus the removed nodes as ``Kind:name#uid`` labels, in tree order."""
-    rounds = _Pruner(_facts_of_ramifications(ramifications))
+    facts = _facts_of_ramifications(ramifications)
+    rounds = _Pruner(facts)
     while True:
         before = len(rounds.removed)
         tree = rounds.run(tree)
+        if len(rounds.removed) > before:
+            continue
+        names = sorted(condition_names(tree).union(*(facts.get(a, {}) for a in action_names(tree))))
+        if len(names) > EXACT_UP_TO:
+            return tree, rounds.removed
+        states = _States(names)
+        tree = _Exact(states, facts, rounds.removed).visit(tree, states.all, False)[0]
         if len(rounds.removed) == before:
             return tree, rounds.removed
 
@@ -265,3 +273,161 @@ class _Pruner:
         if isinstance(node, Parallel):
             return replace(node, children=tuple(kept), success_threshold=threshold)
         return replace(node, children=tuple(kept))
+
+
+# --- exact stage: sets of states ----------------------------------------------------------------
+
+EXACT_UP_TO = 14
+"""Trees over at most this many conditions also get the exact stage (sets of 2**n states)."""
+
+
+class _States:
+    """Sets of states as integers with one bit per state; condition i is bit i of a state's index."""
+
+    def __init__(self, names: Seq[str]):
+        self.count = 1 << len(names)
+        self.all = (1 << self.count) - 1
+        self.holds: dict[str, int] = {}
+        self.shift: dict[str, int] = {}
+        for i, name in enumerate(names):
+            block, period = 1 << i, 2 << i
+            pattern = ((1 << block) - 1) << block   # one period: condition false, then true
+            while period < self.count:
+                pattern |= pattern << period
+                period *= 2
+            self.holds[name], self.shift[name] = pattern, block
+
+    def havoc(self, states: int, names: Seq[str]) -> int:
+        """The states reachable by giving the named conditions any value."""
+        for name in names:
+            true, shift = self.holds[name], self.shift[name]
+            states |= ((states & true) >> shift) | ((states & ~true & self.all) << shift)
+        return states
+
+    def assign(self, states: int, facts: Facts) -> int:
+        for name, value in facts.items():
+            states = self.havoc(states, (name,)) & (self.holds[name] if value else ~self.holds[name] & self.all)
+        return states
+
+
+class _Exact:
+    """Drops a child of a Sequence or Fallback when, in every state a tick can reach it in,
+    the siblings after it would give the same result without it: the child ticks no action
+    there, and whenever it decides the parent (FAILURE in a Sequence, SUCCESS in a Fallback)
+    the rest decides it the same way without ticking an action. This finds what literals
+    alone cannot: after Fallback(a, b, X), a later !a is redundant in Fallback(!a, b, Y).
+
+    Reach sets over-approximate the states a node is ticked in (an action's SUCCESS gives its
+    ramifications, its FAILURE leaves them unknown: the same frame assumption as above); pure
+    success and failure sets (no action ticked) under-approximate. After a drop the later
+    siblings see other states, so a parent drops at most one child per round."""
+
+    def __init__(self, states: _States, ramifications: dict[str, Facts], removed: list[str]):
+        self.states, self.ramifications, self.removed = states, ramifications, removed
+        self.pure: dict[int, tuple[int, int]] = {}
+
+    def purity(self, node: Node) -> tuple[int, int]:
+        """States in which the subtree returns SUCCESS / FAILURE without ticking an action."""
+        key = id(node)
+        if key in self.pure:
+            return self.pure[key]
+        s = self.states
+        if isinstance(node, Condition):
+            result = (s.holds[node.name], ~s.holds[node.name] & s.all)
+        elif isinstance(node, Action):
+            result = (0, 0)
+        elif isinstance(node, Inverter):
+            success, failure = self.purity(node.child)
+            result = (failure, success)
+        elif isinstance(node, (Sequence, Fallback)):
+            passes, stops = 0, 0
+            through = s.all
+            for kid in node.children:
+                success, failure = self.purity(kid)
+                go, stop = (success, failure) if isinstance(node, Sequence) else (failure, success)
+                stops |= through & stop
+                through &= go
+            passes = through
+            result = (passes, stops) if isinstance(node, Sequence) else (stops, passes)
+        else:  # Parallel: exact for M = N and M = 1, else nothing is promised
+            pairs = [self.purity(kid) for kid in node.children]
+            pure = s.all
+            for success, failure in pairs:
+                pure &= success | failure
+            any_success = any_failure = 0
+            all_success = all_failure = s.all
+            for success, failure in pairs:
+                any_success, any_failure = any_success | success, any_failure | failure
+                all_success, all_failure = all_success & success, all_failure & failure
+            if node.success_threshold == len(pairs):
+                result = (all_success, pure & any_failure)
+            elif node.success_threshold == 1:
+                result = (pure & any_success, all_failure)
+            else:
+                result = (0, 0)
+        self.pure[key] = result
+        return result
+
+    def visit(self, node: Node, reach: int, frozen: bool) -> tuple[Node, int, int]:
+        """The rebuilt node and the states after it returns SUCCESS / FAILURE."""
+        s = self.states
+        if isinstance(node, Condition):
+            return node, reach & s.holds[node.name], reach & ~s.holds[node.name]
+        if isinstance(node, Action):
+            ram = self.ramifications.get(node.name, {})
+            return node, s.assign(reach, ram), s.havoc(reach, tuple(ram))
+        if isinstance(node, Inverter):
+            child, success, failure = self.visit(node.child, reach, frozen)
+            return (node if child is node.child else replace(node, child=child)), failure, success
+        if isinstance(node, Parallel):
+            return self.parallel(node, reach, frozen)
+        return self.chain(node, reach, frozen)
+
+    def chain(self, node: Sequence | Fallback, reach: int, frozen: bool) -> tuple[Node, int, int]:
+        is_sequence = isinstance(node, Sequence)
+        kids = node.children
+        tails = [0] * (len(kids) + 1)  # states where kids[i:] stop the chain purely
+        for i in range(len(kids) - 1, -1, -1):
+            success, failure = self.purity(kids[i])
+            go, stop = (success, failure) if is_sequence else (failure, success)
+            tails[i] = stop | (go & tails[i + 1])
+        kept: list[Node] = []
+        current, exits = reach, 0
+        for i, kid in enumerate(kids):
+            success, failure = self.purity(kid)
+            go, stop = (success, failure) if is_sequence else (failure, success)
+            if not frozen and len(kids) > 1 and current & ~(success | failure) == 0 \
+                    and current & stop & ~tails[i + 1] == 0:
+                self.removed.extend(label(n) for n in walk(kid))
+                frozen = True
+                # it ticks no action here, so the state passes through it unchanged
+                current, exits = current & go, exits | (current & stop)
+                continue
+            rebuilt, after_success, after_failure = self.visit(kid, current, frozen)
+            kept.append(rebuilt)
+            passes, leaves = (after_success, after_failure) if is_sequence else (after_failure, after_success)
+            exits |= leaves
+            current = passes
+        success, failure = (current, exits) if is_sequence else (exits, current)
+        if len(kept) == 1:
+            self.removed.append(label(node))
+            return kept[0], success, failure
+        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids)):
+            return node, success, failure
+        return replace(node, children=tuple(kept)), success, failure
+
+    def parallel(self, node: Parallel, reach: int, frozen: bool) -> tuple[Node, int, int]:
+        s = self.states
+        kids: list[Node] = []
+        acts = False
+        for kid in node.children:
+            rebuilt, _, _ = self.visit(kid, s.all if acts else reach, frozen)
+            kids.append(rebuilt)
+            acts = acts or any(isinstance(n, Action) for n in walk(kid))
+        rebuilt_node = node if all(a is b for a, b in zip(kids, node.children)) else replace(node, children=tuple(kids))
+        if acts:
+            return rebuilt_node, s.all, s.all
+        success, failure = self.purity(node)
+        if node.success_threshold in (1, len(kids)):
+            return rebuilt_node, reach & success, reach & failure
+        return rebuilt_node, reach, reach
