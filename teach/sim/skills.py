@@ -10,8 +10,8 @@ period, so a perturbation in the middle is answered by the controller, not by a 
 - ApproachBall: drives until the grasp point is within ``ALIGNED`` of the remembered ball.
 - GraspBall: aligns to within 2 cm, lowers the lift, closes the fingers, lifts to carry height.
 - ApproachBin: raises the lift and drives until the grasp point is within ``ALIGNED`` of the bin.
-- PlaceBall: aligns over the bin to within 3 cm and opens the fingers; SUCCESS once the ball
-  rests inside the bin.
+- PlaceBall: aligns over the bin to within 3 cm, lowers the ball into it, opens the fingers
+  and lifts the gripper out; SUCCESS once the ball rests in the bin and the gripper is up.
 
 Approaching the ball moves the robot, so BinClose may become false on the way (the thesis's
 special case in Δ2): that is physics, not a rule.
@@ -27,10 +27,12 @@ import numpy as np
 from teach.bt.nodes import Status
 from teach.errors import DomainError
 from teach.observe import Observer
-from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, GRASP_OFFSET, LIFT_CARRY, ROOM, World,
-                             _wrap)
+from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, FINGER_RELEASE, GRASP_OFFSET, LIFT_CARRY,
+                             LIFT_PLACE, ROOM, World, _wrap)
 
 ALIGNED = 0.05        # approaches end with the grasp point this close to the target (m)
+LOWER_SPEED = 0.5     # m/s, the lift lowering a held ball
+BIN_CLEARANCE = 0.5   # the chassis centre keeps this far from the bin's centre (m)
 MAX_SPEED = 1.0       # m/s
 MAX_TURN = 2.5        # rad/s
 FRAME_HZ = 10.0       # observer scene frames per simulated second
@@ -84,6 +86,22 @@ class Skill:
         lateral = math.hypot(dx, dy) * math.sin(heading)
         return math.hypot(along, lateral)
 
+    def go_around_bin(self, target: np.ndarray, offset: float = GRASP_OFFSET) -> float:
+        """Like ``go_to``, but the chassis keeps ``BIN_CLEARANCE`` from the bin: it stands on the
+        far side of a target next to the bin and drives around the bin when it is in the way."""
+        x, y, _ = self.world.base_pose()
+        here, goal, bin_xy = np.array([x, y]), np.asarray(target[:2], dtype=float), self.world.bin_position()[:2]
+        stand = goal - offset * _unit(goal - here)
+        if offset > 0 and np.linalg.norm(stand - bin_xy) < BIN_CLEARANCE:
+            stand = goal + offset * _unit(goal - bin_xy)
+        if np.linalg.norm(stand - here) < 0.1:
+            return self.go_to(goal, offset)
+        waypoint = _detour(here, stand, bin_xy)
+        if waypoint is None and np.linalg.norm(stand - (goal - offset * _unit(goal - here))) < 0.05:
+            return self.go_to(goal, offset)  # the direct approach is clear
+        self.go_to(waypoint if waypoint is not None else stand, 0.0)
+        return float(np.linalg.norm(goal - here)) + offset
+
     def lift_ready(self, height: float = LIFT_CARRY) -> bool:
         self.world.set_lift(height)
         return abs(self.world.lift_height() - height) < 0.02
@@ -129,7 +147,7 @@ class FindBall(Skill):
             world.drive(-0.8, 0.0)
         else:
             assert point is not None
-            done = self.go_to(point, 0.0) < 0.15 or elapsed > 8.0
+            done = self.go_around_bin(point, 0.0) < 0.15 or elapsed > 8.0
         if done:
             self.plan.pop(0)
             self._begin()
@@ -150,7 +168,7 @@ class ApproachBall(Skill):
             world.set_lift(LIFT_CARRY)
             return RUNNING
         world.set_lift(LIFT_CARRY)
-        if self.go_to(target) < ALIGNED and world.ball_close():
+        if self.go_around_bin(target) < ALIGNED and world.ball_close():
             return SUCCESS
         return RUNNING
 
@@ -221,11 +239,16 @@ class PlaceBall(Skill):
 
     def __init__(self, world: World):
         super().__init__(world)
-        self.releasing: float | None = None
+        self.phase = "align"
+        self.since = world.sim_time
+
+    def _enter(self, phase: str) -> None:
+        self.phase, self.since = phase, self.world.sim_time
 
     def update(self) -> Status:
         world = self.world
-        if self.releasing is None:
+        elapsed = world.sim_time - self.since
+        if self.phase == "align":
             if world.ball_placed():
                 return SUCCESS
             if not world.ball_grasped() or not world.bin_close():
@@ -235,14 +258,41 @@ class PlaceBall(Skill):
                 return RUNNING
             if self.go_to(world.bin_position()) < 0.03:
                 world.drive(0.0, 0.0)
-                self.releasing = world.sim_time
-            return RUNNING
-        world.set_fingers(FINGER_OPEN)
-        if world.ball_placed() and world.ball_speed() < 0.05:
-            return SUCCESS
-        if world.sim_time - self.releasing > 2.0:
-            return FAILURE
+                self._enter("lower")
+        elif self.phase == "lower":  # slower than a free fall, so the ball stays on the hooks
+            height = max(LIFT_PLACE, LIFT_CARRY - LOWER_SPEED * elapsed)
+            if self.lift_ready(height) and height == LIFT_PLACE or elapsed > 1.5:
+                self._enter("release")
+        elif self.phase == "release":
+            world.set_fingers(FINGER_RELEASE)
+            if world.ball_placed() and world.ball_speed() < 0.05:
+                self._enter("withdraw")
+            elif elapsed > 1.5:
+                return FAILURE
+        elif self.phase == "withdraw":
+            if self.lift_ready() or elapsed > 1.0:
+                return SUCCESS if world.ball_placed() else FAILURE
         return RUNNING
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    norm = float(np.linalg.norm(v))
+    return v / norm if norm > 1e-9 else np.array([1.0, 0.0])
+
+
+def _detour(start: np.ndarray, end: np.ndarray, bin_xy: np.ndarray) -> np.ndarray | None:
+    """A point beside the bin to drive to first when the straight path passes too near it."""
+    length = float(np.linalg.norm(end - start))
+    if length < 1e-6:
+        return None
+    u = (end - start) / length
+    t = float(np.dot(bin_xy - start, u))
+    closest = start + min(max(t, 0.0), length) * u
+    if np.linalg.norm(bin_xy - closest) >= BIN_CLEARANCE or t <= 0.0:
+        return None
+    normal = np.array([-u[1], u[0]])
+    side = 1.0 if float(np.dot(closest - bin_xy, normal)) >= 0 else -1.0
+    return bin_xy + side * (BIN_CLEARANCE + 0.15) * normal
 
 
 SKILLS: dict[str, type[Skill]] = {}
@@ -275,9 +325,10 @@ class FrameClock:
         self.next_frame = world.sim_time
         self.next_camera = world.sim_time
 
-    def __call__(self, action: str | None) -> None:
+    def __call__(self, action: str | None, force: bool = False) -> None:
+        """Report a frame if one is due (or ``force``): clock, state, scene, maybe a camera image."""
         world, observer = self.world, self.observer
-        if observer is None or world.sim_time + 1e-9 < self.next_frame:
+        if observer is None or (not force and world.sim_time + 1e-9 < self.next_frame):
             return
         self.frame += 1
         self.next_frame = world.sim_time + 1.0 / FRAME_HZ

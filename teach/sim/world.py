@@ -15,9 +15,10 @@ Conditions and their thresholds (distances horizontal unless said otherwise):
 - BallClose: the ball lies low (centre below ``LOW_HEIGHT``) within ``CLOSE_RADIUS`` of the
   grasp point, i.e. GraspBall can reach it without driving; a ball carried up in the gripper
   is not "close" in this sense.
-- BallGrasped: the ball touches both finger pads.
+- BallGrasped: the ball touches both fingers (pads or the hooks at their tips).
 - BinClose: the bin's centre is within ``BIN_RADIUS`` of the grasp point (PlaceBall reaches it).
-- BallPlaced: the ball's centre is inside the bin's walls, below their top.
+- BallPlaced: the ball's centre is inside the bin's walls, below their top, and the gripper
+  has let go of it.
 
 Physically impossible states (``arrange`` raises DomainError): BallPlaced with BallGrasped (a
 ball cannot be in the bin and in the hand), and BallPlaced with BallClose but not BinClose (a
@@ -57,6 +58,8 @@ BIN_RADIUS = 0.4            # BinClose: bin centre within this of the grasp poin
 BIN_INNER = 0.12            # inner half width of the bin (m)
 BIN_TOP = 0.16              # height of the bin's walls (m)
 LIFT_CARRY = 0.26           # lift height for driving and carrying (m above grasp height)
+LIFT_PLACE = 0.075          # lift height that holds the ball inside the bin, the arm just above its walls
+FINGER_RELEASE = 0.025      # finger closure that lets go of the ball without touching the bin's walls
 FINGER_OPEN, FINGER_CLOSED = 0.0, 0.085
 ROOM = 2.0                  # the room's walls stand at +-ROOM (m)
 SETTLE_SECONDS = 0.3
@@ -80,7 +83,7 @@ class World:
         m = self.model
         self._ids = {name: m.body(name).id for name in ("base", "ball", "bin")}
         self._ball_geom = m.geom("ball").id
-        self._pads = (m.geom("pad_left").id, m.geom("pad_right").id)
+        self._fingers = (m.body("finger_left").id, m.body("finger_right").id)
         self._cam = m.camera("eye").id
         self._grasp_site = m.site("grasp").id
         self._qadr = {name: int(m.joint(name).qposadr[0]) for name in
@@ -158,10 +161,11 @@ class World:
         return int(hit[0]) == self._ball_geom
 
     def ball_grasped(self) -> bool:
-        contacts = self.data.contact.geom[: self.data.ncon]
-        touching = {int(b) if int(a) == self._ball_geom else int(a)
-                    for a, b in contacts if self._ball_geom in (a, b)}
-        return self._pads[0] in touching and self._pads[1] in touching
+        """Both fingers (pad or hook) touch the ball."""
+        body_of = self.model.geom_bodyid
+        touching = {int(body_of[b if a == self._ball_geom else a])
+                    for a, b in self.data.contact.geom[: self.data.ncon] if self._ball_geom in (a, b)}
+        return self._fingers[0] in touching and self._fingers[1] in touching
 
     def _near_gripper(self, point: np.ndarray, radius: float) -> bool:
         return float(np.linalg.norm(point[:2] - self.grasp_point()[:2])) < radius
@@ -176,7 +180,8 @@ class World:
     def ball_placed(self) -> bool:
         offset = self.ball_position() - self.bin_position()
         local = self.data.xmat[self._ids["bin"]].reshape(3, 3).T @ offset
-        return bool(abs(local[0]) < BIN_INNER and abs(local[1]) < BIN_INNER and 0 < local[2] < BIN_TOP)
+        inside = abs(local[0]) < BIN_INNER and abs(local[1]) < BIN_INNER and 0 < local[2] < BIN_TOP
+        return bool(inside) and not self.ball_grasped()
 
     def ball_found(self) -> bool:
         return self._memory is not None or self.ball_visible()
@@ -224,6 +229,28 @@ class World:
     def set_fingers(self, closure: float) -> None:
         self.data.ctrl[self._act["finger_left"]] = closure
         self.data.ctrl[self._act["finger_right"]] = closure
+
+    # --- the teacher's hand (perturbations) --------------------------------------------------
+
+    def put_ball(self, position: np.ndarray, velocity: np.ndarray | None = None) -> None:
+        """Put the ball somewhere (optionally thrown with ``velocity``), as a hand would."""
+        q, v = self._qadr["ball"], self._vadr["ball"]
+        self.data.qpos[q:q + 7] = (*position, 1, 0, 0, 0)
+        self.data.qvel[v:v + 6] = (*(np.zeros(3) if velocity is None else velocity), 0, 0, 0)
+        mujoco.mj_forward(self.model, self.data)
+
+    def put_bin(self, xy: np.ndarray) -> None:
+        q, v = self._qadr["bin"], self._vadr["bin"]
+        self.data.qpos[q:q + 2] = xy
+        self.data.qvel[v:v + 6] = 0
+        mujoco.mj_forward(self.model, self.data)
+
+    def push_base(self, force_xy: np.ndarray, torque: float) -> None:
+        """An external force on the robot's base until called again with zeros."""
+        self.data.xfrc_applied[self._ids["base"]] = (*force_xy, 0.0, 0.0, 0.0, torque)
+
+    def clear_of_robot(self, point: np.ndarray, clearance: float) -> bool:
+        return self._clear_of_robot(self.base_pose(), point, clearance)
 
     # --- poses ----------------------------------------------------------------------------------
 

@@ -1,0 +1,126 @@
+"""Kinesthetic-style recording: the teacher guides the simulated robot, the recorder writes it down.
+
+Every guided action runs its skill to completion; the symbolic state before and after is read
+from physics, so a demonstration says what really happened (an approach that leaves the bin
+behind shows BinClose dropping). Perturbations become external-action lines (-1). ``done``
+adds the goal line (action 0) when the domain's goal holds in the final state; otherwise the
+demonstration ends with its last action, as the CSV format has no line for a state after it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from teach.bt.nodes import Status
+from teach.demos import Demonstration, Step, next_demo_path, write_demonstration
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file
+from teach.errors import DomainError, FormatError
+from teach.fsutil import atomic_write_text
+from teach.observe import Observer
+from teach.sim.perturb import PERTURBATIONS
+from teach.sim.skills import FrameClock, run_skill
+from teach.sim.world import DOMAIN_FILE, World
+
+
+@dataclass(frozen=True, slots=True)
+class RecordedStep:
+    """One recorded transition: like ``teach.demos.Transition`` plus the names and the outcome."""
+
+    before: State
+    action: int
+    after: State
+    name: str
+    status: Status | None  # None for a perturbation
+
+
+class Recorder:
+    """Turns guidance (actions and perturbations, one at a time) into a demonstration."""
+
+    def __init__(self, world: World, observer: Observer | None = None, prefix: Demonstration | None = None):
+        self.world = world
+        self.domain = world.domain
+        self.observer = observer
+        self.frames = FrameClock(world, observer)
+        self.steps: list[Step] = list(prefix.steps) if prefix is not None else []
+        if self.steps and self.steps[-1].action == GOAL_ACTION:
+            self.steps.pop()  # a finished run continued by the teacher: the goal line comes last
+        self.recorded: list[RecordedStep] = []
+
+    def step(self, action: str) -> RecordedStep:
+        """Run the skill for ``action`` (a name or phrase) and record (state, action, next state)."""
+        definition = self.domain.action(resolve_action(self.domain, action))
+        before = self.world.state()
+        status = run_skill(self.world, definition.name, self.observer, frames=self.frames)
+        return self._note(before, definition.id, definition.name, status)
+
+    def perturb(self, name: str) -> RecordedStep:
+        """Apply a perturbation and record it as an external action (-1)."""
+        perturbation = PERTURBATIONS.get(name)
+        if perturbation is None:
+            raise DomainError(f"unknown perturbation {name!r} (known: {', '.join(PERTURBATIONS)})")
+        before = self.world.state()
+        perturbation.apply(self.world, self.world.rng)
+        if self.observer is not None:
+            self.observer.on_external(name)
+        self.frames(None)
+        return self._note(before, EXTERNAL_ACTION, name, None)
+
+    def _note(self, before: State, action: int, name: str, status: Status | None) -> RecordedStep:
+        self.steps.append(Step(before, action, len(self.steps) + 1))
+        recorded = RecordedStep(before, action, self.world.state(), name, status)
+        self.recorded.append(recorded)
+        return recorded
+
+    def goal_holds(self) -> bool:
+        state = self.world.state()
+        return bool(self.domain.goal) and all(self.domain.holds(literal, state) for literal in self.domain.goal)
+
+    def done(self, name: str = "demo") -> Demonstration:
+        """The demonstration so far; its last line is the goal state when the goal holds."""
+        steps = list(self.steps)
+        if self.goal_holds():
+            steps.append(Step(self.world.state(), GOAL_ACTION, len(steps) + 1))
+        elif steps and steps[-1].action == EXTERNAL_ACTION:
+            raise DomainError("a demonstration cannot end with a perturbation unless the goal holds "
+                              "(the CSV format needs an action in the state after it)")
+        if not steps:
+            raise DomainError("nothing recorded: guide at least one action")
+        return Demonstration(name, tuple(steps))
+
+
+def resolve_action(domain: Domain, text: str) -> str:
+    """An action name from a name or one of its en/de phrases (case-insensitive)."""
+    wanted = text.strip().lower()
+    for action in domain.actions:
+        if wanted == action.name.lower() or wanted in (p.lower() for p in action.en + action.de):
+            return action.name
+    raise DomainError(f"unknown action {text!r} (known: {', '.join(domain.action_names)})", domain.path)
+
+
+def record(world: World, script: Sequence[str], observer: Observer | None = None, name: str = "demo") -> Demonstration:
+    """Record a whole scripted demonstration: action names/phrases and perturbation names."""
+    recorder = Recorder(world, observer)
+    for item in script:
+        if item in PERTURBATIONS:
+            recorder.perturb(item)
+        else:
+            recorder.step(item)
+    return recorder.done(name)
+
+
+def save_demonstration(demo: Demonstration, folder: str | Path, domain: Domain | None = None,
+                       prefix: str = "demo") -> Path:
+    """Write ``demo`` atomically as the next ``<prefix>-NNN.csv`` in ``folder``; a folder with no
+    domain file in it or its parent gets a copy of the domain's, so the set reads on its own."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        find_domain_file(folder)
+    except FormatError:
+        source = domain.path if domain is not None and domain.path is not None else DOMAIN_FILE
+        atomic_write_text(folder / "domain.toml", Path(source).read_text(encoding="utf-8"))
+    path = next_demo_path(folder, prefix)
+    write_demonstration(path, demo)
+    return path
