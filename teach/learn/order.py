@@ -48,6 +48,20 @@ class OrderGraph:
         self.graph.add_node(name)
         return True
 
+    def is_new(self, domain: Domain, demo: Demonstration) -> bool:
+        """True if the demonstration shows an action or an edge not seen yet (cheap, no copy)."""
+        previous: str | None = None
+        for step in demo.steps:
+            if step.action < 0:
+                previous = None
+            if step.action <= 0:
+                continue
+            name = domain.action(step.action).name
+            if name not in self.first_seen or (previous is not None and (previous, name) not in self.evidence):
+                return True
+            previous = name
+        return False
+
     def add_demo(self, domain: Domain, demo: Demonstration, source: str | None = None) -> bool:
         """Add a demonstration's actions and edges; True if anything was new. Raises
         ``LearnError`` (leaving the graph possibly changed: call it on a copy) if no order fits."""
@@ -65,24 +79,23 @@ class OrderGraph:
                 edge = (previous[0], name)
                 if edge not in self.evidence:
                     self.evidence[edge] = f"{where}:{previous[1]}"
+                    self._check_edge(*edge)
                     self.graph.add_edge(*edge)
                     changed = True
             previous = (name, step.line)
-        if changed:
-            self._check_acyclic()
         return changed
 
-    def _check_acyclic(self) -> None:
-        try:
-            cycle = nx.find_cycle(self.graph)
-        except nx.NetworkXNoCycle:
-            return
-        if len(cycle) == 1:
-            (a, _b) = cycle[0][:2]
+    def _check_edge(self, a: str, b: str) -> None:
+        """Refuse the edge a -> b if b already leads back to a (the edge would close a cycle)."""
+        if a == b:
             raise LearnError(f"no action order fits the demonstrations: {a} follows itself "
                              f"({self.evidence[(a, a)]}), and an order cannot repeat an action")
-        shown = ", ".join(f"{u} before {v} ({self.evidence[(u, v)]})" for u, v in (e[:2] for e in cycle))
-        names = sorted({e[0] for e in cycle})
+        if not nx.has_path(self.graph, b, a):
+            return
+        path = nx.shortest_path(self.graph, b, a)
+        cycle = [*zip(path, path[1:]), (a, b)]
+        shown = ", ".join(f"{u} before {v} ({self.evidence[(u, v)]})" for u, v in cycle)
+        names = sorted({u for u, _v in cycle})
         raise LearnError(f"no action order fits the demonstrations: {', '.join(names)} appear in "
                          f"contradicting orders: {shown}")
 

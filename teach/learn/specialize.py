@@ -175,8 +175,10 @@ class Specializer:
     def update(self, demo: Demonstration, source: str | None = None) -> Update:
         """Learn one more demonstration without revisiting the earlier ones."""
         where = source or demo_source(demo)
-        graph = self._graph.copy()
-        graph.add_demo(self.domain, demo, where)
+        graph = self._graph
+        if self._graph.is_new(self.domain, demo):
+            graph = self._graph.copy()
+            graph.add_demo(self.domain, demo, where)
         situations = []
         for step in demo.steps:
             if step.action < 0:
@@ -196,9 +198,10 @@ class Specializer:
             raise LearnError(f"a state needs {self._n} truth values, got {len(state)}", source)
         mask = self._mask(state)
         self._check_labels([(mask, action, source)])
-        graph = self._graph.copy()
-        if action is not None:
+        graph = self._graph
+        if action is not None and action not in graph.first_seen:
             self.domain.action(action)
+            graph = self._graph.copy()
             graph.add_action(action)
         changes: list[Change] = []
         self._adopt(graph, source, changes)
@@ -254,17 +257,20 @@ class Specializer:
 
     def _check_labels(self, situations: Seq[tuple[int, str | None, str]]) -> None:
         """Refuse a situation whose state already carries another label (before changing anything)."""
-        seen = dict(self._labels)
+        local: dict[int, tuple[str | None, str]] = {}
         for mask, label, evidence in situations:
-            if mask in seen and seen[mask][0] != label:
-                other, where = seen[mask]
+            known = self._labels.get(mask) or local.get(mask)
+            if known is not None and known[0] != label:
+                other, where = known
                 raise LearnError(f"the demonstrations contradict each other: in the state "
                                  f"[{self.domain.describe(self._state(mask))}] {where} shows {_label(other)} "
                                  f"but {evidence} shows {_label(label)}; one tree cannot do both")
-            seen.setdefault(mask, (label, evidence))
+            local.setdefault(mask, (label, evidence))
 
     def _adopt(self, graph: OrderGraph, where: str, changes: list[Change]) -> None:
         """Take the checked order graph: insert new actions, reorder if an edge demands it."""
+        if graph is self._graph:
+            return
         self._graph = graph
         fresh = [name for name in graph.first_seen if name not in self._slots]
         for name in fresh:
