@@ -10,6 +10,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from teach.bt.builtins import BTCPP_BUILTINS
 from teach.errors import DomainError, FormatError
 
 State = tuple[bool, ...]
@@ -17,8 +18,7 @@ State = tuple[bool, ...]
 GOAL_ACTION = 0
 EXTERNAL_ACTION = -1
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_RESERVED_NAMES = {"Sequence", "Fallback", "ReactiveSequence", "ReactiveFallback", "Parallel",
-                   "Inverter", "Condition", "Action", "root", "BehaviorTree", "TreeNodesModel"}
+_RESERVED_NAMES = BTCPP_BUILTINS | {"Condition", "Action", "root", "BehaviorTree", "TreeNodesModel"}
 
 
 @dataclass(frozen=True, slots=True, order=True)
@@ -194,7 +194,8 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         line = cond_lines[i] if i < len(cond_lines) else None
         cname = raw.get("name") if isinstance(raw, dict) else None
         if not isinstance(cname, str) or not _NAME.match(cname) or cname in _RESERVED_NAMES:
-            fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _), got {cname!r}", line)
+            fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
+                 f"BehaviorTree.CPP node type, got {cname!r}", line)
         if any(c.name == cname for c in conditions):
             fail(f"duplicate condition name {cname!r}", line)
         labels = [raw.get(key, "") for key in ("en", "de", "en_false", "de_false")]
@@ -225,7 +226,8 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
             fail("[[action]] must be a table", line)
         aid, aname = raw.get("id"), raw.get("name")
         if not isinstance(aname, str) or not _NAME.match(aname) or aname in _RESERVED_NAMES:
-            fail(f"action {i + 1}: 'name' must be an identifier (letters, digits, _), got {aname!r}", line)
+            fail(f"action {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
+                 f"BehaviorTree.CPP node type, got {aname!r}", line)
         if isinstance(aid, bool) or not isinstance(aid, int) or aid < 1:
             fail(f"action {aname}: 'id' must be an integer >= 1 (0 and -1 are reserved), got {aid!r}", line)
         if aname in cond_names:

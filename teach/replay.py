@@ -54,6 +54,7 @@ class ReplayReport:
 
 def replay_demo(tree: CompiledTree, domain: Domain, demo: Demonstration, lenient: bool = False) -> DemoResult:
     steps = demo.steps
+    names = {a.id: a.name for a in domain.actions}
     for i, step in enumerate(steps):
         if step.action == EXTERNAL_ACTION:
             continue
@@ -63,9 +64,9 @@ def replay_demo(tree: CompiledTree, domain: Domain, demo: Demonstration, lenient
         else:
             if lenient and status is Status.SUCCESS:
                 return DemoResult(demo.name, True)
-            ok = status is Status.RUNNING and executed == domain.action(step.action).name
+            ok = status is Status.RUNNING and executed == names[step.action]
         if not ok:
-            expected = "SUCCESS (goal)" if step.action == GOAL_ACTION else domain.action(step.action).name
+            expected = "SUCCESS (goal)" if step.action == GOAL_ACTION else names[step.action]
             return DemoResult(demo.name, False, Divergence(i, step.line, step.state, expected, status, executed))
     return DemoResult(demo.name, True)
 

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from teach.bt.builtins import BTCPP_BUILTINS
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, children, renumber
 from teach.errors import FormatError
 from teach.fsutil import atomic_write_text
@@ -34,19 +35,6 @@ _SEQUENCES = ("ReactiveSequence", "Sequence")
 _FALLBACKS = ("ReactiveFallback", "Fallback")
 _CONTROL_TAGS = frozenset(_SEQUENCES + _FALLBACKS + ("Parallel", "Inverter", "Condition", "Action", "SubTree"))
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-
-BTCPP_BUILTINS = frozenset({
-    "AlwaysFailure", "AlwaysSuccess", "Delay", "EntryUpdatedAction", "Fallback", "ForceFailure",
-    "ForceSuccess", "IfThenElse", "Inverter", "KeepRunningUntilFailure", "LoopBool", "LoopDouble",
-    "LoopInt", "LoopString", "ManualSelector", "Parallel", "ParallelAll", "Precondition", "ReactiveFallback",
-    "ReactiveSequence", "Repeat", "RetryUntilSuccessful", "RunOnce", "Script", "ScriptCondition",
-    "Sequence", "SequenceWithMemory", "SetBlackboard", "SkipUnlessUpdated", "Sleep", "SubTree", "Switch2",
-    "Switch3", "Switch4", "Switch5", "Switch6", "Timeout", "UnsetBlackboard", "WaitValueUpdate",
-    "WasEntryUpdated", "WhileDoElse",
-})
-"""Node IDs BehaviorTree.CPP v4 registers itself: a leaf with one of these names would be
-read by BehaviorTree.CPP as the built-in node, so such trees are not written."""
-
 
 # --- writing ------------------------------------------------------------------------------------
 
