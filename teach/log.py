@@ -25,7 +25,8 @@ import subprocess
 import sys
 import threading
 import warnings
-from collections.abc import Callable, Mapping, Sequence as Seq
+from collections.abc import Callable, Mapping
+from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -112,7 +113,7 @@ class _TreeView:
     positions: np.ndarray
 
     @classmethod
-    def of(cls, tree: Node) -> "_TreeView":
+    def of(cls, tree: Node) -> _TreeView:
         nodes = list(walk(tree))
         index = {node.uid: i for i, node in enumerate(nodes)}
         edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
@@ -236,12 +237,12 @@ class RerunLogger(Observer):
         batch = self._batches.pop(entity)
         indexes = [rr.TimeColumn("step", sequence=batch.steps)]
         if batch.times[0] is not None:
-            indexes.append(rr.TimeColumn("sim_time", duration=batch.times))
+            indexes.append(rr.TimeColumn("sim_time", duration=[t for t in batch.times if t is not None]))
         self._rec.send_columns(entity, indexes=indexes, columns=batch.columns(batch.rows))
 
     # --- vocabulary and trees ---------------------------------------------------------------
 
-    def on_domain(self, domain: "Domain") -> None:
+    def on_domain(self, domain: Domain) -> None:
         names = list(domain.condition_names)
         lines = [f"# Domain {domain.name}", "", "| ID | condition | meaning |", "|---|---|---|"]
         lines += [f"| {i} | {c.name} | {c.en} |" for i, c in enumerate(domain.conditions, 1)]
@@ -257,7 +258,7 @@ class RerunLogger(Observer):
                   static=True)
         self._log("state", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
 
-    def on_tree(self, generation: int, tree: "Node", xml: str, reason: str) -> None:
+    def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         self._generation = generation
         self._view = _TreeView.of(tree)
         self._log_graph(self._view)
@@ -273,7 +274,7 @@ class RerunLogger(Observer):
                                 positions=view.positions, colors=[_IDLE_COLOUR] * len(view.labels)),
                   rr.GraphEdges(view.edges, graph_type="directed"))
 
-    def on_tick(self, tree: "Node", result: "TickResult") -> None:
+    def on_tick(self, tree: Node, result: TickResult) -> None:
         view = self._view
         if view is None or view.tree is not tree:
             if view is None or view.tree != tree:
@@ -313,7 +314,7 @@ class RerunLogger(Observer):
         self._log("state/external", rr.TextLog(f"external action: {name}", level="EXTERNAL"),
                   _values(external=name))
 
-    def on_scene(self, shapes: Seq["SceneShape"]) -> None:
+    def on_scene(self, shapes: Seq[SceneShape]) -> None:
         sim_time = self._clock[2]
         if not self._due(sim_time, self._last_scene, self._scene_period):
             return
@@ -375,7 +376,7 @@ class RerunLogger(Observer):
         self._dialogue("answer", "teacher", shown, "answer", text=answer, question=question, answer=answer,
                        change=change)
 
-    def on_demonstration(self, name: str, demo: "Demonstration", domain: "Domain") -> None:
+    def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
         from teach.demos import format_demonstration
 
         labels = [_step_label(s.action, domain) for s in demo.steps]
@@ -415,7 +416,7 @@ class RerunLogger(Observer):
         self._rec.disconnect()
         os.replace(self._part, self.path)
 
-    def __enter__(self) -> "RerunLogger":
+    def __enter__(self) -> RerunLogger:
         return self
 
     def __exit__(self, *_exc: object) -> None:
@@ -435,10 +436,11 @@ class _Batch:
 def _values(**fields: Any) -> rr.AnyValues:
     """Plain fields for reading back. Each is passed as a list: on a bare scalar rerun's AnyValues
     takes ~8x longer (pyarrow's scalar path probes for pandas on every call)."""
-    return rr.AnyValues(**{k: v if isinstance(v, list) else [v] for k, v in fields.items() if v is not None})
+    values: dict[str, Any] = {k: v if isinstance(v, list) else [v] for k, v in fields.items() if v is not None}
+    return rr.AnyValues(**values)
 
 
-def _step_label(action: int, domain: "Domain") -> str:
+def _step_label(action: int, domain: Domain) -> str:
     if action == 0:
         return "goal"
     if action == -1:

@@ -87,7 +87,8 @@ def _generations(contents: RecordingContents) -> RenderableType:
 def _learner_events(contents: RecordingContents) -> RenderableType:
     lines = []
     for e in contents.learner_events:
-        removed = f"  removed: {', '.join(e.removed)}" if e.removed else ""
+        shown = [name for name in e.removed if name not in e.detail]  # the detail often names them already
+        removed = f"  removed: {', '.join(shown)}" if shown else ""
         lines.append(Text.assemble(("  " + e.event, "bold"), f": {e.detail}{removed}"))
     return Group(*lines)
 
