@@ -285,3 +285,25 @@ def test_online_learner_reproduces_everything_seen_after_every_update(world):
     for count, d in enumerate(demos, start=1):
         learner.update(d)
         assert replay(learner.tree, domain, demos[:count]).reproduced == count
+
+
+def test_cli_specialize_is_deterministic_and_refuses_cycles(tmp_path, capsys):
+    from teach.cli import main
+
+    outputs = []
+    for run in ("a", "b"):
+        out = tmp_path / f"{run}.xml"
+        assert main(["learn", str(BALL / "delta2"), "--approach", "specialize", "--prune", "-o", str(out)]) == 0
+        outputs.append(out.read_bytes())
+    assert outputs[0] == outputs[1]
+    printed = capsys.readouterr().out
+    assert "specialize: 34 nodes, 22 after pruning" in printed and "reproduced 34/34" in printed
+    folder = tmp_path / "cyclic"
+    folder.mkdir()
+    (folder / "domain.toml").write_text((BALL / "domain.toml").read_text())
+    (folder / "d1.csv").write_text("0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;0\n")
+    (folder / "d2.csv").write_text("0;0;0;0;1;2\n0;1;0;0;1;1\n1;1;0;0;1;0\n")
+    bad = tmp_path / "bad.xml"
+    assert main(["learn", str(folder), "--approach", "specialize", "-o", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "d1.csv:1" in err and "d2.csv:1" in err and not bad.exists()
