@@ -420,6 +420,12 @@ class World:
             self._renderer = False
             return None
 
+    def open_viewer(self) -> Any:
+        """The interactive MuJoCo viewer on this world (needs a display); ``.sync()`` redraws it."""
+        import mujoco.viewer
+
+        return mujoco.viewer.launch_passive(self.model, self.data)
+
     def close(self) -> None:
         if self._renderer:
             self._renderer.close()
