@@ -97,13 +97,20 @@ def expand(domain: Domain, goal: Seq[Literal] | None = None) -> list[Node]:
 
 def _check_model(domain: Domain) -> None:
     """A literal both required and produced by one action can never be produced by it (§6.1)."""
-    for action in domain.actions:
-        both = [lit for lit in action.pre if lit in action.ram]
-        if both:
-            names = ", ".join(str(b) for b in both)
-            raise LearnError(f"{names} is both a precondition and a ramification of {action.name}: "
-                             f"{action.name} can only start when {names} already holds, so it can never "
-                             f"be what makes {names} true", domain.path)
+    conflicts = [(a.name, [str(lit) for lit in a.pre if lit in a.ram]) for a in domain.actions]
+    conflicts = [(name, both) for name, both in conflicts if both]
+    if conflicts:
+        (name, both), rest = conflicts[0], conflicts[1:]
+        literals = ", ".join(both)
+        problems = [f"{literals} {'is' if len(both) == 1 else 'are'} both a precondition and a ramification "
+                    f"of {name}: {name} can only start when {literals} already holds, so it can never be "
+                    f"what makes {literals} true"]
+        if rest:
+            problems.append("the same in " + ", ".join(f"{n} ({', '.join(b)})" for n, b in rest))
+        idle = [a.name for a in domain.actions if not a.ram]
+        if idle:
+            problems.append(f"{', '.join(idle)} {'has' if len(idle) == 1 else 'have'} no ramifications")
+        raise LearnError("; ".join(problems), domain.path)
 
 
 def _literal_leaves(tree: Node) -> dict[int, tuple[int, Literal]]:
