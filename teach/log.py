@@ -153,8 +153,12 @@ class RerunLogger(Observer):
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
         self.path = Path(path) if path is not None else default_recording_path(session_name)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
         self._part = self.path.with_name(self.path.name + ".part")
+        try:  # fail here with a clear line rather than inside rerun's writer
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._part.open("wb").close()
+        except OSError as exc:
+            raise TeachError(f"cannot write the recording: {exc.strerror}", exc.filename or self._part) from None
         self._scene_period = 1.0 / scene_hz
         self._camera_period = 1.0 / camera_hz
         self._jpeg_quality = jpeg_quality
@@ -597,6 +601,8 @@ class RecordingContents:
 
     path: Path
     session: str
+    has_blueprint: bool = False
+    """Whether the viewer layout (scene, tree graph, state, dialogue) travels with the file."""
     domain_name: str | None = None
     conditions: tuple[str, ...] = ()
     actions: tuple[str, ...] = ()
@@ -637,6 +643,7 @@ def read_recording(path: str | Path) -> RecordingContents:
             warnings.simplefilter("always")
             reader = RrdReader(path)
             stores = reader.recordings()
+            has_blueprint = bool(reader.blueprints())
         if any("no footer" in str(w.message) for w in caught):
             raise FormatError("the recording is truncated (no rerun footer): the session did not finish writing it",
                               path)
@@ -649,7 +656,7 @@ def read_recording(path: str | Path) -> RecordingContents:
     except (RuntimeError, ValueError, OSError) as exc:
         message = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise FormatError(f"damaged rerun recording: {message}", path) from None
-    contents = RecordingContents(path, store.recording_id)
+    contents = RecordingContents(path, store.recording_id, has_blueprint=has_blueprint)
     rows: list[tuple[bytes, str, dict[str, Any]]] = []
     frames: set[tuple[Any, Any]] = set()
     for chunk in chunks:

@@ -14,7 +14,7 @@ from teach.bt.tick import tick_state
 from teach.bt.xml import tree_to_xml
 from teach.demos import parse_demonstration
 from teach.domain import Domain
-from teach.errors import FormatError
+from teach.errors import FormatError, TeachError
 from teach.log import RerunLogger, default_recording_path, read_recording
 from teach.scene import SceneShape
 from conftest import colledanchise_tree
@@ -108,7 +108,7 @@ def test_tree_comes_first(recorded: tuple[Path, dict]) -> None:
     contents = read_recording(recorded[0])
     # after the static domain, the first things logged are the tree graph, its XML and its generation
     assert contents.first_entities[:3] == ("/tree/graph", "/tree/xml", "/learner/generations")
-    assert contents.session == "test-session"
+    assert contents.session == "test-session" and contents.has_blueprint
     assert contents.domain_name == "ball-in-bin"
     assert contents.conditions[0] == "BallFound" and "PlaceBall" in contents.actions
     assert contents.goal == ("BallPlaced",)
@@ -268,3 +268,12 @@ def test_capsule_is_placed_from_its_end() -> None:
                        np.array([[0.70710678, 0.70710678, 0.0, 0.0]], dtype=np.float32))
     assert pos[0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)
     assert xyzw[0] == pytest.approx([0.70710678, 0.0, 0.0, 0.70710678])
+
+
+def test_unwritable_recording_is_one_line_error(tmp_path: Path) -> None:
+    (tmp_path / "taken").write_text("a file where the folder should be")
+    with pytest.raises(TeachError, match="cannot write the recording"):
+        RerunLogger(tmp_path / "taken" / "s.rrd", "s")
+    (tmp_path / "busy.rrd.part").mkdir()
+    with pytest.raises(TeachError, match="busy.rrd.part: cannot write the recording: Is a directory"):
+        RerunLogger(tmp_path / "busy.rrd", "s")
