@@ -184,9 +184,13 @@ def test_guards_shown_states_and_explanations(ball):
     removed = learner.update(demos[0])  # already known: nothing changes
     assert not removed.changed and "nothing changed" in removed.sentence
     fresh = Specializer(ball, ball.action_names)
+    initial = {n.uid: n for n in walk(fresh.tree)}
     update = fresh.update(demos[0])
     gone = update.removed[0]
     assert "removed at" in fresh.explain(gone.uid) and gone.source.endswith("d01.csv:1")
+    # the condition inside a removed inverted guard is explained by its guard
+    inverted = next(c for c in update.removed if c.text.startswith("!"))
+    assert fresh.explain(initial[inverted.uid].child.uid) == fresh.explain(inverted.uid)
     with pytest.raises(LearnError):
         fresh.explain(-5)
 

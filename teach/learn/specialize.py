@@ -245,6 +245,8 @@ class Specializer:
                 return f"{action}: in the demonstrated order, not demonstrated in any state yet"
             sources = list(slot.shown.values())
             return f"{action}: demonstrated in {len(sources)} state(s): {_few(sources)}"
+        if key in self._removed:
+            return self._removed[key]  # a node inside a removed guard
         guard = next(g for g in self.guards(action) if g.uid == key)
         stops = (f"it keeps {action} from running at {_few(list(guard.needed_by))}" if guard.needed_by
                  else "no demonstration needs it yet (an assumption a question could settle)")
