@@ -24,7 +24,7 @@ from teach.dialogue.journal import Journal, parse_state_text, state_text
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import Answer, Question, QuestionBudget, describe_situation, select_question
 from teach.dialogue.worlds import TeachingWorld
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
 from teach.errors import LearnError, TeachError
 from teach.observe import Observer
 
@@ -200,7 +200,7 @@ class SessionManager:
     def cmd_demonstrate(self, rest: str) -> list[Reply]:
         replies = []
         if self.open is None:
-            self.open = _OpenDemo(source=f"demonstration {len(self.demos) + 1}")
+            self.open = _OpenDemo()
             replies.append(Reply("info", _t(self.lang, "New demonstration. Show me the steps.",
                                             "Neue Vorführung. Zeig mir die Schritte.")))
         if rest.strip():
@@ -212,12 +212,11 @@ class SessionManager:
             return [Reply("error", _t(self.lang, "No demonstration is open: show me some steps first.",
                                       "Es läuft keine Vorführung: zeig mir erst ein paar Schritte."))]
         state = self.world.state()
-        missing = [lit for lit in self.domain.goal if not self.domain.holds(lit, state)]
-        if missing:
-            unmet = ", ".join(self.domain.condition(lit.name).label(self.lang, lit.value) for lit in missing)
+        unmet = self._unmet_goal(state)
+        if unmet:
             return [Reply("error", _t(self.lang, f"The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
                                       f"Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'."))]
-        self.open.steps.append(Step(state, GOAL_ACTION))
+        self.open.steps.append(Step(state, GOAL_ACTION, len(self.open.steps) + 1))
         return self._finish_demo()
 
     def cmd_cancel(self, rest: str) -> list[Reply]:
@@ -258,18 +257,23 @@ class SessionManager:
                                 stop_after=stop_after)
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
         replies = [Reply("info", _t(self.lang, f"I did: {done}.", f"Ich habe gemacht: {done}."))]
-        if result.outcome == "success":
+        unmet = self._unmet_goal(self.world.state())
+        if result.outcome == "success" and not unmet:
             replies.append(Reply("say", _t(self.lang, "Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")))
-        elif result.outcome == "interrupted":
-            self.open = _OpenDemo([Step(s, self.domain.action(a).id) for s, a in result.steps],
-                                  source=f"correction {len(self.demos) + 1}")
-            replies.append(Reply("say", _t(self.lang, "Stopped. Show me how to go on from here, then say 'done'.",
-                                           "Angehalten. Zeig mir, wie es von hier weitergeht, dann sag 'fertig'.")))
+            return replies + [self._state_reply()]
+        if result.outcome == "interrupted":
+            message = _t(self.lang, "Stopped. Show me how to go on from here, then say 'done'.",
+                         "Angehalten. Zeig mir, wie es von hier weitergeht, dann sag 'fertig'.")
+        elif result.outcome == "success":
+            message = _t(self.lang, f"I thought I was done, but {unmet}. Show me how to go on, then say 'done'.",
+                         f"Ich dachte, ich bin fertig, aber {unmet}. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
         else:
-            replies.append(Reply("say", _t(self.lang,
-                                           f"I got stuck ({result.outcome}). Show me what to do from here.",
-                                           f"Ich komme nicht weiter ({result.outcome}). Zeig mir, was ich tun soll.")))
-        return replies + [self._state_reply()]
+            message = _t(self.lang, f"I got stuck ({result.outcome}). Show me how to go on, then say 'done'.",
+                         f"Ich komme nicht weiter ({result.outcome}). Zeig mir, wie es weitergeht, dann sag 'fertig'.")
+        # what the robot did so far and what the teacher shows next become one corrective demonstration
+        self.open = _OpenDemo([Step(s, self.domain.action(a).id, i + 1) for i, (s, a) in enumerate(result.steps)],
+                              source="correction")
+        return replies + [Reply("say", message), self._state_reply()]
 
     def cmd_stop(self, rest: str) -> list[Reply]:
         return [Reply("info", _t(self.lang, "The robot is not running.", "Der Roboter läuft gerade nicht."))]
@@ -310,10 +314,17 @@ class SessionManager:
         if self.pruned is None:
             return [Reply("info", _t(self.lang, "No tree yet.", "Noch kein Baum."))]
         from teach.bt.nodes import Action, Condition, walk
-        matches = [n for n in walk(self.learner.tree) if isinstance(n, (Action, Condition)) and n.name == name]
+        if self.domain.has_action(name) and name in self.learner.order:
+            action = next(n for n in walk(self.learner.tree) if isinstance(n, Action) and n.name == name)
+            lines = [self.learner.explain(action.uid)]
+            for guard in self.learner.guards(name):
+                lines.append(f"({_literals_label(str(guard), self.domain, self.lang)}): "
+                             f"{self.learner.explain(guard.uid)}")
+            return [Reply("info", "\n".join(f"- {line}" for line in lines))]
+        matches = [n for n in walk(self.learner.tree) if isinstance(n, Condition) and n.name == name]
         if not matches:
-            return [Reply("error", _t(self.lang, f"No node named {name!r} in the tree.",
-                                      f"Kein Knoten namens {name!r} im Baum."))]
+            return [Reply("error", _t(self.lang, f"No action or condition named {name!r} in the tree.",
+                                      f"Keine Handlung oder Bedingung namens {name!r} im Baum."))]
         return [Reply("info", "\n".join(f"- {self.learner.explain(n.uid)}" for n in matches))]
 
     def cmd_save(self, rest: str) -> list[Reply]:
@@ -341,7 +352,7 @@ class SessionManager:
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                self.open.steps.append(Step(result.before, EXTERNAL_ACTION))
+                self.open.steps.append(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1))
                 self.observer.on_external(token.name)
                 replies.append(Reply("info", _t(self.lang, f"Event: {token.text}.", f"Ereignis: {token.text}.")))
                 continue
@@ -351,7 +362,7 @@ class SessionManager:
                 replies.append(Reply("error", _t(self.lang, f"I could not {label}: {result.message}",
                                                  f"„{label}“ ging nicht: {result.message}")))
                 break
-            self.open.steps.append(Step(result.before, self.domain.action(token.name).id))
+            self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
             replies.append(Reply("info", f"✓ {label}"))
         replies.append(self._state_reply())
         return replies
@@ -361,7 +372,7 @@ class SessionManager:
         started = time.perf_counter()
         path = next_demo_path(self.config.demo_dir)
         demo = Demonstration(path.stem, tuple(self.open.steps), path)
-        source = f"{self.open.source} ({path.name})"
+        source = path.name
         try:
             update = self.learner.update(demo, source=source)
         except LearnError as error:
@@ -373,7 +384,7 @@ class SessionManager:
         self._remember(demo)
         self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
         self.observer.on_demonstration(demo.name, demo, self.domain)
-        self.observer.on_learner("specialize", _describe_update(update), _removed_names(update))
+        self.observer.on_learner("specialize", _describe_update(update, self.domain, self.lang), _removed_names(update))
         replies = self._after_learning(ask=True, started=started)
         return replies
 
@@ -449,7 +460,7 @@ class SessionManager:
             return [Reply("error", _t(self.lang, f"That contradicts what you showed me: {error.message}",
                                       f"Das widerspricht dem Gezeigten: {error.message}"))]
         self.labels[question.state] = answer
-        change = _describe_update(update)
+        change = _describe_update(update, self.domain, self.lang)
         self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
                          answer=answer or "done", question=text)
         self.observer.on_answer(text, said, change)
@@ -542,6 +553,12 @@ class SessionManager:
             elif step.action != EXTERNAL_ACTION:
                 self.labels[step.state] = self.domain.action(step.action).name
 
+    def _unmet_goal(self, state: State) -> str:
+        """The domain's goal conditions that do not hold, in words ("" when the goal holds)."""
+        missing = [lit for lit in self.domain.goal if not self.domain.holds(lit, state)]
+        return _t(self.lang, " and ", " und ").join(self.domain.condition(lit.name).label(self.lang, not lit.value)
+                                                    for lit in missing)
+
     def _state_reply(self) -> Reply:
         state = self.world.state()
         return Reply("state", describe_situation(self.domain, state, self.lang),
@@ -569,8 +586,35 @@ def _effective_events(events: list[dict]) -> list[dict]:
     return kept
 
 
-def _describe_update(update: "Update") -> str:
-    return update.sentence or "Nothing changed."
+def _describe_update(update: "Update", domain: Domain, lang: str) -> str:
+    """What an update changed, in the teacher's words."""
+    parts: list[str] = []
+    for action in dict.fromkeys(c.action for c in update.removed):
+        when = [_literals_label(c.text, domain, lang) for c in update.removed if c.action == action]
+        label = domain.action(action).label(lang)
+        parts.append(_t(lang, f"now I will {label} also when {' or '.join(when)}",
+                        f"jetzt mache ich „{label}“ auch, wenn {' oder '.join(when)}"))
+    for change in update.added:
+        label = domain.action(change.action).label(lang)
+        parts.append(_t(lang, f"I will not {label} when {_literals_label(change.text, domain, lang)}",
+                        f"ich mache „{label}“ nicht, wenn {_literals_label(change.text, domain, lang)}"))
+    for action in update.inserted:
+        parts.append(_t(lang, f"I learned a new step: {domain.action(action).label(lang)}",
+                        f"ich habe einen neuen Schritt gelernt: {domain.action(action).label(lang)}"))
+    if not parts:
+        return _t(lang, "That is what I would have done anyway.", "Das hätte ich sowieso getan.")
+    text = "; ".join(parts)
+    return text[0].upper() + text[1:] + "."
+
+
+def _literals_label(text: str, domain: Domain, lang: str) -> str:
+    """"!BallFound & BinClose" → "you cannot see the ball and the bin is within reach"."""
+    labels = []
+    for part in text.split("&"):
+        literal = Literal.parse(part)
+        labels.append(domain.condition(literal.name).label(lang, literal.value) if domain.has_condition(literal.name)
+                      else part.strip())
+    return _t(lang, " and ", " und ").join(labels)
 
 
 def _removed_names(update: "Update") -> list[str]:
