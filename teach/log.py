@@ -261,6 +261,10 @@ class RerunLogger(Observer):
                                goal=[str(g) for g in domain.goal] or None),
                   static=True)
         self._log("state", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
+        self._log("scene", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)  # MuJoCo's convention
+        if self._view is None:  # the tree comes first in every recording, even before there is one
+            self._log("tree/xml", rr.TextDocument("No tree yet: the robot learns its first behaviour tree from the "
+                                                  "first demonstration.", media_type=rr.MediaType.TEXT))
 
     def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         self._generation = generation
