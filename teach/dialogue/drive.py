@@ -34,6 +34,7 @@ def answer_with_oracle(manager: SessionManager, oracle: Oracle, console: Console
 
 
 def run_script(script: Script, manager: SessionManager, console: Console, oracle: Oracle | None = None) -> None:
+    manager.emit = lambda reply: show(console, manager, [reply])
     show(console, manager, manager.greet())
     for _, line in script.lines:
         if oracle is not None:

@@ -111,6 +111,7 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.finished = False
         self.step = 0
+        self.emit: Callable[[Reply], None] | None = None  # set by a driver that can show replies early
         self._turn_questions = 0
         self.last_learn_ms = 0.0
         self.journal = journal or Journal(config.session, str(config.domain.path or ""), config.lang,
@@ -235,9 +236,9 @@ class SessionManager:
             return [Reply("error", _t(self.lang, "Nothing to undo.", "Nichts rückgängig zu machen."))]
         self.journal.add(self.config.journal_path, kind="undo")
         self._rebuild_from_journal()
-        replies = [Reply("info", _t(self.lang, "Undone: the last demonstration or answer.",
-                                    "Rückgängig: die letzte Vorführung oder Antwort."))]
-        return replies + self._after_learning(ask=False)
+        head = self._flush([Reply("info", _t(self.lang, "Undone: the last demonstration or answer.",
+                                             "Rückgängig: die letzte Vorführung oder Antwort."))])
+        return head + self._after_learning(ask=False)
 
     def cmd_perturb(self, rest: str) -> list[Reply]:
         tokens = self.phrases.parse(rest, self.lang) if rest.strip() else []
@@ -465,8 +466,8 @@ class SessionManager:
                          answer=answer or "done", question=text)
         self.observer.on_answer(text, said, change)
         self.observer.on_learner("answer", change, _removed_names(update))
-        return [Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))] + \
-            self._after_learning(ask=True, started=started)
+        head = self._flush([Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))])
+        return head + self._after_learning(ask=True, started=started)
 
     def _no_question_text(self) -> str:
         if self.budget.left <= 0:
@@ -484,8 +485,7 @@ class SessionManager:
         self.generation += 1
         path = self.config.tree_dir / f"gen-{self.generation:02d}.xml"
         write_tree(path, self.pruned)
-        if started is not None:
-            self.last_learn_ms = (time.perf_counter() - started) * 1000
+
         self.observer.on_tree(self.generation, self.pruned, tree_to_xml(self.pruned),
                               f"generation {self.generation}")
         report = replay(self.pruned, self.domain, self.demos)
@@ -497,7 +497,9 @@ class SessionManager:
                      f"Generation {self.generation}: {size(self.pruned)} Knoten "
                      f"({size(self.learner.tree)} vor dem Beschneiden), gespeichert als {path}. "
                      f"Ich kann {report.reproduced} von {report.total} Vorführungen nachmachen.")
-        replies = [Reply("tree", tree=self.pruned), Reply("info", summary)]
+        replies = self._flush([Reply("tree", tree=self.pruned), Reply("info", summary)])
+        if started is not None:
+            self.last_learn_ms = (time.perf_counter() - started) * 1000
         if ask:
             replies += self._maybe_ask()
         return replies
@@ -567,6 +569,16 @@ class SessionManager:
     def _tick_clock(self) -> None:
         self.step += 1
         self.observer.set_time(self.step)
+
+    def _flush(self, replies: list[Reply]) -> list[Reply]:
+        """Show replies at once when the driver can (the tree appears before a question is
+        chosen); otherwise hand them back to be returned."""
+        if self.emit is None:
+            return replies
+        self._say_all(replies)
+        for reply in replies:
+            self.emit(reply)
+        return []
 
     def _say_all(self, replies: list[Reply]) -> None:
         for reply in replies:

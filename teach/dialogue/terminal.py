@@ -42,6 +42,7 @@ class Terminal:
         return f" {m.mode} | {state} | questions left {m.budget.left} | generation {m.generation} | Ctrl-D: save & quit"
 
     def run(self) -> None:
+        self.manager.emit = lambda reply: show(self.console, self.manager, [reply])
         show(self.console, self.manager, self.manager.greet())
         while not self.manager.finished:
             prompt = "answer> " if self.manager.pending is not None else "teach> "

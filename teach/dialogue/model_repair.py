@@ -1,0 +1,625 @@
+"""Model repair: a few plain questions that make a teacher's own action model usable for PA-BT.
+
+The thesis's study (§6.1) asked eight people for the preconditions and ramifications of the
+five ball-task actions; PA-BT (Approach 1) built a usable tree from only four of the tables.
+The others fail in a handful of typical ways: the same condition as precondition and
+ramification of one action (the temporal order was the hardest part of the concept), a
+condition the plan needs that no action makes true (an action given without ramifications),
+or actions that wait for each other. People think in actions, not preconditions, and accept
+about five questions, so each question here is about one concrete action or a pair of them,
+phrased from the domain's own labels:
+
+- ``timing``: "When you find the ball: must “you can see the ball” hold before you start, or
+  does it only hold afterwards?" (one condition both before and after one action);
+- ``effects``: "What is different after you go to the ball?" (an action with several such
+  conditions, or the only action that changes nothing while a needed condition has no cause);
+- ``achiever``: "What do you do so that “the ball is within reach”?" (a needed condition that
+  no action makes true);
+- ``order``: "What do you do first: find the ball or go to the ball?" (actions that wait for
+  each other's results);
+- ``never``: "Can you find the ball while “the ball is out of reach”?" (a precondition that
+  can never become true, once the teacher has said no action makes it true).
+
+Which question comes first follows only the structure of the model (contradictions first,
+then the needed conditions nearest the goal), never the ball task. ``ModelOracle`` answers
+them as a teacher who knows the true model would type them; ``repair`` runs the loop.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, replace
+
+from teach.bt.nodes import Action, Node, Sequence as SeqNode, transform
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.questions import QuestionBudget
+from teach.domain import ActionDef, Domain, Literal
+from teach.errors import LearnError
+
+KINDS = ("timing", "effects", "achiever", "order", "never")
+
+# Answer words, compared after ``normalize`` (lower case, no accents, no filler words).
+_WORDS: dict[str, frozenset[str]] = {
+    "before": frozenset({"before", "already", "already before", "before you start", "first", "vorher",
+                         "davor", "schon vorher", "schon", "bevor", "zuvor", "vor dem start"}),
+    "after": frozenset({"after", "afterwards", "only after", "only afterwards", "later", "it makes it true",
+                        "makes it true", "nachher", "danach", "hinterher", "erst danach", "erst nachher",
+                        "macht es wahr", "spater"}),
+    "both": frozenset({"both", "before and after", "beides", "beide", "vorher und nachher"}),
+    "neither": frozenset({"neither", "neither nor", "none", "nothing", "no", "weder noch", "keins", "keines",
+                          "nichts", "nein"}),
+    "nothing": frozenset({"nothing", "none", "no action", "nothing changes", "nothing is different",
+                          "nichts", "keine", "keins", "keine handlung", "nichts andert sich",
+                          "nichts ist anders"}),
+    "yes": frozenset({"yes", "y", "yeah", "yes i can", "yes you can", "ja", "j", "ja kann ich", "doch"}),
+    "no": frozenset({"no", "n", "nope", "no i cannot", "no you cannot", "nein", "nein kann ich nicht"}),
+    "either": frozenset({"either", "any", "does not matter", "doesn t matter", "either order", "egal",
+                         "beliebig", "ist egal"}),
+}
+_SHOWN: dict[str, tuple[str, str]] = {  # how an answer word is offered: (en, de)
+    "before": ("before", "vorher"), "after": ("after", "nachher"), "both": ("both", "beides"),
+    "neither": ("neither", "keins"), "nothing": ("nothing", "nichts"), "yes": ("yes", "ja"),
+    "no": ("no", "nein"), "either": ("either", "egal"),
+}
+_LIST_SPLIT = re.compile(r"\s*(?:[,;]|\band\b|\bund\b)\s*", re.IGNORECASE)
+
+
+def _t(lang: str, en: str, de: str) -> str:
+    return de if lang == "de" else en
+
+
+def _q(text: str, lang: str) -> str:
+    """A label in the language's quotation marks."""
+    return f"„{text}“" if lang == "de" else f"“{text}”"
+
+
+def _literal_label(domain: Domain, literal: Literal, lang: str) -> str:
+    return domain.condition(literal.name).label(lang, literal.value)
+
+
+# --- questions ---------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ModelQuestion:
+    """One question about the action model: ``kind`` is one of ``KINDS``; ``action`` is the
+    action asked about (the first of the pair for ``order``), ``other`` the second action of
+    an ``order`` question, ``literal`` the condition asked about."""
+
+    kind: str
+    action: str = ""
+    literal: Literal | None = None
+    other: str = ""
+
+    def text(self, domain: Domain, lang: str = "en") -> str:
+        """The question in plain words from the domain's labels, with the expected answers."""
+        act = _q(domain.action(self.action).label(lang), lang) if self.action else ""
+        cond = _q(_literal_label(domain, self.literal, lang), lang) if self.literal is not None else ""
+        if self.kind == "timing":
+            return _t(lang, f"When you {act}: must {cond} already hold before you start, or does it only "
+                            f"hold afterwards? (before / after / both / neither)",
+                      f"Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
+                      f"(vorher / nachher / beides / keins)")
+        if self.kind == "effects":
+            return _t(lang, f"What is different after you {act}? (what is true then, or “nothing”)",
+                      f"Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
+        if self.kind == "achiever":
+            return _t(lang, f"What do you do so that {cond}? (an action, or “nothing”)",
+                      f"Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+        if self.kind == "order":
+            other = _q(domain.action(self.other).label(lang), lang)
+            return _t(lang, f"What do you do first: {act} or {other}? (one of them, or “either”)",
+                      f"Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
+        if self.kind == "never":
+            assert self.literal is not None
+            opposite = _q(_literal_label(domain, self.literal.negated(), lang), lang)
+            return _t(lang, f"Can you {act} while {opposite}? (yes / no)",
+                      f"Kannst du {act}, wenn {opposite}? (ja / nein)")
+        raise ValueError(f"unknown question kind {self.kind!r}")
+
+
+@dataclass(frozen=True)
+class PlanOutcome:
+    """PA-BT on a model: ``usable`` when it builds a tree and the tree, run in that model's
+    symbolic world from the state where nothing holds, reaches the goal. ``true_usable`` says
+    the same for the true model when one is known (None otherwise), with actions that fail
+    whenever the true model's preconditions do not hold."""
+
+    usable: bool
+    tree: Node | None
+    reason: str
+    true_usable: bool | None = None
+    true_reason: str = ""
+
+
+@dataclass(frozen=True)
+class RepairStep:
+    question: str
+    answer: str
+    change: str
+
+
+@dataclass(frozen=True)
+class RepairReport:
+    """A repair run: the outcome before any question, each question with its answer and what
+    it changed, the outcome after, and the repaired model."""
+
+    before: PlanOutcome
+    steps: tuple[RepairStep, ...]
+    after: PlanOutcome
+    model: Domain
+
+    @property
+    def questions(self) -> int:
+        return len(self.steps)
+
+
+# --- the model's structure ---------------------------------------------------------------------
+
+
+def _holds_at_start(literal: Literal) -> bool:
+    """PA-BT starts from the state where nothing holds: exactly the negative literals are true."""
+    return not literal.value
+
+
+def _achievers(domain: Domain, literal: Literal) -> list[ActionDef]:
+    return [a for a in domain.actions if literal in a.ram]
+
+
+def _reachable(domain: Domain) -> set[Literal]:
+    """Literals some sequence of actions could make true, ignoring that effects may undo each
+    other (the usual relaxed reachability)."""
+    reached = {Literal(name, False) for name in domain.condition_names}
+    changed = True
+    while changed:
+        changed = False
+        for action in domain.actions:
+            if all(p in reached for p in action.pre) and not set(action.ram) <= reached:
+                reached |= set(action.ram)
+                changed = True
+    return reached
+
+
+def _needed(domain: Domain, goal: Sequence[Literal]) -> list[tuple[Literal, str]]:
+    """The literals the goal needs, nearest the goal first, each with the action that needs it
+    ("" for the goal itself); literals that hold at the start need nothing further."""
+    order: list[tuple[Literal, str]] = []
+    seen: set[Literal] = set()
+    queue = [(g, "") for g in goal]
+    while queue:
+        literal, consumer = queue.pop(0)
+        if literal in seen or _holds_at_start(literal):
+            continue
+        seen.add(literal)
+        order.append((literal, consumer))
+        for action in _achievers(domain, literal):
+            queue += [(p, action.name) for p in action.pre]
+    return order
+
+
+def _requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> set[Literal]:
+    """The open literals ``action`` needs, directly or through the achievers of what it needs."""
+    found: set[Literal] = set()
+    stack = [p for p in action.pre if p in open_literals]
+    while stack:
+        literal = stack.pop()
+        if literal in found:
+            continue
+        found.add(literal)
+        for achiever in _achievers(domain, literal):
+            stack += [p for p in achiever.pre if p in open_literals]
+    return found
+
+
+def _needs_actions(domain: Domain, literal: Literal, open_literals: set[Literal]) -> set[str]:
+    """Every action that may have to run before ``literal`` can hold."""
+    names: set[str] = set()
+    stack, seen = [literal], set()
+    while stack:
+        current = stack.pop()
+        if current in seen:
+            continue
+        seen.add(current)
+        for achiever in _achievers(domain, current):
+            names.add(achiever.name)
+            stack += [p for p in achiever.pre if p in open_literals]
+    return names
+
+
+def _depends_on(domain: Domain, first: ActionDef, second: str, open_literals: set[Literal]) -> bool:
+    """Whether ``first`` needs something that only ``second`` (or what follows it) makes true."""
+    return any(second in _needs_actions(domain, p, open_literals) for p in first.pre if p in open_literals)
+
+
+def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) -> list[ModelQuestion]:
+    """Every question that could help, most useful first (see the module docstring)."""
+    result: list[ModelQuestion] = []
+    for action in domain.actions:  # PA-BT refuses a model with any of these, so they come first
+        both = [lit for lit in action.pre if lit in action.ram]
+        if len(both) == 1:
+            result.append(ModelQuestion("timing", action.name, both[0]))
+        elif both:
+            result.append(ModelQuestion("effects", action.name))
+    reached = _reachable(domain)
+    unreached = {Literal(n, v) for n in domain.condition_names for v in (True, False)} - reached
+    idle = [a for a in domain.actions if not a.ram]
+    for literal, consumer in _needed(domain, goal):
+        if literal in reached:
+            continue
+        achievers = _achievers(domain, literal)
+        if not achievers:
+            if literal in refused:
+                if consumer:
+                    result.append(ModelQuestion("never", consumer, literal))
+                continue
+            if len(idle) == 1:
+                result.append(ModelQuestion("effects", idle[0].name))
+            result.append(ModelQuestion("achiever", literal=literal))
+            continue
+        circular = [a for a in achievers if literal in _requires(domain, a, unreached)]
+        if len(circular) < len(achievers):
+            continue  # some achiever is blocked by another gap, which is asked about on its own
+        if idle and literal not in refused:
+            result.append(ModelQuestion("achiever", literal=literal))
+        for achiever in circular:
+            for pre in achiever.pre:
+                if pre not in unreached:
+                    continue
+                for other in _achievers(domain, pre):
+                    if other.name != achiever.name and literal in _requires(domain, other, unreached) | set(other.ram):
+                        pair = sorted((achiever, other), key=lambda a: a.id)
+                        result.append(ModelQuestion("order", pair[0].name, other=pair[1].name))
+    result += [ModelQuestion("effects", a.name) for a in domain.actions]  # last resort: ask what each does
+    return result
+
+
+# --- answers -----------------------------------------------------------------------------------
+
+
+def _word(answer: str, kinds: Sequence[str]) -> str | None:
+    """Which of the answer words ``kinds`` the answer is, None if none."""
+    key = normalize(answer)
+    for kind in kinds:
+        if key in _WORDS[kind]:
+            return kind
+    return None
+
+
+def _unknown(answer: str, offered: Sequence[str], lang: str) -> UnknownPhrase:
+    close = difflib.get_close_matches(answer.strip().lower(), offered, n=1, cutoff=0.0)
+    return UnknownPhrase(answer.strip(), close or list(offered[:1]), lang)
+
+
+def _offered(kinds: Sequence[str], lang: str) -> list[str]:
+    return [_SHOWN[k][1 if lang == "de" else 0] for k in kinds]
+
+
+class _Conditions:
+    """Condition phrases a teacher may type: the labels (true and untrue, en and de) and names."""
+
+    def __init__(self, domain: Domain):
+        self._map: dict[str, Literal] = {}
+        self._shown: dict[str, list[str]] = {"en": [], "de": []}
+        for cond in domain.conditions:
+            spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", cond.name)
+            for value in (True, False):
+                for lang in ("en", "de"):
+                    label = cond.label(lang, value)
+                    self._shown[lang].append(label)
+                    self._add(label, Literal(cond.name, value))
+                prefix = "" if value else "not "
+                self._add(prefix + cond.name, Literal(cond.name, value))
+                self._add(prefix + spelled, Literal(cond.name, value))
+
+    def _add(self, phrase: str, literal: Literal) -> None:
+        key = normalize(phrase)
+        if key:
+            self._map.setdefault(key, literal)
+
+    def parse(self, text: str, lang: str) -> list[Literal]:
+        """All conditions in an answer like "the ball is in the bin and the ball is not in your hand"."""
+        whole = self._one(text)
+        if whole is not None:
+            return [whole]
+        literals: list[Literal] = []
+        for chunk in _LIST_SPLIT.split(text):
+            if not normalize(chunk):
+                continue
+            literal = self._one(chunk)
+            if literal is None:
+                key = normalize(chunk)
+                close = difflib.get_close_matches(key, self._map, n=1, cutoff=0.45)
+                suggestion = [self._pretty(self._map[close[0]], lang)] if close else self._shown[lang][:1]
+                raise UnknownPhrase(chunk.strip(), suggestion, lang)
+            literals.append(literal)
+        return literals
+
+    def _one(self, text: str) -> Literal | None:
+        key = normalize(text)
+        if key in self._map:
+            return self._map[key]
+        close = difflib.get_close_matches(key, self._map, n=2, cutoff=0.85)
+        if close and (len(close) == 1 or self._map[close[0]] == self._map[close[1]]):
+            return self._map[close[0]]  # a clear typo
+        return None
+
+    def _pretty(self, literal: Literal, lang: str) -> str:
+        for label in self._shown[lang]:
+            if self._map.get(normalize(label)) == literal:
+                return label
+        return str(literal)
+
+
+# --- the repair itself -------------------------------------------------------------------------
+
+
+class ModelRepair:
+    """A teacher's action model, a goal and a question budget: plans with PA-BT, picks the
+    most useful question about what keeps the model from giving a usable tree, and changes
+    the model by the answer. Only ``ask`` spends the budget, and it never asks beyond it."""
+
+    def __init__(self, model: Domain, budget: QuestionBudget, goal: Sequence[Literal] | None = None,
+                 true_model: Domain | None = None, lang: str = "en"):
+        self.model = model
+        self.budget = budget
+        self.goal = tuple(model.goal if goal is None else goal)
+        self.true_model = true_model
+        self.lang = lang
+        self.asked: list[ModelQuestion] = []
+        self._refused: set[Literal] = set()  # conditions the teacher said no action makes true
+        self._conditions = _Conditions(model)
+        self._phrases = PhraseBook(model)
+        self._outcome: PlanOutcome | None = None
+
+    def plan(self) -> PlanOutcome:
+        """PA-BT on the current model; see ``PlanOutcome``."""
+        if self._outcome is None:
+            self._outcome = plan_model(self.model, self.goal, self.true_model)
+        return self._outcome
+
+    def next_question(self) -> ModelQuestion | None:
+        """The most useful question not asked yet, or None when the model is usable, the budget
+        is spent or nothing is left to ask. Asks nothing by itself (see ``ask``)."""
+        if self.budget.left <= 0 or self.plan().usable:
+            return None
+        return next((q for q in _candidates(self.model, self.goal, self._refused) if q not in self.asked), None)
+
+    def ask(self) -> ModelQuestion | None:
+        """Ask the next question: spends one question of the budget."""
+        question = self.next_question()
+        if question is not None:
+            self.budget.spend()
+            self.asked.append(question)
+        return question
+
+    def text(self, question: ModelQuestion, lang: str | None = None) -> str:
+        return question.text(self.model, lang or self.lang)
+
+    def apply(self, question: ModelQuestion, answer: str) -> str:
+        """Change the model as the answer says and return a sentence saying what changed.
+        Raises ``UnknownPhrase`` (one line, with a suggestion) for an answer it cannot read,
+        leaving the model as it was."""
+        if question.kind not in KINDS:
+            raise ValueError(f"unknown question kind {question.kind!r}")
+        change = getattr(self, f"_apply_{question.kind}")(question, answer)
+        self._outcome = None
+        if question not in self.asked:
+            self.asked.append(question)
+        return change
+
+    # --- one method per kind of question: parse the answer, change the model, say what changed
+
+    def _apply_timing(self, question: ModelQuestion, answer: str) -> str:
+        word = _word(answer, ("before", "after", "both", "neither"))
+        if word is None:
+            raise _unknown(answer, _offered(("before", "after", "both", "neither"), self.lang), self.lang)
+        action, literal = self.model.action(question.action), question.literal
+        assert literal is not None
+        act, cond = self._act(action.name), self._cond(literal)
+        if word == "after":
+            self._set(action, pre=_without(action.pre, literal))
+            return _t(self.lang, f"So {act} makes {cond} true; it need not hold before.",
+                      f"Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
+        if word == "neither":
+            self._set(action, pre=_without(action.pre, literal), ram=_without(action.ram, literal))
+            return _t(self.lang, f"So {cond} has nothing to do with {act}.",
+                      f"Also hat {cond} nichts mit {act} zu tun.")
+        self._set(action, ram=_without(action.ram, literal))
+        if word == "both":
+            return _t(self.lang, f"So {cond} must hold before {act} and stays true; {act} does not make it true.",
+                      f"Also muss {cond} vor {act} gelten und bleibt so; {act} macht es nicht wahr.")
+        return _t(self.lang, f"So {cond} must hold before {act}; {act} does not make it true.",
+                  f"Also muss {cond} vor {act} gelten; {act} macht es nicht wahr.")
+
+    def _apply_effects(self, question: ModelQuestion, answer: str) -> str:
+        action = self.model.action(question.action)
+        literals = [] if _word(answer, ("nothing",)) else self._conditions.parse(answer, self.lang)
+        effects = tuple(dict.fromkeys(literals))
+        clash = next((lit for lit in effects if lit.negated() in effects), None)
+        if clash is not None:
+            raise UnknownPhrase(answer.strip(), [self._conditions._pretty(clash, self.lang)], self.lang)
+        effects = tuple(sorted(effects, key=lambda lit: self.model.index(lit.name)))
+        dropped = [p for p in action.pre if p in effects]
+        self._set(action, pre=tuple(p for p in action.pre if p not in effects), ram=effects)
+        act = self._act(action.name)
+        if not effects:
+            return _t(self.lang, f"So {act} changes nothing.", f"Also ändert {act} nichts.")
+        made = self._list(effects)
+        said = _t(self.lang, f"So after {act}: {made}.", f"Also gilt nach {act}: {made}.")
+        if dropped:
+            said += _t(self.lang, f" It need not hold before: {self._list(dropped)}.",
+                       f" Vorher muss nicht gelten: {self._list(dropped)}.")
+        return said
+
+    def _apply_achiever(self, question: ModelQuestion, answer: str) -> str:
+        literal = question.literal
+        assert literal is not None
+        cond = self._cond(literal)
+        if _word(answer, ("nothing",)):
+            self._refused.add(literal)
+            return _t(self.lang, f"So nothing makes {cond} true.", f"Also macht nichts {cond} wahr.")
+        action = self.model.action(self._one_action(answer))
+        ram = tuple(r for r in action.ram if r != literal.negated())
+        self._set(action, pre=_without(action.pre, literal), ram=ram if literal in ram else ram + (literal,))
+        self._refused.discard(literal)
+        said = _t(self.lang, f"So {self._act(action.name)} makes {cond} true.",
+                  f"Also macht {self._act(action.name)} {cond} wahr.")
+        if literal in action.pre:
+            said += _t(self.lang, " It need not hold before.", " Es muss vorher nicht gelten.")
+        return said
+
+    def _apply_order(self, question: ModelQuestion, answer: str) -> str:
+        pair = (question.action, question.other)
+        if _word(answer, ("either",)):
+            firsts = list(pair)
+        else:
+            first = self._one_action(answer)
+            if first not in pair:
+                raise UnknownPhrase(answer.strip(), [self._act_plain(n) for n in pair], self.lang)
+            firsts = [first]
+        unreached = {Literal(n, v) for n in self.model.condition_names for v in (True, False)} - \
+            _reachable(self.model)
+        dropped: list[tuple[str, Literal]] = []
+        for first in firsts:
+            second = pair[1] if first == pair[0] else pair[0]
+            action = self.model.action(first)
+            gone = [p for p in action.pre if p in unreached and second in _needs_actions(self.model, p, unreached)]
+            if gone:
+                self._set(action, pre=tuple(p for p in action.pre if p not in gone))
+                dropped += [(first, p) for p in gone]
+        if not dropped:
+            return _t(self.lang, "That does not change what I know.", "Das ändert nichts an dem, was ich weiß.")
+        parts = [_t(self.lang, f"{self._act(a)} does not need {self._cond(p)}",
+                    f"{self._act(a)} braucht nicht {self._cond(p)}") for a, p in dropped]
+        return _t(self.lang, "So ", "Also: ") + "; ".join(parts) + "."
+
+    def _apply_never(self, question: ModelQuestion, answer: str) -> str:
+        word = _word(answer, ("yes", "no"))
+        if word is None:
+            raise _unknown(answer, _offered(("yes", "no"), self.lang), self.lang)
+        action, literal = self.model.action(question.action), question.literal
+        assert literal is not None
+        act, cond = self._act(action.name), self._cond(literal)
+        if word == "no":
+            return _t(self.lang, f"So {act} really needs {cond}, and nothing makes it true: the task cannot be done.",
+                      f"Also braucht {act} wirklich {cond}, und nichts macht es wahr: die Aufgabe geht so nicht.")
+        self._set(action, pre=_without(action.pre, literal))
+        return _t(self.lang, f"So {act} does not need {cond}.", f"Also braucht {act} nicht {cond}.")
+
+    # --- helpers
+
+    def _one_action(self, answer: str) -> str:
+        tokens = [t for t in self._phrases.parse(answer, self.lang) if t.kind == "action"]
+        if len(tokens) != 1:
+            raise UnknownPhrase(answer.strip(), [a.label(self.lang) for a in self.model.actions][:1], self.lang)
+        return tokens[0].name
+
+    def _set(self, action: ActionDef, pre: tuple[Literal, ...] | None = None,
+             ram: tuple[Literal, ...] | None = None) -> None:
+        changed = replace(action, pre=action.pre if pre is None else pre, ram=action.ram if ram is None else ram)
+        actions = tuple(changed if a.name == action.name else a for a in self.model.actions)
+        self.model = Domain(self.model.name, self.model.conditions, actions, self.model.goal, self.model.path)
+
+    def _act(self, name: str) -> str:
+        return _q(self._act_plain(name), self.lang)
+
+    def _act_plain(self, name: str) -> str:
+        return self.model.action(name).label(self.lang)
+
+    def _cond(self, literal: Literal) -> str:
+        return _q(_literal_label(self.model, literal, self.lang), self.lang)
+
+    def _list(self, literals: Iterable[Literal]) -> str:
+        return _t(self.lang, " and ", " und ").join(self._cond(lit) for lit in literals)
+
+
+def _without(literals: tuple[Literal, ...], literal: Literal) -> tuple[Literal, ...]:
+    return tuple(x for x in literals if x != literal)
+
+
+def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model: Domain | None = None) -> PlanOutcome:
+    """PA-BT on ``model``, the tree run in ``model``'s symbolic world from the state where nothing
+    holds, and, when ``true_model`` is given, in the true model's world, where an action whose
+    true preconditions do not hold fails (as a skill that cannot start does)."""
+    from teach.evaluate import run_to_goal
+    from teach.learn.pabt import expand
+
+    goal = tuple(model.goal if goal is None else goal)
+    try:
+        tree = expand(model, goal)[-1]
+    except LearnError as error:
+        return PlanOutcome(False, None, error.message)
+    start = tuple(False for _ in model.conditions)
+    usable, reason = run_to_goal(model, tree, start)
+    if true_model is None:
+        return PlanOutcome(usable, tree, reason)
+    true_usable, true_reason = run_to_goal(true_model, guarded(tree, true_model), start)
+    return PlanOutcome(usable, tree, reason, true_usable, true_reason)
+
+
+def guarded(tree: Node, model: Domain) -> Node:
+    """The tree with every action preceded by its preconditions in ``model``."""
+    from teach.learn.pabt import literal_node
+
+    def guard(node: Node) -> Node:
+        if isinstance(node, Action) and model.has_action(node.name) and model.action(node.name).pre:
+            return SeqNode(tuple(literal_node(p) for p in model.action(node.name).pre) + (node,))
+        return node
+
+    result = transform(tree, guard)
+    assert result is not None
+    return result
+
+
+# --- the oracle teacher and the loop ------------------------------------------------------------
+
+
+class ModelOracle:
+    """A teacher who knows the true action model and answers model questions with what they
+    would type."""
+
+    def __init__(self, true_domain: Domain):
+        self.true_domain = true_domain
+
+    def answer(self, question: ModelQuestion, lang: str = "en") -> str:
+        true = self.true_domain
+        if question.kind == "timing":
+            action, literal = true.action(question.action), question.literal
+            before, after = literal in action.pre, literal in action.ram
+            word = "both" if before and after else "before" if before else "after" if after else "neither"
+            return _SHOWN[word][1 if lang == "de" else 0]
+        if question.kind == "effects":
+            ram = true.action(question.action).ram
+            if not ram:
+                return _SHOWN["nothing"][1 if lang == "de" else 0]
+            return _t(lang, " and ", " und ").join(_literal_label(true, lit, lang) for lit in ram)
+        if question.kind == "achiever":
+            assert question.literal is not None
+            achievers = _achievers(true, question.literal)
+            return achievers[0].label(lang) if achievers else _SHOWN["nothing"][1 if lang == "de" else 0]
+        if question.kind == "order":
+            everything = {Literal(n, True) for n in true.condition_names}  # what the empty start lacks
+            first, second = true.action(question.action), true.action(question.other)
+            first_waits = _depends_on(true, first, second.name, everything)
+            second_waits = _depends_on(true, second, first.name, everything)
+            if first_waits == second_waits:
+                return _SHOWN["either"][1 if lang == "de" else 0]
+            return (second if first_waits else first).label(lang)
+        if question.kind == "never":
+            needed = question.literal in true.action(question.action).pre
+            return _SHOWN["no" if needed else "yes"][1 if lang == "de" else 0]
+        raise ValueError(f"unknown question kind {question.kind!r}")
+
+
+def repair(model_domain: Domain, budget: QuestionBudget, oracle: ModelOracle, lang: str = "en") -> RepairReport:
+    """Ask and apply until the model is usable, the budget is spent or nothing is left to ask."""
+    session = ModelRepair(model_domain, budget, true_model=oracle.true_domain, lang=lang)
+    before = session.plan()
+    steps = []
+    while (question := session.ask()) is not None:
+        text = session.text(question)
+        answer = oracle.answer(question, lang)
+        steps.append(RepairStep(text, answer, session.apply(question, answer)))
+    return RepairReport(before, tuple(steps), session.plan(), session.model)
