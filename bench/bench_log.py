@@ -122,9 +122,9 @@ def run(observer: Observer, minutes: float) -> float:
     return spent + time.perf_counter() - start
 
 
-def sim_session(observer: Observer, minutes: float) -> tuple[float, float]:
+def sim_session(observer: Observer, minutes: float) -> tuple[float, float, float]:
     """Run the ball task's skills in the MuJoCo world for ``minutes`` of simulated time:
-    (wall seconds, CPU seconds)."""
+    (wall seconds, CPU seconds, simulated seconds)."""
     from teach.sim.skills import run_skill
     from teach.sim.world import World
 
@@ -140,7 +140,7 @@ def sim_session(observer: Observer, minutes: float) -> tuple[float, float]:
             run_skill(world, action, observer)
         simulated += world.sim_time - start
     observer.close()
-    return time.perf_counter() - wall, time.process_time() - cpu
+    return time.perf_counter() - wall, time.process_time() - cpu, simulated
 
 
 def main() -> None:
@@ -170,16 +170,20 @@ def main() -> None:
           f"(= {size_mb * 10 / args.minutes:.1f} MB per ten minutes, target <= 50 MB)")
     if args.sim_minutes > 0:
         with tempfile.TemporaryDirectory() as folder:
-            runs: dict[str, list[tuple[float, float]]] = {"bare": [], "logged": []}
+            runs: dict[str, list[tuple[float, float, float]]] = {"bare": [], "logged": []}
             for round_ in range(3):  # alternating, and the best of three, against other load on the machine
                 runs["bare"].append(sim_session(Observer(), args.sim_minutes / 3))
                 runs["logged"].append(sim_session(RerunLogger(Path(folder) / f"sim{round_}.rrd", "sim"),
                                                   args.sim_minutes / 3))
+            sim_mb = sum((Path(folder) / f"sim{r}.rrd").stat().st_size for r in range(3)) / 1e6
+            sim_seconds = sum(r[2] for r in runs["logged"])
         bare_wall, bare_cpu = (min(r[i] for r in runs["bare"]) for i in (0, 1))
         log_wall, log_cpu = (min(r[i] for r in runs["logged"]) for i in (0, 1))
         print(f"MuJoCo fast-forward, best of 3 x {args.sim_minutes / 3:.2g} simulated min: bare {bare_wall:.2f} s wall "
               f"{bare_cpu:.2f} s CPU, logged {log_wall:.2f} s wall {log_cpu:.2f} s CPU: overhead "
               f"{100 * (log_wall / bare_wall - 1):.0f}% wall, {100 * (log_cpu / bare_cpu - 1):.0f}% CPU (target <= 20%)")
+        print(f"MuJoCo recordings (rendered camera images): {sim_mb:.1f} MB for {sim_seconds:.0f} simulated s "
+              f"= {sim_mb * 600 / sim_seconds:.1f} MB per ten minutes (target <= 50 MB)")
 
 
 if __name__ == "__main__":
