@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import atexit
 import functools
+import io
 import os
 import shutil
 import subprocess
@@ -32,6 +33,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import PIL.Image
 import rerun as rr
 import rerun.blueprint as rrb
 
@@ -354,8 +356,10 @@ class RerunLogger(Observer):
         if not self._due(sim_time, self._last_camera, self._camera_period):
             return
         self._last_camera = sim_time
-        self._log("camera/image", rr.Image(np.ascontiguousarray(image)).compress(jpeg_quality=self._jpeg_quality),
-                  flush=False)
+        jpeg = io.BytesIO()  # Pillow directly: a third of the time of rerun's Image(...).compress()
+        PIL.Image.fromarray(np.ascontiguousarray(image, dtype=np.uint8)).save(jpeg, format="JPEG",
+                                                                              quality=self._jpeg_quality)
+        self._log("camera/image", rr.EncodedImage(contents=jpeg.getvalue(), media_type="image/jpeg"), flush=False)
 
     @staticmethod
     def _due(now: float | None, last: float | None, period: float) -> bool:
