@@ -11,7 +11,6 @@ afterwards still come from physics (a knocked ball rolls, a pushed robot slides)
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
