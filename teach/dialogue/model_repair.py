@@ -48,8 +48,8 @@ _WORDS: dict[str, frozenset[str]] = {
                         "makes it true", "nachher", "danach", "hinterher", "erst danach", "erst nachher",
                         "macht es wahr", "spater"}),
     "both": frozenset({"both", "before and after", "beides", "beide", "vorher und nachher"}),
-    "neither": frozenset({"neither", "neither nor", "none", "nothing", "no", "weder noch", "keins", "keines",
-                          "nichts", "nein"}),
+    "neither": frozenset({"neither", "neither nor", "none", "nothing", "weder noch", "keins", "keines",
+                          "nichts", "weder vorher noch nachher"}),
     "nothing": frozenset({"nothing", "none", "no action", "nothing changes", "nothing is different",
                           "nichts", "keine", "keins", "keine handlung", "nichts andert sich",
                           "nichts ist anders"}),
@@ -309,9 +309,9 @@ class _Conditions:
                     label = cond.label(lang, value)
                     self._shown[lang].append(label)
                     self._add(label, Literal(cond.name, value))
-                prefix = "" if value else "not "
-                self._add(prefix + cond.name, Literal(cond.name, value))
-                self._add(prefix + spelled, Literal(cond.name, value))
+                for prefix in ("",) if value else ("not ", "nicht "):
+                    self._add(prefix + cond.name, Literal(cond.name, value))
+                    self._add(prefix + spelled, Literal(cond.name, value))
 
     def _add(self, phrase: str, literal: Literal) -> None:
         key = normalize(phrase)
