@@ -91,7 +91,7 @@ class Question:
     def text(self, domain: Domain, lang: str = "en") -> str:
         situation = describe_situation(domain, self.state, lang)
         if lang == "de":
-            return f"Wenn {situation}: was soll ich tun?"
+            return f"Angenommen, {situation}. Was soll ich dann tun?"
         return f"If {situation}, what should I do?"
 
 

@@ -605,11 +605,11 @@ def _describe_update(update: "Update", domain: Domain, lang: str) -> str:
         when = [_literals_label(c.text, domain, lang) for c in update.removed if c.action == action]
         label = domain.action(action).label(lang)
         parts.append(_t(lang, f"now I will {label} also when {' or '.join(when)}",
-                        f"jetzt mache ich „{label}“ auch, wenn {' oder '.join(when)}"))
+                        f"jetzt mache ich „{label}“ auch, wenn gilt: {' oder '.join(when)}"))
     for change in update.added:
         label = domain.action(change.action).label(lang)
         parts.append(_t(lang, f"I will not {label} when {_literals_label(change.text, domain, lang)}",
-                        f"ich mache „{label}“ nicht, wenn {_literals_label(change.text, domain, lang)}"))
+                        f"ich mache „{label}“ nicht, wenn gilt: {_literals_label(change.text, domain, lang)}"))
     for action in update.inserted:
         parts.append(_t(lang, f"I learned a new step: {domain.action(action).label(lang)}",
                         f"ich habe einen neuen Schritt gelernt: {domain.action(action).label(lang)}"))
