@@ -42,7 +42,7 @@ def run(args: argparse.Namespace) -> int:
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     options = SessionOptions(session=name, domain=args.domain, lang=args.lang, questions=args.questions,
                              seed=args.seed, world=args.world, base=args.base, record=not args.no_record,
-                             spawn=args.spawn, resume=bool(args.resume))
+                             spawn=args.spawn, resume=bool(args.resume), viewer=args.viewer)
     manager = open_session(options)
     try:
         Terminal(manager, history=args.base / "recordings" / ".teach_history").run()

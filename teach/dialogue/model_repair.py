@@ -268,10 +268,11 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
                 if pre not in unreached:
                     continue
                 for other in _achievers(domain, pre):
-                    if other.name != achiever.name and literal in _requires(domain, other, unreached) | set(other.ram):
+                    if other.name != achiever.name and literal in _requires(domain, other, unreached):
                         pair = sorted((achiever, other), key=lambda a: a.id)
                         result.append(ModelQuestion("order", pair[0].name, other=pair[1].name))
-    result += [ModelQuestion("effects", a.name) for a in domain.actions]  # last resort: ask what each does
+    if not result:  # PA-BT fails for a reason not seen above (effects undoing each other): ask what each does
+        result = [ModelQuestion("effects", a.name) for a in domain.actions]
     return result
 
 
@@ -331,7 +332,7 @@ class _Conditions:
             if literal is None:
                 key = normalize(chunk)
                 close = difflib.get_close_matches(key, self._map, n=1, cutoff=0.45)
-                suggestion = [self._pretty(self._map[close[0]], lang)] if close else self._shown[lang][:1]
+                suggestion = [self.pretty(self._map[close[0]], lang)] if close else self._shown[lang][:1]
                 raise UnknownPhrase(chunk.strip(), suggestion, lang)
             literals.append(literal)
         return literals
@@ -345,7 +346,7 @@ class _Conditions:
             return self._map[close[0]]  # a clear typo
         return None
 
-    def _pretty(self, literal: Literal, lang: str) -> str:
+    def pretty(self, literal: Literal, lang: str) -> str:
         for label in self._shown[lang]:
             if self._map.get(normalize(label)) == literal:
                 return label
@@ -439,7 +440,7 @@ class ModelRepair:
         effects = tuple(dict.fromkeys(literals))
         clash = next((lit for lit in effects if lit.negated() in effects), None)
         if clash is not None:
-            raise UnknownPhrase(answer.strip(), [self._conditions._pretty(clash, self.lang)], self.lang)
+            raise UnknownPhrase(answer.strip(), [self._conditions.pretty(clash, self.lang)], self.lang)
         effects = tuple(sorted(effects, key=lambda lit: self.model.index(lit.name)))
         dropped = [p for p in action.pre if p in effects]
         self._set(action, pre=tuple(p for p in action.pre if p not in effects), ram=effects)

@@ -7,12 +7,14 @@ adapts ``teach.sim`` to the session.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult
 from teach.dialogue.worlds import ActResult, RunResult
 from teach.domain import Domain, State
+from teach.errors import TeachError
 from teach.observe import Observer, Observers
 from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
@@ -36,11 +38,25 @@ class _ActionCounter(Observer):
         self._last = result.action
 
 
+class _ViewerSync(Observer):
+    """Redraws the MuJoCo viewer whenever a scene frame is reported."""
+
+    def __init__(self, viewer: object):
+        self.viewer = viewer
+
+    def on_scene(self, shapes: object) -> None:
+        self.viewer.sync()  # type: ignore[attr-defined]
+
+
 class MujocoWorld:
-    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None):
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False):
         self.world = World(seed, domain)
         self.domain = self.world.domain
         self.observer = observer or Observer()
+        if viewer:
+            if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+                raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
+            self.observer = Observers(self.observer, _ViewerSync(self.world.open_viewer()))
         self.frames = FrameClock(self.world, self.observer)
         self.events = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}
 

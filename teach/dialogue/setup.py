@@ -29,6 +29,7 @@ class SessionOptions:
     spawn: bool = False
     resume: bool = False
     fresh: bool = False
+    viewer: bool = False
 
 
 def default_domain() -> Domain:
@@ -39,11 +40,13 @@ def default_domain() -> Domain:
     return load_domain(Path(str(files("teach.sim") / "assets" / "ball_in_bin.toml")))
 
 
-def make_world(kind: str, domain: Domain, seed: int, observer: Observer) -> TeachingWorld:
+def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer: bool = False) -> TeachingWorld:
     if kind == "mujoco":
         from teach.dialogue.mujoco_world import MujocoWorld
 
-        return MujocoWorld(domain, seed, observer)
+        return MujocoWorld(domain, seed, observer, viewer)
+    if viewer:
+        raise TeachError("--viewer shows the MuJoCo world: use it with --world mujoco")
     if kind == "symbolic":
         return SymbolicWorld(domain, seed, observer)
     if kind == "offline":
@@ -67,15 +70,14 @@ def open_session(options: SessionOptions) -> SessionManager:
     elif not options.resume and config.journal_path.exists():
         raise TeachError(f"session {options.session!r} exists already: resume it with --resume {options.session}",
                          config.journal_path)
-    observers: list[Observer] = []
+    observer = Observers()
+    world = make_world(options.world, domain, options.seed, observer, options.viewer)
     if options.record:
         from teach.log import RerunLogger
 
         rrd = config.base / "recordings" / f"{options.session}.rrd"
         rrd.parent.mkdir(parents=True, exist_ok=True)
-        observers.append(RerunLogger(rrd, options.session, spawn=options.spawn))
-    observer = Observers(*observers)
-    world = make_world(options.world, domain, options.seed, observer)
+        observer.observers.append(RerunLogger(rrd, options.session, spawn=options.spawn))
     if options.resume:
         return SessionManager.resume(config, world, observer)
     return SessionManager(config, world, observer)
