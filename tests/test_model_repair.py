@@ -243,3 +243,26 @@ def test_random_models_never_break_the_budget_and_are_often_rescued():
             rescued += report.after.usable
     assert unusable >= 20
     assert rescued >= unusable * 3 // 4
+
+
+def test_a_confirmed_impossible_precondition_ends_the_questions():
+    domain = Domain("tiny", (ConditionDef("A", "the door is open"), ConditionDef("B", "the key is in hand")),
+                    (ActionDef(1, "Go", ("open the door",), (), (Literal("B"),), (Literal("A"),)),), (Literal("A"),))
+    session = ModelRepair(domain, QuestionBudget(5))
+    session.apply(session.ask(), "none")
+    assert session.apply(session.ask(), "no").endswith("the task cannot be done.")
+    assert session.ask() is None and session.budget.used == 2 and not session.plan().usable
+
+
+def test_effects_that_undo_each_other_are_asked_about_action_by_action():
+    # each action's effect undoes the other's, so PA-BT loops although every condition has a cause
+    conditions = (ConditionDef("X", "x holds", "x gilt"), ConditionDef("Y", "y holds", "y gilt"))
+    told = Domain("undo", conditions, (ActionDef(1, "MakeX", ("make x",), (), (), (Literal("X"), Literal("Y", False))),
+                                       ActionDef(2, "MakeY", ("make y",), (), (), (Literal("Y"), Literal("X", False)))),
+                  (Literal("X"), Literal("Y")))
+    true = Domain("undo", conditions, (ActionDef(1, "MakeX", ("make x",), (), (), (Literal("X"),)),
+                                       ActionDef(2, "MakeY", ("make y",), (), (), (Literal("Y"),))), told.goal)
+    report = repair(told, QuestionBudget(5), ModelOracle(true))
+    assert not report.before.usable and report.after.usable and report.after.true_usable
+    assert [(s.question, s.answer) for s in report.steps] == [
+        ("What is different after you “make x”? (what is true then, or “nothing”)", "x holds")]
