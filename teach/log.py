@@ -184,7 +184,8 @@ class RerunLogger(Observer):
         self._generation = -1
         self._last_scene: float | None = None
         self._last_camera: float | None = None
-        self._scene_geometry: dict[str, tuple] = {}  # kind -> names, sizes, colours last logged
+        self._scene_geometry: tuple = ()  # name, kind, size and colour of each shape, as last logged
+        self._scene_columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]] | None = None
         self._closed = False
         atexit.register(self.close)
 
@@ -216,35 +217,37 @@ class RerunLogger(Observer):
         self._stamp()
         self._rec.log(entity, *parts, static=static)
 
-    def _queue(self, entity: str, columns: Callable[[list[tuple]], list[Any]], row: tuple) -> None:
-        """Batch one row of a high-rate stream (scene poses, ticks); sent as columns, one rerun call per batch."""
+    def _queue(self, stream: str, columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]], row: tuple) -> None:
+        """Batch one row of a high-rate stream (scene poses, ticks); sent as columns, one rerun call per
+        entity per batch. ``columns`` turns the rows into (entity, columns) pairs."""
         if self._closed:
             return
         with self._lock:
-            batch = self._batches.get(entity)
+            batch = self._batches.get(stream)
             if batch is not None and (batch.times[0] is None) != (self._sim_time is None):
-                self._send(entity)
+                self._send(stream)
                 batch = None
             if batch is None:
-                batch = self._batches[entity] = _Batch(columns)
+                batch = self._batches[stream] = _Batch(columns)
             batch.steps.append(self._clock[1])
             batch.times.append(self._sim_time)
             batch.rows.append(row)
             if len(batch.rows) >= self._batch_rows:
-                self._send(entity)
+                self._send(stream)
 
-    def _flush(self, entity: str | None = None) -> None:
+    def _flush(self, stream: str | None = None) -> None:
         with self._lock:
-            for name in [entity] if entity is not None else sorted(self._batches):
+            for name in [stream] if stream is not None else sorted(self._batches):
                 if name in self._batches:
                     self._send(name)
 
-    def _send(self, entity: str) -> None:
-        batch = self._batches.pop(entity)
+    def _send(self, stream: str) -> None:
+        batch = self._batches.pop(stream)
         indexes = [rr.TimeColumn("step", sequence=batch.steps)]
         if batch.times[0] is not None:
             indexes.append(rr.TimeColumn("sim_time", duration=[t for t in batch.times if t is not None]))
-        self._rec.send_columns(entity, indexes=indexes, columns=batch.columns(batch.rows))
+        for entity, columns in batch.columns(batch.rows):
+            self._rec.send_columns(entity, indexes=indexes, columns=columns)
 
     # --- vocabulary and trees ---------------------------------------------------------------
 
@@ -329,27 +332,22 @@ class RerunLogger(Observer):
         if not self._due(sim_time, self._last_scene, self._scene_period):
             return
         self._last_scene = sim_time
-        groups: dict[str, list[int]] = {}
-        for i, shape in enumerate(shapes):
-            if shape.kind not in _SHAPE_ENTITIES:
-                raise ValueError(f"scene shape {shape.name!r} has unknown kind {shape.kind!r}")
-            groups.setdefault(shape.kind, []).append(i)
+        geometry = tuple((s.name, s.kind, s.size, s.rgba) for s in shapes)
         positions = np.array([s.pos for s in shapes], dtype=np.float32).reshape(-1, 3)
         rotations = np.array([s.quat for s in shapes], dtype=np.float32).reshape(-1, 4)
-        for kind in sorted(self._scene_geometry.keys() - groups.keys()):
-            self._flush(_SHAPE_ENTITIES[kind])
+        if geometry == self._scene_geometry and self._scene_columns is not None:
+            self._queue("scene", self._scene_columns, (positions, rotations))
+            return
+        # the shapes changed: everything about them once, then poses alone (a seventh of the cost)
+        layout = _SceneLayout.of(geometry)
+        self._flush("scene")
+        for kind in sorted({g[1] for g in self._scene_geometry} - layout.kinds.keys()):
             self._log(_SHAPE_ENTITIES[kind], rr.Clear(recursive=False), flush=False)
-            del self._scene_geometry[kind]
-        for kind in sorted(groups):
-            entity, index = _SHAPE_ENTITIES[kind], groups[kind]
-            geometry = tuple((shapes[i].name, shapes[i].size, shapes[i].rgba) for i in index)
-            poses = _poses(kind, geometry, positions[index], rotations[index])
-            if self._scene_geometry.get(kind) == geometry:
-                self._queue(entity, _POSE_COLUMNS[kind], poses)
-            else:  # sizes, colours and names only when they change; poses alone otherwise
-                self._flush(entity)
-                self._scene_geometry[kind] = geometry
-                self._log(entity, _shape_batch(kind, geometry, poses), flush=False)
+        for kind, index in layout.kinds.items():
+            where, xyzw = layout.poses(kind, positions[None], rotations[None])
+            self._log(_SHAPE_ENTITIES[kind], _shape_batch(kind, [geometry[i] for i in index], where, xyzw),
+                      flush=False)
+        self._scene_geometry, self._scene_columns = geometry, layout.columns
 
     def on_camera(self, image: Any) -> None:
         sim_time = self._clock[2]
@@ -439,7 +437,7 @@ class RerunLogger(Observer):
 class _Batch:
     """Rows of one high-rate entity waiting to go out together as columns."""
 
-    columns: Callable[[list[tuple]], list[Any]]
+    columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]]
     steps: list[int] = field(default_factory=list)
     times: list[float | None] = field(default_factory=list)
     rows: list[tuple] = field(default_factory=list)
@@ -460,14 +458,6 @@ def _step_label(action: int, domain: Domain) -> str:
     return domain.action(action).name
 
 
-def _poses(kind: str, geometry: tuple, pos: np.ndarray, wxyz: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Where each shape sits as rerun places it, and its rotation (x, y, z, w)."""
-    if kind == "capsule":  # rerun's capsule runs from its translation along +z; MuJoCo's is centred
-        half = np.array([size[1] for _name, size, _rgba in geometry], dtype=np.float32)
-        pos = pos - _rotate_z(wxyz) * half[:, None]
-    return pos, wxyz[:, [1, 2, 3, 0]]
-
-
 _ARCHETYPES: dict[str, Any] = {"box": rr.Boxes3D, "sphere": rr.Ellipsoids3D, "capsule": rr.Capsules3D,
                                "cylinder": rr.Cylinders3D}
 
@@ -476,14 +466,50 @@ def _where(kind: str) -> str:
     return "translations" if kind == "capsule" else "centers"
 
 
-def _shape_batch(kind: str, geometry: tuple, poses: tuple[np.ndarray, np.ndarray]) -> Any:
-    """All shapes of a kind (``geometry``: name, size, rgba of each) with their poses, as one archetype."""
-    sizes = [size for _name, size, _rgba in geometry]
+@dataclass(frozen=True)
+class _SceneLayout:
+    """Which shapes of a scene frame are of which kind, so frames of poses split into one column set per kind."""
+
+    kinds: dict[str, np.ndarray]
+    capsule_half: np.ndarray
+
+    @classmethod
+    def of(cls, geometry: tuple) -> _SceneLayout:
+        kinds: dict[str, list[int]] = {}
+        for i, (name, kind, _size, _rgba) in enumerate(geometry):
+            if kind not in _SHAPE_ENTITIES:
+                raise ValueError(f"scene shape {name!r} has unknown kind {kind!r}")
+            kinds.setdefault(kind, []).append(i)
+        half = np.array([geometry[i][2][1] for i in kinds.get("capsule", [])], dtype=np.float32)
+        return cls({k: np.array(kinds[k]) for k in sorted(kinds)}, half)
+
+    def poses(self, kind: str, positions: np.ndarray, rotations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Frames × shapes of this kind: where rerun places each, and its rotation (x, y, z, w)."""
+        index = self.kinds[kind]
+        pos, wxyz = positions[:, index], rotations[:, index]
+        if kind == "capsule":  # rerun's capsule runs from its translation along +z; MuJoCo's is centred
+            pos = pos - _rotate_z(wxyz) * self.capsule_half[None, :, None]
+        return pos, wxyz[..., [1, 2, 3, 0]]
+
+    def columns(self, rows: list[tuple]) -> list[tuple[str, list[Any]]]:
+        positions = np.stack([r[0] for r in rows])
+        rotations = np.stack([r[1] for r in rows])
+        result = []
+        for kind, index in self.kinds.items():
+            where, xyzw = self.poses(kind, positions, rotations)
+            columns = _ARCHETYPES[kind].columns(**{_where(kind): where.reshape(-1, 3),
+                                                   "quaternions": xyzw.reshape(-1, 4)})
+            result.append((_SHAPE_ENTITIES[kind], list(columns.partition([len(index)] * len(rows)))))
+        return result
+
+
+def _shape_batch(kind: str, geometry: list[tuple], where: np.ndarray, xyzw: np.ndarray) -> Any:
+    """All shapes of a kind (``geometry``: name, kind, size, rgba of each) with their poses, as one archetype."""
+    sizes = [size for _name, _kind, size, _rgba in geometry]
     fields: dict[str, Any] = {
-        _where(kind): poses[0], "quaternions": poses[1],
-        "colors": np.clip(np.array([rgba for _n, _s, rgba in geometry]) * 255.0, 0, 255).astype(np.uint8),
-        "labels": [name for name, _s, _rgba in geometry], "show_labels": False,
-        "fill_mode": rr.components.FillMode.Solid}
+        _where(kind): where.reshape(-1, 3), "quaternions": xyzw.reshape(-1, 4),
+        "colors": np.clip(np.array([g[3] for g in geometry]) * 255.0, 0, 255).astype(np.uint8),
+        "labels": [g[0] for g in geometry], "show_labels": False, "fill_mode": rr.components.FillMode.Solid}
     if kind == "box":
         fields["half_sizes"] = np.array([size[:3] for size in sizes], dtype=np.float32)
     elif kind == "sphere":
@@ -494,18 +520,7 @@ def _shape_batch(kind: str, geometry: tuple, poses: tuple[np.ndarray, np.ndarray
     return _ARCHETYPES[kind].from_fields(**fields)
 
 
-def _pose_columns(kind: str, rows: list[tuple]) -> list[Any]:
-    """Frames of poses for one shape kind as partitioned columns; rerun joins them with the geometry."""
-    columns = _ARCHETYPES[kind].columns(**{_where(kind): np.concatenate([r[0] for r in rows]),
-                                           "quaternions": np.concatenate([r[1] for r in rows])})
-    return list(columns.partition([len(r[0]) for r in rows]))
-
-
-_POSE_COLUMNS: dict[str, Callable[[list[tuple]], list[Any]]] = {
-    kind: functools.partial(_pose_columns, kind) for kind in _ARCHETYPES}
-
-
-def _tick_columns(rows: list[tuple]) -> list[Any]:
+def _tick_columns(rows: list[tuple]) -> list[tuple[str, list[Any]]]:
     """Ticks as columns: node colours on the graph, a text line, and the fields read back."""
     colours, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows)
     columns = [*rr.GraphNodes.columns(colors=[c for row in colours for c in row]).partition(
@@ -517,13 +532,13 @@ def _tick_columns(rows: list[tuple]) -> list[Any]:
         columns += rr.AnyValues.columns(trace_nodes=[n for row in nodes for n in row],
                                         trace_labels=[n for row in labels for n in row],
                                         trace_status=[n for row in trace_statuses for n in row]).partition(lengths)
-    return columns
+    return [("tree/graph", columns)]
 
 
 def _rotate_z(wxyz: np.ndarray) -> np.ndarray:
     """Each quaternion's local z axis in world coordinates (third column of its rotation matrix)."""
-    w, x, y, z = wxyz.T
-    return np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=1)
+    w, x, y, z = (wxyz[..., i] for i in range(4))
+    return np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=-1)
 
 
 # --- reading a recording back ------------------------------------------------------------------

@@ -260,15 +260,15 @@ def test_scene_geometry_changes_and_vanishing_kinds(tmp_path: Path) -> None:
 
 
 def test_capsule_is_placed_from_its_end() -> None:
-    from teach.log import _poses
+    from teach.log import _SceneLayout
 
     # a capsule centred at (0, 0, 0.5), half length 0.2, turned 90° about x: its axis points along -y,
     # and rerun draws it from the end at +y towards -y
-    geometry = (("arm", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),)
-    pos, xyzw = _poses("capsule", geometry, np.array([[0.0, 0.0, 0.5]], dtype=np.float32),
-                       np.array([[0.70710678, 0.70710678, 0.0, 0.0]], dtype=np.float32))
-    assert pos[0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)
-    assert xyzw[0] == pytest.approx([0.70710678, 0.0, 0.0, 0.70710678])
+    layout = _SceneLayout.of((("arm", "capsule", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),))
+    pos, xyzw = layout.poses("capsule", np.array([[[0.0, 0.0, 0.5]]], dtype=np.float32),
+                             np.array([[[0.70710678, 0.70710678, 0.0, 0.0]]], dtype=np.float32))
+    assert pos[0, 0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)
+    assert xyzw[0, 0] == pytest.approx([0.70710678, 0.0, 0.0, 0.70710678])
 
 
 def test_unwritable_recording_is_one_line_error(tmp_path: Path) -> None:
