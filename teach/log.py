@@ -18,7 +18,6 @@ to ``camera_hz`` frames per second of simulated time and each shape kind is one 
 from __future__ import annotations
 
 import atexit
-import functools
 import io
 import os
 import shutil
