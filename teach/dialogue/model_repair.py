@@ -551,7 +551,8 @@ def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model:
     try:
         tree = expand(model, goal)[-1]
     except LearnError as error:
-        return PlanOutcome(False, None, error.message)
+        return PlanOutcome(False, None, error.message, None if true_model is None else False,
+                           "" if true_model is None else "no tree")
     start = tuple(False for _ in model.conditions)
     usable, reason = run_to_goal(model, tree, start)
     if true_model is None:
