@@ -113,15 +113,22 @@ def test_many_conditions_keep_their_behaviour(tree: Node) -> None:
     check(tree, WIDE)
 
 
+PARTIAL = {"X": RAMS["X"], "Y": RAMS["Y"]}  # Z outside the model
+
+
 def _run_in_world(tree: Node, state: dict[str, bool], outcomes: list[tuple[Status, bool]]) -> tuple:
     """Tick once in a world where actions may also succeed (making their ramifications true)
-    or fail (leaving them either way), as the action model's frame assumption allows."""
+    or fail (leaving them either way), as the action model's frame assumption allows; Z,
+    outside the model, rewrites every condition when it succeeds or fails."""
     world, calls = dict(state), []
 
     def act(name: str) -> Status:
         status, value = outcomes[len(calls) % len(outcomes)]
         calls.append(name)
-        for literal in RAMS.get(name, ()):
+        if status is not Status.RUNNING and name not in PARTIAL:
+            for i, condition in enumerate(CONDITIONS):
+                world[condition] = value ^ (i % 2 == 0)
+        for literal in RAMS.get(name, ()) if name in PARTIAL else ():
             if status is Status.SUCCESS:
                 world[literal.name] = literal.value
             elif status is Status.FAILURE:
@@ -140,7 +147,7 @@ def test_same_behaviour_when_actions_succeed_or_fail(tree: Node, values: list[bo
     # beyond the symbolic world: the same actions in the same order, the same result, the same
     # world afterwards, whatever the actions return (given that they change only their ramifications)
     state = dict(zip(CONDITIONS, values))
-    pruned = prune(tree, RAMS)
+    pruned = prune(tree, PARTIAL)
     assert _run_in_world(pruned, state, outcomes) == _run_in_world(tree, state, outcomes)
 
 
@@ -214,6 +221,18 @@ def test_a_running_or_failed_action_guarantees_nothing() -> None:
     # an action ticked in a Parallel may have changed the state its siblings see
     tree = Sequence((Condition("a"), Parallel((Action("Y"), Condition("a")), 2)))
     assert check(tree, CONDITIONS, RAMS) == tree
+
+
+def test_an_action_outside_the_model_may_change_anything() -> None:
+    # Z may have made `b` false, so `b` is tested again; X only changes `a` ...
+    tree = Sequence((Condition("b"), Fallback((Condition("c"), Action("Z"))), Condition("b"), Action("Y")))
+    assert check(tree, CONDITIONS, PARTIAL) == tree
+    assert _run_in_world(tree, dict.fromkeys(CONDITIONS, True) | {"c": False}, [(Status.SUCCESS, False)])[0] \
+        is Status.FAILURE
+    # ... so `b` holds after it
+    tree = Sequence((Condition("b"), Fallback((Condition("c"), Action("X"))), Condition("b"), Action("Y")))
+    assert check(tree, CONDITIONS, PARTIAL) == Sequence((Condition("b"), Fallback((Condition("c"), Action("X"))),
+                                                         Action("Y")))
 
 
 def test_parallel_absorbs_a_decided_child_in_its_threshold() -> None:

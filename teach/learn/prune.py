@@ -13,12 +13,15 @@ FAILURE. A subtree whose result the context already decides is then
 
 Inside a Parallel every child is ticked, so a decided child is removed only with the
 success threshold adjusted so that the Parallel's result cannot change. An action that
-returned SUCCESS guarantees its ramifications (and nothing else about the state); in
-the symbolic world actions only return RUNNING, so everything learned from an action's
-success is vacuous there and the pruned tree ticks exactly like the original in every
-state. Rounds repeat until nothing changes; control nodes left with one child (not
-Inverters) are replaced by that child. docs/reproduction.md lists where this departs
-from the printed pseudo-code and why.
+returned SUCCESS guarantees its ramifications, and under the action model's frame
+assumption nothing else changed; an action outside the model may have changed anything.
+In the symbolic world actions only return RUNNING, so everything learned from an action's
+success or failure is vacuous there and the pruned tree ticks exactly like the original
+in every state. Trees over at most ``EXACT_UP_TO`` conditions then get an exact stage on
+sets of states, which also sees disjunctions (what holds after ``Fallback(a, b, X)``).
+Rounds repeat until nothing changes; control nodes left with one child (not Inverters)
+are replaced by that child. docs/reproduction.md lists where this departs from the
+printed pseudo-code and why.
 """
 
 from __future__ import annotations
@@ -43,7 +46,8 @@ def prune(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _NO_RAMIFICATI
     """The tree without redundant and unreachable nodes; it ticks like ``tree`` in every state.
 
     ``ramifications`` maps an action name to the literals its success makes true (the
-    domain's action model, see :func:`ramifications_of`); without it actions teach nothing.
+    domain's action model, see :func:`ramifications_of`); an action it lists changes nothing
+    else, an action it does not list may change anything.
     """
     return prune_with_report(tree, ramifications)[0]
 
@@ -68,8 +72,9 @@ def prune_with_report(tree: Node, ramifications: Mapping[str, Seq[Literal]] = _N
 
 
 def ramifications_of(domain: Domain) -> dict[str, tuple[Literal, ...]]:
-    """The action model's ramifications by action name, as :func:`prune` takes them."""
-    return {a.name: a.ram for a in domain.actions if a.ram}
+    """The action model's ramifications by action name, as :func:`prune` takes them; empty
+    when the domain has no action model (then nothing is assumed about any action)."""
+    return {a.name: a.ram for a in domain.actions} if domain.has_model else {}
 
 
 def label(node: Node) -> str:
@@ -157,7 +162,9 @@ class _Pruner:
             # The action model's frame assumption: an action changes its ramifications and
             # nothing else; SUCCESS means they hold, FAILURE that they may hold or not. (In
             # the symbolic world an action returns neither, so nothing here can matter.)
-            ram = self.ramifications.get(node.name, {})
+            ram = self.ramifications.get(node.name)
+            if ram is None:  # not in the action model: it may change anything
+                return _Outcome(node, None, {}, {}, True)
             untouched = {name: value for name, value in context.items() if name not in ram}
             return _Outcome(node, None, untouched | ram, untouched, True)
         if isinstance(node, Inverter):
@@ -374,7 +381,9 @@ class _Exact:
         if isinstance(node, Condition):
             return node, reach & s.holds[node.name], reach & ~s.holds[node.name]
         if isinstance(node, Action):
-            ram = self.ramifications.get(node.name, {})
+            ram = self.ramifications.get(node.name)
+            if ram is None:
+                return node, s.all, s.all
             return node, s.assign(reach, ram), s.havoc(reach, tuple(ram))
         if isinstance(node, Inverter):
             child, success, failure = self.visit(node.child, reach, frozen)
