@@ -261,8 +261,7 @@ class RerunLogger(Observer):
             lines += ["", "Goal: " + " ".join(map(str, domain.goal))]
         self._log("domain", rr.TextDocument("\n".join(lines), media_type=rr.MediaType.MARKDOWN),
                   _values(name=domain.name, conditions=names, actions=list(domain.action_names),
-                               action_ids=[a.id for a in domain.actions],
-                               goal=[str(g) for g in domain.goal] or None),
+                          action_ids=[a.id for a in domain.actions], goal=[str(g) for g in domain.goal] or None),
                   static=True)
         self._log("state", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
         self._log("scene", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)  # MuJoCo's convention
@@ -368,9 +367,8 @@ class RerunLogger(Observer):
     def _dialogue(self, kind: str, speaker: str, shown: str, level: str, *, text: str = "",
                   budget_left: int | None = None, question: str = "", answer: str = "", change: str = "") -> None:
         self._log("dialogue", rr.TextLog(shown, level=level),
-                  _values(kind=kind, speaker=speaker, text=text,
-                               budget_left=-1 if budget_left is None else budget_left,
-                               question=question, answer=answer, change=change))
+                  _values(kind=kind, speaker=speaker, text=text, budget_left=-1 if budget_left is None else budget_left,
+                          question=question, answer=answer, change=change))
 
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
         shown = text if budget_left is None else f"{text}  [questions left: {budget_left}]"
@@ -399,8 +397,8 @@ class RerunLogger(Observer):
         self._log("demos", rr.TextLog(f"demonstration {name}: {' → '.join(robot) or '(no actions)'} ({ending})",
                                       level="demonstration"),
                   _values(name=name, conditions=list(domain.condition_names), states=states,
-                               step_actions=[s.action for s in demo.steps], step_labels=labels,
-                               reached_goal=demo.reached_goal, csv=format_demonstration(demo)))
+                          step_actions=[s.action for s in demo.steps], step_labels=labels,
+                          reached_goal=demo.reached_goal, csv=format_demonstration(demo)))
         self._log("demos/table", rr.TextDocument(f"# {name}\n\n" + "\n".join(table),
                                                  media_type=rr.MediaType.MARKDOWN))
 
