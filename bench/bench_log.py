@@ -181,7 +181,8 @@ def main() -> None:
         log_wall, log_cpu = (min(r[i] for r in runs["logged"]) for i in (0, 1))
         print(f"MuJoCo fast-forward, best of 3 x {args.sim_minutes / 3:.2g} simulated min: bare {bare_wall:.2f} s wall "
               f"{bare_cpu:.2f} s CPU, logged {log_wall:.2f} s wall {log_cpu:.2f} s CPU: overhead "
-              f"{100 * (log_wall / bare_wall - 1):.0f}% wall, {100 * (log_cpu / bare_cpu - 1):.0f}% CPU (target <= 20%)")
+              f"{100 * (log_wall / bare_wall - 1):.0f}% wall, {100 * (log_cpu / bare_cpu - 1):.0f}% CPU "
+              "(target <= 20%)")
         print(f"MuJoCo recordings (rendered camera images): {sim_mb:.1f} MB for {sim_seconds:.0f} simulated s "
               f"= {sim_mb * 600 / sim_seconds:.1f} MB per ten minutes (target <= 50 MB)")
 
