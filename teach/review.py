@@ -25,6 +25,8 @@ def summary(contents: RecordingContents) -> Group:
     parts += [Text("\nTree generations", style="bold underline"), _generations(contents)]
     if contents.learner_events:
         parts += [Text("\nLearner events", style="bold underline"), _learner_events(contents)]
+    if contents.ticks:
+        parts += [Text("\nTicks", style="bold underline"), _ticks(contents)]
     parts += [Text("\nFinal tree", style="bold underline"), _final_tree(contents)]
     parts += [Text("\nReplay", style="bold underline"), _replay(contents)]
     return Group(*parts)
@@ -91,6 +93,23 @@ def _learner_events(contents: RecordingContents) -> RenderableType:
         removed = f"  removed: {', '.join(shown)}" if shown else ""
         lines.append(Text.assemble(("  " + e.event, "bold"), f": {e.detail}{removed}"))
     return Group(*lines)
+
+
+_MAX_RUNS = 20
+
+
+def _ticks(contents: RecordingContents) -> RenderableType:
+    """What the ticks did, run-length encoded: the action that ran (or the root's status) and how often."""
+    runs: list[list] = []
+    for tick in contents.ticks:
+        what = tick.action or tick.status
+        if runs and runs[-1][0] == what:
+            runs[-1][1] += 1
+        else:
+            runs.append([what, 1])
+    shown = " → ".join(f"{what} ×{count}" if count > 1 else what for what, count in runs[:_MAX_RUNS])
+    more = f" → … ({len(runs) - _MAX_RUNS} more)" if len(runs) > _MAX_RUNS else ""
+    return Text(f"  {_count(len(contents.ticks), 'tick')}: {shown}{more}")
 
 
 def _final_tree(contents: RecordingContents) -> RenderableType:

@@ -40,6 +40,8 @@ def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
     from teach.dialogue.drive import run_script
+    from teach.dialogue.model_repair import ModelOracle
+    from teach.domain import load_domain
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
     from teach.dialogue.script import read_script
     from teach.dialogue.setup import SessionOptions, open_session
@@ -55,14 +57,15 @@ def run(args: argparse.Namespace) -> int:
         world=args.world or str(settings.get("world", "mujoco")),
         base=args.base, record=not args.no_record, fresh=True)
     manager = open_session(options)
-    oracle = None
+    oracle, model_oracle = None, None
     if args.oracle:
         oracle = oracle_from_tree(args.oracle, manager.domain)
     elif args.oracle_model:
         oracle = oracle_from_model(args.oracle_model, manager.domain)
+        model_oracle = ModelOracle(load_domain(args.oracle_model))
     console = Console(highlight=False)
     try:
-        run_script(script, manager, console, oracle)
+        run_script(script, manager, console, oracle, model_oracle)
     finally:
         manager.close()
     return 0

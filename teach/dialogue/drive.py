@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from rich.console import Console
 
+from teach.dialogue.model_repair import ModelOracle
 from teach.dialogue.oracle import SKIP, Oracle
 from teach.dialogue.script import Script
 from teach.dialogue.session import Reply, SessionManager
@@ -16,16 +17,22 @@ def show(console: Console, manager: SessionManager, replies: list[Reply]) -> Non
         console.print(render_reply(reply, manager.domain, manager.lang))
 
 
-def answer_with_oracle(manager: SessionManager, oracle: Oracle, console: Console | None) -> None:
-    """Answer open questions from the oracle until none is open (each answer may raise another)."""
-    while manager.pending is not None:
-        answer = oracle.answer(manager.pending.state)
-        if answer == SKIP:
-            said = "skip"
-        elif answer is None:
-            said = "done"
+def answer_with_oracle(manager: SessionManager, oracle: Oracle | None, console: Console | None,
+                       model_oracle: ModelOracle | None = None) -> None:
+    """Answer open questions from the oracles until none is open (each answer may raise another)."""
+    while True:
+        if manager.pending_model is not None and model_oracle is not None:
+            said = model_oracle.answer(manager.pending_model, manager.lang)
+        elif manager.pending is not None and oracle is not None:
+            answer = oracle.answer(manager.pending.state)
+            if answer == SKIP:
+                said = "skip"
+            elif answer is None:
+                said = "done"
+            else:
+                said = manager.domain.action(answer).label(manager.lang)
         else:
-            said = manager.domain.action(answer).label(manager.lang)
+            return
         if console is not None:
             console.print(render_teacher(f"{said}   [oracle]"))
         replies = manager.handle(said)
@@ -33,17 +40,16 @@ def answer_with_oracle(manager: SessionManager, oracle: Oracle, console: Console
             show(console, manager, replies)
 
 
-def run_script(script: Script, manager: SessionManager, console: Console, oracle: Oracle | None = None) -> None:
+def run_script(script: Script, manager: SessionManager, console: Console, oracle: Oracle | None = None,
+               model_oracle: ModelOracle | None = None) -> None:
     manager.emit = lambda reply: show(console, manager, [reply])
     show(console, manager, manager.greet())
     for _, line in script.lines:
-        if oracle is not None:
-            answer_with_oracle(manager, oracle, console)
+        answer_with_oracle(manager, oracle, console, model_oracle)
         console.print(render_teacher(line))
         show(console, manager, manager.handle(line))
         if manager.finished:
             break
-    if oracle is not None:
-        answer_with_oracle(manager, oracle, console)
+    answer_with_oracle(manager, oracle, console, model_oracle)
     if not manager.finished:
         show(console, manager, manager.handle("save"))

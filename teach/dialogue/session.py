@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import shutil
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -29,6 +29,7 @@ from teach.errors import LearnError, TeachError
 from teach.observe import Observer
 
 if TYPE_CHECKING:
+    from teach.dialogue.model_repair import ModelQuestion, ModelRepair
     from teach.learn.specialize import Update
 
 QUESTIONS_PER_TURN = 2
@@ -108,6 +109,9 @@ class SessionManager:
         self.generation = 0
         self.pruned: Node | None = None
         self.pending: Question | None = None
+        self.model_repair: "ModelRepair | None" = None
+        self.pending_model: "ModelQuestion | None" = None
+        self.planned: Node | None = None
         self.open: _OpenDemo | None = None
         self.finished = False
         self.step = 0
@@ -126,7 +130,7 @@ class SessionManager:
 
     @property
     def mode(self) -> str:
-        if self.pending is not None:
+        if self.pending is not None or self.pending_model is not None:
             return "asking"
         return "demonstrating" if self.open is not None else "idle"
 
@@ -158,7 +162,10 @@ class SessionManager:
         self.observer.on_dialogue("teacher", line, self.budget.left)
         try:
             command, rest = self._command(line)
-            if self.pending is not None and (command is None or command.names[0] in ("done", "skip")):
+            answering = command is None or command.names[0] in ("done", "skip")
+            if self.pending_model is not None and answering:
+                replies = self._answer_model(line)
+            elif self.pending is not None and answering:
                 replies = self._answer(line)
             elif command is not None:
                 self._turn_questions = 0
@@ -249,7 +256,7 @@ class SessionManager:
         return self._teach_actions(rest)
 
     def cmd_run(self, rest: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
-        tree = self.pruned
+        tree = self.pruned or self.planned
         if tree is None:
             return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
                                       "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
@@ -304,6 +311,8 @@ class SessionManager:
         return [self._state_reply()]
 
     def cmd_ask(self, rest: str) -> list[Reply]:
+        if self.model_repair is not None and not self.model_repair.plan().usable:
+            return self._ask_model()
         replies = self._maybe_ask(force=True)
         return replies or [Reply("info", self._no_question_text())]
 
@@ -341,6 +350,71 @@ class SessionManager:
         return replies + [Reply("say", _t(self.lang, "Goodbye! Resume with: teach session --resume "
                                           f"{self.config.session}", "Auf Wiedersehen! Weiter mit: teach session "
                                           f"--resume {self.config.session}"))]
+
+    # --- action definitions (the thesis's Approach 1, repaired by questions) ---------------
+
+    def cmd_model(self, rest: str) -> list[Reply]:
+        from teach.dialogue.model_repair import ModelRepair
+        from teach.domain import load_domain
+
+        path = Path(rest.strip())
+        if not rest.strip():
+            return [Reply("error", _t(self.lang, "Which file? model FILE.toml", "Welche Datei? model DATEI.toml"))]
+        model = load_domain(path)
+        if model.condition_names != self.domain.condition_names or \
+                not set(model.action_names) <= set(self.domain.action_names):
+            raise TeachError(f"its conditions and actions must be those of {self.domain.path}", path)
+        self.model_repair = ModelRepair(model, self.budget, lang=self.lang)
+        self.pending_model = None
+        self.journal.add(self.config.journal_path, kind="model", file=str(path))
+        return self._show_plan(ask=True)
+
+    def cmd_plan(self, rest: str) -> list[Reply]:
+        if self.model_repair is None:
+            return [Reply("error", _t(self.lang, "No action definitions yet: load them with 'model FILE'.",
+                                      "Noch keine Handlungsbeschreibungen: lade sie mit 'model DATEI'."))]
+        return self._show_plan(ask=False)
+
+    def _show_plan(self, ask: bool) -> list[Reply]:
+        assert self.model_repair is not None
+        outcome = self.model_repair.plan()
+        if outcome.usable and outcome.tree is not None:
+            self.planned = outcome.tree
+            self._save_generation(outcome.tree, "planned from the action definitions")
+            return [Reply("say", _t(self.lang, "I can build a behaviour from these definitions.",
+                                    "Aus diesen Beschreibungen kann ich ein Verhalten bauen.")),
+                    Reply("tree", tree=outcome.tree)]
+        replies = [Reply("say", _t(self.lang, f"I cannot build a behaviour from these definitions yet: {outcome.reason}",
+                                   f"Aus diesen Beschreibungen kann ich noch kein Verhalten bauen: {outcome.reason}"))]
+        return replies + (self._ask_model() if ask else [])
+
+    def _ask_model(self) -> list[Reply]:
+        assert self.model_repair is not None
+        if self.budget.left <= 0:
+            return [Reply("info", self._no_question_text())]
+        question = self.model_repair.ask()
+        if question is None:
+            return [Reply("info", _t(self.lang, "I do not know what else to ask.", "Ich weiß nicht, was ich noch fragen soll."))]
+        self.pending_model = question
+        text = self.model_repair.text(question, self.lang)
+        self.observer.on_question(text, self.budget.left)
+        return [Reply("question", text)]
+
+    def _answer_model(self, line: str) -> list[Reply]:
+        assert self.model_repair is not None and self.pending_model is not None
+        question = self.pending_model
+        text = self.model_repair.text(question, self.lang)
+        if normalize(line) in SKIP_WORDS:
+            self.pending_model = None
+            self.observer.on_answer(text, line, "nothing (skipped)")
+            self.journal.add(self.config.journal_path, kind="model_answer", question=_question_data(question), answer="skip")
+            return [Reply("info", _t(self.lang, "All right. Say 'ask' for another question.",
+                                     "In Ordnung. Sag 'frag' für eine andere Frage."))]
+        change = self.model_repair.apply(question, line)  # UnknownPhrase keeps the question open
+        self.pending_model = None
+        self.observer.on_answer(text, line, change)
+        self.journal.add(self.config.journal_path, kind="model_answer", question=_question_data(question), answer=line)
+        return [Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))] + self._show_plan(ask=True)
 
     # --- demonstrations ---------------------------------------------------------------------
 
@@ -383,24 +457,25 @@ class SessionManager:
         write_demonstration(path, demo)
         self.open = None
         self._remember(demo)
-        self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
         self.observer.on_demonstration(demo.name, demo, self.domain)
         self.observer.on_learner("specialize", _describe_update(update, self.domain, self.lang), _removed_names(update))
-        replies = self._after_learning(ask=True, started=started)
+        replies = self._after_learning(ask=True, started=started,
+                                       events=[{"kind": "demo", "file": path.name, "source": source}])
         return replies
 
     def import_demonstrations(self, demos: list[Demonstration]) -> list[Reply]:
         """Learn demonstrations recorded elsewhere (one generation for all of them)."""
         started = time.perf_counter()
+        events = []
         for demo in demos:
             path = next_demo_path(self.config.demo_dir)
             source = f"imported {demo.name} ({path.name})"
             self.learner.update(demo, source=source)
             write_demonstration(path, demo)
             self._remember(demo)
-            self.journal.add(self.config.journal_path, kind="demo", file=path.name, source=source)
+            events.append({"kind": "demo", "file": path.name, "source": source})
             self.observer.on_demonstration(demo.name, demo, self.domain)
-        return self._after_learning(ask=False, started=started)
+        return self._after_learning(ask=False, started=started, events=events)
 
     # --- questions --------------------------------------------------------------------------
 
@@ -462,12 +537,11 @@ class SessionManager:
                                       f"Das widerspricht dem Gezeigten: {error.message}"))]
         self.labels[question.state] = answer
         change = _describe_update(update, self.domain, self.lang)
-        self.journal.add(self.config.journal_path, kind="answer", state=state_text(question.state),
-                         answer=answer or "done", question=text)
         self.observer.on_answer(text, said, change)
         self.observer.on_learner("answer", change, _removed_names(update))
         head = self._flush([Reply("info", _t(self.lang, f"Thank you. {change}", f"Danke. {change}"))])
-        return head + self._after_learning(ask=True, started=started)
+        event = {"kind": "answer", "state": state_text(question.state), "answer": answer or "done", "question": text}
+        return head + self._after_learning(ask=True, started=started, events=[event])
 
     def _no_question_text(self) -> str:
         if self.budget.left <= 0:
@@ -476,18 +550,17 @@ class SessionManager:
 
     # --- learning results -------------------------------------------------------------------
 
-    def _after_learning(self, ask: bool, started: float | None = None) -> list[Reply]:
-        from teach.bt.xml import tree_to_xml, write_tree
+    def _after_learning(self, ask: bool, started: float | None = None, events: Sequence[dict] = ()) -> list[Reply]:
+        """Prune, save the generation, then commit ``events`` to the journal (so a journalled
+        event always has its generation on disk), then show, replay and maybe ask."""
         from teach.learn.prune import prune
         from teach.replay import replay
 
         self.pruned = prune(self.learner.tree)
-        self.generation += 1
-        path = self.config.tree_dir / f"gen-{self.generation:02d}.xml"
-        write_tree(path, self.pruned)
-
-        self.observer.on_tree(self.generation, self.pruned, tree_to_xml(self.pruned),
-                              f"generation {self.generation}")
+        path = self._save_generation(self.pruned, "learned from demonstrations and answers")
+        if events:
+            self.journal.events.extend(events)
+            self.journal.save(self.config.journal_path)
         report = replay(self.pruned, self.domain, self.demos)
         self.observer.on_replay(report.reproduced, report.total)
         summary = _t(self.lang,
@@ -504,6 +577,16 @@ class SessionManager:
             replies += self._maybe_ask()
         return replies
 
+    def _save_generation(self, tree: Node, reason: str) -> Path:
+        """Write the next ``gen-NN.xml`` atomically and report it to the observer."""
+        from teach.bt.xml import tree_to_xml, write_tree
+
+        self.generation += 1
+        path = self.config.tree_dir / f"gen-{self.generation:02d}.xml"
+        write_tree(path, tree)
+        self.observer.on_tree(self.generation, tree, tree_to_xml(tree), f"generation {self.generation}: {reason}")
+        return path
+
     # --- resume -----------------------------------------------------------------------------
 
     def _rebuild_from_journal(self) -> None:
@@ -513,6 +596,7 @@ class SessionManager:
         events = _effective_events(self.journal.events)
         self.learner = Specializer(self.domain)
         self.demos, self.labels, self.asked = [], {}, set()
+        self.model_repair, self.pending_model, self.planned = None, None, None
         self.budget = QuestionBudget(self.config.questions)
         self.generation = sum(1 for e in self.journal.events if e["kind"] in ("demo", "answer", "undo"))
         for event in events:
@@ -520,6 +604,20 @@ class SessionManager:
                 demo = read_demonstration(self.config.demo_dir / event["file"], self.domain)
                 self.learner.update(demo, source=event.get("source"))
                 self._remember(demo)
+            elif event["kind"] == "model":
+                from teach.dialogue.model_repair import ModelRepair
+                from teach.domain import load_domain
+
+                self.model_repair = ModelRepair(load_domain(event["file"]), self.budget, lang=self.lang)
+            elif event["kind"] == "model_answer" and self.model_repair is not None:
+                from teach.dialogue.model_repair import ModelQuestion
+
+                self.budget.used += 1
+                if event["answer"] != "skip":
+                    data = dict(event["question"])
+                    literal = Literal.parse(data.pop("literal")) if data.get("literal") else None
+                    data.pop("literal", None)
+                    self.model_repair.apply(ModelQuestion(literal=literal, **data), event["answer"])
             elif event["kind"] == "answer":
                 self.budget.used += 1
                 state = parse_state_text(event["state"])
@@ -533,6 +631,9 @@ class SessionManager:
                         pass  # it was rejected when it was given, too
         from teach.learn.prune import prune
         self.pruned = prune(self.learner.tree) if self.demos else None
+        if self.model_repair is not None:
+            outcome = self.model_repair.plan()
+            self.planned = outcome.tree if outcome.usable else None
 
     @classmethod
     def resume(cls, config: SessionConfig, world: TeachingWorld, observer: Observer | None = None) -> "SessionManager":
@@ -586,6 +687,11 @@ class SessionManager:
                 self.observer.on_dialogue("robot", reply.text, self.budget.left)
 
 
+def _question_data(question: "ModelQuestion") -> dict:
+    return {"kind": question.kind, "action": question.action, "other": question.other,
+            "literal": str(question.literal) if question.literal is not None else ""}
+
+
 def _effective_events(events: list[dict]) -> list[dict]:
     """The journal's learning events with every undone one removed."""
     kept: list[dict] = []
@@ -593,7 +699,7 @@ def _effective_events(events: list[dict]) -> list[dict]:
         if event["kind"] == "undo":
             if kept:
                 kept.pop()
-        elif event["kind"] in ("demo", "answer"):
+        elif event["kind"] in ("demo", "answer", "model", "model_answer"):
             kept.append(event)
     return kept
 
@@ -661,6 +767,10 @@ COMMANDS: list[Command] = [
     Command(("reset", "neu"), "reset [SEED]", "new random start", "neuer zufälliger Start", SessionManager.cmd_reset),
     Command(("ask", "frag", "frage"), "ask", "let the robot ask a question", "den Roboter fragen lassen",
             SessionManager.cmd_ask),
+    Command(("model", "modell"), "model FILE", "load action definitions (pre/ram) and plan with them",
+            "Handlungsbeschreibungen laden und damit planen", SessionManager.cmd_model),
+    Command(("plan", "planen"), "plan", "show what the action definitions give", "zeigen, was die Beschreibungen ergeben",
+            SessionManager.cmd_plan),
     Command(("skip", "weiter"), "skip", "leave a question unanswered", "eine Frage offen lassen",
             SessionManager.cmd_skip),
     Command(("why", "warum"), "why NAME", "why a node is in the tree", "warum ein Knoten im Baum ist",
