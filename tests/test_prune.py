@@ -184,6 +184,19 @@ def test_fig_4_5_through_an_inverter() -> None:
     assert check(tree, CONDITIONS) == Sequence((Inverter(Condition("a")), Fallback((Condition("b"), Action("X")))))
 
 
+def test_left_siblings_that_failed_under_a_fallback() -> None:
+    # ?(a, b) failed: both a and b are false where the Sequence is reached
+    tree = Fallback((Fallback((Condition("a"), Condition("b"))), Sequence((Inverter(Condition("a")), Action("X")))))
+    assert check(tree, CONDITIONS) == Fallback((Fallback((Condition("a"), Condition("b"))), Action("X")))
+
+
+def test_algorithm_4_4_would_drop_a_deciding_parent() -> None:
+    # removing the redundant inner `a` together with its one-child Sequence would let X run
+    # when b is false; the one-child Sequence always succeeds, so X is what is unreachable
+    tree = Sequence((Condition("a"), Fallback((Condition("b"), Sequence((Condition("a"),)), Action("X")))))
+    assert check(tree, CONDITIONS) == Condition("a")
+
+
 def test_known_false_under_sequence_cuts_the_unreachable_rest() -> None:
     # !a is certain, so `a` fails every time it is reached: it stays, what follows goes
     head = (Inverter(Condition("a")), Fallback((Condition("b"), Action("Y"))), Condition("a"))
