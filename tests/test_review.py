@@ -32,7 +32,7 @@ def _text(path: Path) -> str:
 def test_summary_lists_everything_in_order(recording: Path) -> None:
     text = _text(recording)
     # each section appears once, in the order a researcher reads them
-    headings = ["Demonstrations", "Questions", "Tree generations", "Learner events", "Final tree", "Replay"]
+    headings = ["Demonstrations", "Questions", "Tree generations", "Learner events", "Ticks", "Final tree", "Replay"]
     assert [text.index(h) for h in headings] == sorted(text.index(h) for h in headings)
     # demonstrations as action sequences, in order, with their states and the external action marked
     first = text.index("demo-001: FindBall → ApproachBall → GraspBall → GraspBall → ApproachBin → PlaceBall")
@@ -46,6 +46,9 @@ def test_summary_lists_everything_in_order(recording: Path) -> None:
     assert ["0", "5", "0", "start"] in rows and ["2", "16"] == next(r[:2] for r in rows if r[:1] == ["2"] and
                                                                     r[-1] == "answer")
     assert "removed: (BallFound), FindBall" in text
+    # the ticks, run-length encoded: generation 0 runs FindBall until the ball is found, then ApproachBall in
+    # the other seven states of demo-001; the final tree approaches the ball it sees
+    assert "9 ticks: FindBall → ApproachBall ×8" in text
     # the final tree rendered with the thesis's symbols, and the replay result
     tree = text[text.index("Final tree"):text.index("Replay")]
     assert "→" in tree and "(BallPlaced)" in tree and "PlaceBall" in tree
