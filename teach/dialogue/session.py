@@ -707,7 +707,10 @@ def _effective_events(events: list[dict]) -> list[dict]:
 def _describe_update(update: "Update", domain: Domain, lang: str) -> str:
     """What an update changed, in the teacher's words."""
     parts: list[str] = []
-    for action in dict.fromkeys(c.action for c in update.removed):
+    if update.inserted:
+        steps = " → ".join(domain.action(a).label(lang) for a in update.inserted)
+        parts.append(_t(lang, f"I learned the steps {steps}", f"ich habe die Schritte {steps} gelernt"))
+    for action in dict.fromkeys(c.action for c in update.removed if c.action not in update.inserted):
         when = [_literals_label(c.text, domain, lang) for c in update.removed if c.action == action]
         label = domain.action(action).label(lang)
         parts.append(_t(lang, f"now I will {label} also when {' or '.join(when)}",
@@ -716,9 +719,6 @@ def _describe_update(update: "Update", domain: Domain, lang: str) -> str:
         label = domain.action(change.action).label(lang)
         parts.append(_t(lang, f"I will not {label} when {_literals_label(change.text, domain, lang)}",
                         f"ich mache „{label}“ nicht, wenn gilt: {_literals_label(change.text, domain, lang)}"))
-    for action in update.inserted:
-        parts.append(_t(lang, f"I learned a new step: {domain.action(action).label(lang)}",
-                        f"ich habe einen neuen Schritt gelernt: {domain.action(action).label(lang)}"))
     if not parts:
         return _t(lang, "That is what I would have done anyway.", "Das hätte ich sowieso getan.")
     text = "; ".join(parts)
