@@ -190,9 +190,10 @@ class RerunLogger(Observer):
 
     # --- clocks -----------------------------------------------------------------------------
 
-    def set_time(self, step: int, sim_time: float | None = None) -> None:
+    def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        """``step`` None keeps the session's step (a simulation advancing only ``sim_time``)."""
         with self._lock:
-            self._clock = (self._clock[0] + 1, step, sim_time)
+            self._clock = (self._clock[0] + 1, self._clock[1] if step is None else step, sim_time)
             if sim_time is not None:
                 self._sim_time = sim_time
         self._stamp()

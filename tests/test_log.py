@@ -229,6 +229,18 @@ def test_batches_keep_every_tick_in_order_around_events(tmp_path: Path, ball: Do
     assert [d.step for d in contents.dialogue] == list(range(0, 40, 7))
 
 
+def test_simulation_can_advance_sim_time_alone(tmp_path: Path, ball: Domain) -> None:
+    # the session owns the step; a simulation may move only sim_time (step None keeps the session's step)
+    path = tmp_path / "clock.rrd"
+    tree = colledanchise_tree()
+    with RerunLogger(path, "clock") as logger:
+        logger.set_time(7)
+        for frame in range(3):
+            logger.set_time(None, 0.1 * frame)
+            logger.on_tick(tree, tick_state(tree, ball.condition_names, ball.state()))
+    assert [(t.step, t.sim_time) for t in read_recording(path).ticks] == [(7, 0.0), (7, 0.1), (7, 0.2)]
+
+
 def test_state_is_logged_when_it_changes(tmp_path: Path, ball: Domain) -> None:
     path = tmp_path / "state.rrd"
     names = ball.condition_names
