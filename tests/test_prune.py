@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
@@ -11,10 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, renumber,
-                            size, walk)
+                            replace_node, size, walk)
 from teach.bt.tick import tick
-from teach.domain import Literal
+from teach.bt.xml import read_tree, write_tree
+from teach.domain import Literal, load_domain
 from teach.errors import LearnError
+from teach.learn.pabt import expand
 from teach.learn.prune import label, prune, prune_with_report, ramifications_of
 
 from conftest import ROOT, colledanchise_tree
@@ -63,8 +66,6 @@ def specialization_trees(draw: st.DrawFn, conditions: list[str], actions: list[s
 
 
 def _replace(tree: Node, uid: int, new: Node) -> Node:
-    from teach.bt.nodes import replace_node
-
     result = replace_node(tree, uid, new)
     assert result is not None
     return result
@@ -73,11 +74,12 @@ def _replace(tree: Node, uid: int, new: Node) -> Node:
 RAMS = {"X": (Literal("a"),), "Y": (Literal("b", False), Literal("c")), "Z": (Literal("d"),)}
 
 
-def check(tree: Node, names: list[str], ramifications: dict = {}) -> Node:  # noqa: B006 - read only
-    pruned, removed = prune_with_report(tree, ramifications)
+def check(tree: Node, names: list[str], ramifications: Mapping[str, tuple[Literal, ...]] | None = None) -> Node:
+    """Prune, prove the result equivalent, and check the report and that pruning is idempotent."""
+    pruned, removed = prune_with_report(tree, ramifications or {})
     assert_equivalent(tree, pruned, names)
     assert size(pruned) == size(tree) - len(removed)
-    assert prune(pruned, ramifications) == pruned, "pruning again must change nothing"
+    assert prune(pruned, ramifications or {}) == pruned, "pruning again must change nothing"
     return pruned
 
 
@@ -291,12 +293,14 @@ def test_multi_goal_pabt_tree_prunes_to_colledanchise(ball) -> None:  # type: ig
 
 
 def test_pabt_expand_generations_prune_soundly(ball) -> None:  # type: ignore[no-untyped-def]
-    pabt = pytest.importorskip("teach.learn.pabt")
     names = list(ball.condition_names)
-    generations = pabt.expand(ball)
-    for generation in generations:
+    for generation in expand(ball):
         check(generation, names, ramifications_of(ball))
-    multi = pabt.expand(ball, goal=tuple(Literal(n) for n in names))
+    table41 = load_domain(ROOT / "demos" / "ball" / "reference" / "table41.toml")
+    multi41 = expand(table41, goal=tuple(Literal(n) for n in names))[-1]
+    assert size(multi41) == 24  # Fig. 6.7 -> Fig. 6.8
+    assert check(multi41, names, ramifications_of(table41)) == colledanchise_tree()
+    multi = expand(ball, goal=tuple(Literal(n) for n in names))
     assert check(multi[-1], names, ramifications_of(ball)) == colledanchise_tree()
 
 
@@ -333,15 +337,14 @@ def _teach(*args: str) -> subprocess.CompletedProcess[str]:
 
 
 def test_prune_command(tmp_path: Path, ball) -> None:  # type: ignore[no-untyped-def]
-    xml = pytest.importorskip("teach.bt.xml")
     tree = Sequence((Fallback((Condition("BallFound"), Action("FindBall"))),
                      Fallback((Condition("BallClose"), Sequence((Condition("BallFound"), Action("ApproachBall")))))))
     source, out = tmp_path / "in.xml", tmp_path / "out.xml"
-    xml.write_tree(source, tree)
+    write_tree(source, tree)
     done = _teach("prune", str(source), "-o", str(out), "--domain", str(ROOT / "demos/ball/domain.toml"))
     assert done.returncode == 0, done.stderr
     assert "9 -> 7 nodes" in done.stdout
-    pruned = xml.read_tree(out)
+    pruned = read_tree(out)
     assert size(pruned) == 7
     assert_equivalent(tree, pruned, list(ball.condition_names))
     # without the action model nothing can be said after FindBall
@@ -350,7 +353,6 @@ def test_prune_command(tmp_path: Path, ball) -> None:  # type: ignore[no-untyped
 
 
 def test_prune_command_bad_input(tmp_path: Path) -> None:
-    pytest.importorskip("teach.bt.xml")
     bad = tmp_path / "bad.xml"
     bad.write_text("<root BTCPP_format='4'><BehaviorTree ID='x'><Sequence>")
     out = tmp_path / "out.xml"
