@@ -173,9 +173,8 @@ class ApproachBall(Skill):
         return RUNNING
 
 
-class GraspBall(Skill):
-    name = "GraspBall"
-    timeout = 8.0
+class PhasedSkill(Skill):
+    """A skill that moves through named phases ("align", "lower", ...), timing each one."""
 
     def __init__(self, world: World):
         super().__init__(world)
@@ -184,6 +183,11 @@ class GraspBall(Skill):
 
     def _enter(self, phase: str) -> None:
         self.phase, self.since = phase, self.world.sim_time
+
+
+class GraspBall(PhasedSkill):
+    name = "GraspBall"
+    timeout = 8.0
 
     def update(self) -> Status:
         world = self.world
@@ -233,17 +237,9 @@ class ApproachBin(Skill):
         return RUNNING
 
 
-class PlaceBall(Skill):
+class PlaceBall(PhasedSkill):
     name = "PlaceBall"
     timeout = 8.0
-
-    def __init__(self, world: World):
-        super().__init__(world)
-        self.phase = "align"
-        self.since = world.sim_time
-
-    def _enter(self, phase: str) -> None:
-        self.phase, self.since = phase, self.world.sim_time
 
     def update(self) -> Status:
         world = self.world
