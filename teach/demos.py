@@ -11,7 +11,7 @@ from pathlib import Path
 
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import FormatError
-from teach.fsutil import atomic_write_text
+from teach.fsutil import atomic_write_text, read_text
 
 
 @dataclass(frozen=True, slots=True)
@@ -95,14 +95,7 @@ def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str |
 
 
 def read_demonstration(path: str | Path, domain: Domain) -> Demonstration:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise FormatError("demonstration is not UTF-8 text", path) from None
-    except OSError as exc:
-        raise FormatError(f"cannot read demonstration: {exc.strerror}", path) from None
-    return parse_demonstration(text, domain, path)
+    return parse_demonstration(read_text(path, "demonstration"), domain, path)
 
 
 def read_demo_set(folder: str | Path, domain: Domain | None = None) -> tuple[Domain, list[Demonstration]]:

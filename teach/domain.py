@@ -12,6 +12,7 @@ from pathlib import Path
 
 from teach.bt.builtins import BTCPP_BUILTINS
 from teach.errors import DomainError, FormatError
+from teach.fsutil import read_text
 
 State = tuple[bool, ...]
 
@@ -157,12 +158,7 @@ def _table_lines(text: str, header: str) -> list[int]:
 def load_domain(path: str | Path) -> Domain:
     """Read and validate a ``domain.toml``; every error names the file and line."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise FormatError(f"cannot read domain file: {exc.strerror}", path) from None
-    except UnicodeDecodeError:
-        raise FormatError("domain file is not UTF-8 text", path) from None
+    text = read_text(path, "domain file")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

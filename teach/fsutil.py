@@ -6,6 +6,8 @@ import os
 import tempfile
 from pathlib import Path
 
+from teach.errors import FormatError
+
 
 def atomic_write_text(path: str | Path, text: str) -> None:
     """Write ``text`` to ``path`` via a temporary file in the same folder and a rename."""
@@ -25,3 +27,15 @@ def atomic_write_bytes(path: str | Path, data: bytes) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def read_text(path: str | Path, what: str) -> str:
+    """A UTF-8 text file, or a one-line ``FormatError`` naming ``what`` it should have been."""
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise FormatError(f"{what} is not UTF-8 text", path) from None
+    except IsADirectoryError:
+        raise FormatError(f"is a folder, not a {what}", path) from None
+    except OSError as exc:
+        raise FormatError(f"cannot read {what}: {exc.strerror}", path) from None

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from teach.errors import FormatError
+from teach.fsutil import read_text
 
 SETTINGS = {"lang": str, "questions": int, "seed": int, "world": str, "domain": str}
 
@@ -34,12 +35,7 @@ class Script:
 
 def read_script(path: str | Path) -> Script:
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise FormatError(f"cannot read dialogue: {exc.strerror}", path) from None
-    except UnicodeDecodeError:
-        raise FormatError("dialogue is not UTF-8 text", path) from None
+    text = read_text(path, "dialogue")
     script = Script(path)
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.split(" #", 1)[0].strip() if not raw.lstrip().startswith("#") else ""
