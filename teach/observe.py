@@ -21,8 +21,9 @@ if TYPE_CHECKING:
 class Observer:
     """Receives session events; every method is optional (the base class ignores them)."""
 
-    def set_time(self, step: int, sim_time: float | None = None) -> None:
-        """Advance the clocks: ``step`` counts session steps, ``sim_time`` is simulated seconds."""
+    def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        """Advance the clocks: ``step`` counts session steps (None keeps the session's step),
+        ``sim_time`` is simulated seconds."""
 
     def on_domain(self, domain: "Domain") -> None:
         """The vocabulary, logged first so a recording explains itself."""

@@ -256,7 +256,8 @@ class SessionManager:
         return self._teach_actions(rest)
 
     def cmd_run(self, rest: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
-        tree = self.pruned or self.planned
+        # the unpruned tree runs: pruning assumes actions have only the effects seen so far
+        tree = self.learner.tree if self.demos else self.planned
         if tree is None:
             return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
                                       "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
@@ -553,10 +554,9 @@ class SessionManager:
     def _after_learning(self, ask: bool, started: float | None = None, events: Sequence[dict] = ()) -> list[Reply]:
         """Prune, save the generation, then commit ``events`` to the journal (so a journalled
         event always has its generation on disk), then show, replay and maybe ask."""
-        from teach.learn.prune import prune
         from teach.replay import replay
 
-        self.pruned = prune(self.learner.tree)
+        self.pruned = self._prune()
         path = self._save_generation(self.pruned, "learned from demonstrations and answers")
         if events:
             self.journal.events.extend(events)
@@ -576,6 +576,14 @@ class SessionManager:
         if ask:
             replies += self._maybe_ask()
         return replies
+
+    def _prune(self) -> Node:
+        """The learner's tree pruned for display, using the effects the demonstrations show
+        (it behaves as the unpruned tree in every state)."""
+        from teach.learn.model import detect_model
+        from teach.learn.prune import prune, ramifications_of
+
+        return prune(self.learner.tree, ramifications_of(detect_model(self.domain, self.demos)))
 
     def _save_generation(self, tree: Node, reason: str) -> Path:
         """Write the next ``gen-NN.xml`` atomically and report it to the observer."""
@@ -629,8 +637,7 @@ class SessionManager:
                         self.labels[state] = answer
                     except LearnError:
                         pass  # it was rejected when it was given, too
-        from teach.learn.prune import prune
-        self.pruned = prune(self.learner.tree) if self.demos else None
+        self.pruned = self._prune() if self.demos else None
         if self.model_repair is not None:
             outcome = self.model_repair.plan()
             self.planned = outcome.tree if outcome.usable else None
@@ -640,6 +647,11 @@ class SessionManager:
         journal = Journal.load(config.journal_path)
         manager = cls(config, world, observer, journal)
         manager._rebuild_from_journal()
+        current = manager.pruned or manager.planned
+        if current is not None:
+            from teach.bt.xml import tree_to_xml
+
+            manager.observer.on_tree(manager.generation, current, tree_to_xml(current), "resumed")
         if manager.demos:
             last = manager.demos[-1].steps[-1].state
             world.arrange(last)
@@ -683,7 +695,7 @@ class SessionManager:
 
     def _say_all(self, replies: list[Reply]) -> None:
         for reply in replies:
-            if reply.kind in ("say", "question", "info", "error") and reply.text:
+            if reply.kind in ("say", "info", "error") and reply.text:  # questions go to on_question
                 self.observer.on_dialogue("robot", reply.text, self.budget.left)
 
 

@@ -317,7 +317,6 @@ class FrameClock:
 
     def __init__(self, world: World, observer: Observer | None):
         self.world, self.observer = world, observer
-        self.frame = 0
         self.next_frame = world.sim_time
         self.next_camera = world.sim_time
 
@@ -326,9 +325,8 @@ class FrameClock:
         world, observer = self.world, self.observer
         if observer is None or (not force and world.sim_time + 1e-9 < self.next_frame):
             return
-        self.frame += 1
         self.next_frame = world.sim_time + 1.0 / FRAME_HZ
-        observer.set_time(self.frame, world.sim_time)
+        observer.set_time(None, world.sim_time)
         observer.on_state(world.conditions(), action)
         observer.on_scene(world.shapes())
         if world.sim_time + 1e-9 >= self.next_camera:

@@ -94,6 +94,7 @@ class World:
         tan_v = math.tan(math.radians(m.cam_fovy[self._cam]) / 2)
         self._tan_view = (tan_v * 4 / 3, tan_v)  # the 4:3 image of camera_image's default size
         self._renderer: Any = None
+        self._time_before_reset = 0.0
         self._memory: np.ndarray | None = None
         self.rng = np.random.default_rng(seed)
         self.reset(seed)
@@ -102,7 +103,8 @@ class World:
 
     @property
     def sim_time(self) -> float:
-        return float(self.data.time)
+        """Simulated seconds since the world was made; it keeps running across resets."""
+        return self._time_before_reset + float(self.data.time)
 
     def step(self, n: int = 1) -> None:
         """Advance physics by ``n`` steps of 2 ms; the robot's perception updates afterwards."""
@@ -349,6 +351,7 @@ class World:
                lift: float, fingers: float) -> None:
         """Put every body at rest in the given poses (the set-up before physics takes over)."""
         m, d, a = self.model, self.data, self._qadr
+        self._time_before_reset += float(d.time)
         mujoco.mj_resetData(m, d)
         q = d.qpos
         q[a["base_x"]], q[a["base_y"]], q[a["base_yaw"]] = robot
