@@ -3,6 +3,8 @@ real PA-BT, real answers parsed from plain strings."""
 
 from __future__ import annotations
 
+import json
+
 import random
 
 import pytest
@@ -187,23 +189,25 @@ def test_same_questions_twice(true_model):
     assert run() == run()
 
 
-def test_study_dialogues_hold_the_oracles_answers_to_the_questions_asked(true_model):
-    """Each participantN.dialogue: settings, ``model FILE``, one answer line per question the
-    repair asks (the oracle's answer in the file's language), then ``plan``."""
-    oracle = ModelOracle(true_model)
+def test_study_dialogues_ask_what_repair_asks(true_model, tmp_path, capsys):
+    """Each participantN.dialogue (settings, ``model FILE``, ``plan``, a run) replayed with the
+    true model as oracle asks exactly the questions ``repair`` asks, in order."""
+    from teach.cli import main
+
     for n in range(1, 9):
-        script = read_script(STUDY / f"participant{n}.dialogue")
+        path = STUDY / f"participant{n}.dialogue"
+        script = read_script(path)
         lang = str(script.settings.get("lang", "en"))
-        assert script.settings["questions"] == 5
         lines = [line for _, line in script.lines]
-        assert lines[0] == f"model dialogues/study/participant{n}.toml" and lines[-1] == "plan"
-        session = ModelRepair(load_domain(ROOT / lines[0].split()[1]), QuestionBudget(5), lang=lang)
-        answers = lines[1:-1]
-        for answer in answers:
-            question = session.ask()
-            assert question is not None and answer == oracle.answer(question, lang)
-            session.apply(question, answer)
-        assert session.ask() is None and session.plan().usable
+        assert script.settings["questions"] == 5 and lines[:2] == [f"model dialogues/study/participant{n}.toml", "plan"]
+        base = tmp_path / str(n)
+        assert main(["replay", str(path), "--base", str(base), "--no-record", "--oracle-model",
+                     str(ROOT / "demos" / "ball" / "domain.toml")]) == 0
+        capsys.readouterr()
+        journal = json.loads((base / "recordings" / f"participant{n}.journal.json").read_text())
+        answered = [e["answer"] for e in journal["events"] if e["kind"] == "model_answer"]
+        report = repair(load_domain(ROOT / lines[0].split()[1]), QuestionBudget(5), ModelOracle(true_model), lang)
+        assert answered == [step.answer for step in report.steps]
 
 
 def _random_case(rng: random.Random) -> tuple[Domain, Domain]:
