@@ -15,10 +15,10 @@ $(STAMP): $(BIN)/python pyproject.toml
 	touch $(STAMP)
 
 run: $(STAMP)
-	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/teach replay dialogues/quickstart.dialogue
+	$(BIN)/teach replay dialogues/quickstart.dialogue
 
 test: $(STAMP)
-	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/python -m pytest
+	$(BIN)/python -m pytest
 
 bench: $(STAMP)
 	for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
