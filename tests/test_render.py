@@ -122,3 +122,19 @@ def test_show_and_dot_commands(tmp_path: Path) -> None:
     assert teach("dot", str(path), "-o", str(out)).returncode == 0
     assert out.read_text() == to_dot(colledanchise_tree())
     assert Status.RUNNING.name in teach("show", str(path), "--state", "").stdout
+
+
+def test_compact_rendering_writes_leaf_groups_inline():
+    from rich.console import Console
+
+    from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence
+    from teach.bt.render import render_tree
+
+    tree = Sequence((Fallback((Condition("A"), Inverter(Condition("B")), Action("X"))),
+                     Fallback((Condition("C"), Sequence((Condition("A"), Action("Y")))))))
+    console = Console(width=80, color_system=None, record=True)
+    console.print(render_tree(tree, compact=True))
+    lines = console.export_text().splitlines()
+    # a Fallback of leaves is one line; a Fallback with a Sequence child keeps its branches
+    assert lines[1].endswith("? (A) ◇(B) X")
+    assert lines[2].endswith("?") and lines[4].endswith("→ (A) Y") and len(lines) == 5

@@ -43,19 +43,41 @@ def _label(node: Node, labels: Mapping[str, str] | None) -> str:
     return text
 
 
+def _simple(node: Node) -> bool:
+    """A leaf, or an Inverter over a leaf: short enough to write inline."""
+    return isinstance(node, (Condition, Action)) or (isinstance(node, Inverter) and
+                                                     isinstance(node.child, (Condition, Action)))
+
+
 def render_tree(root: Node, statuses: Mapping[int, Status] | None = None,
-                labels: Mapping[str, str] | None = None) -> Tree:
-    """A rich tree; ``labels`` adds a human label (e.g. the domain's English text) to leaves."""
+                labels: Mapping[str, str] | None = None, compact: bool = False) -> Tree:
+    """A rich tree; ``labels`` adds a human label (e.g. the domain's English text) to leaves.
+    ``compact`` writes a control node whose children are all leaves (or inverted leaves) on
+    one line, ``? (BinClose) ◇(BallGrasped) ApproachBin``, so a learned tree fits a screen."""
     def style(node: Node) -> str:
         if statuses is None:
             return "bold" if not isinstance(node, (Condition, Action)) else ""
         return STYLES[statuses[node.uid]] if node.uid in statuses else "dim"
 
-    def build(node: Node, into: Tree) -> None:
-        for kid in children(node):
-            build(kid, into.add(Text(_label(kid, labels), style=style(kid))))
+    def line(node: Node) -> Text:
+        text = Text(_label(node, labels), style=style(node))
+        kids = children(node)
+        if compact and kids and not isinstance(node, Inverter) and all(_simple(k) for k in kids):
+            for kid in kids:
+                text.append(" ")
+                if isinstance(kid, Inverter):
+                    text.append("◇", style=style(kid))
+                    kid = kid.child
+                text.append(_label(kid, labels), style=style(kid))
+        return text
 
-    top = Tree(Text(_label(root, labels), style=style(root)), guide_style="bright_black")
+    def build(node: Node, into: Tree) -> None:
+        if compact and not isinstance(node, Inverter) and children(node) and all(_simple(k) for k in children(node)):
+            return  # already written inline
+        for kid in children(node):
+            build(kid, into.add(line(kid)))
+
+    top = Tree(line(root), guide_style="bright_black")
     build(root, top)
     return top
 

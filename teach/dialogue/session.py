@@ -262,11 +262,20 @@ class SessionManager:
             return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
                                       "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
         stop_after = int(rest) if rest.strip().isdigit() else None
+        if self.open is not None and self.open.steps:
+            return [Reply("error", _t(self.lang, "Finish ('done') or cancel the open demonstration first.",
+                                      "Beende ('fertig') oder verwirf zuerst die laufende Vorführung."))]
+        self.open = None
         result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=interrupt,
-                                stop_after=stop_after)
+                                stop_after=stop_after,
+                                on_action=lambda a: self._flush([Reply("info", f"→ {self.domain.action(a).label(self.lang)}")]))
+        unmet = self._unmet_goal(self.world.state())
+        if not result.steps and result.outcome == "success" and not unmet:
+            return [Reply("say", _t(self.lang, "There is nothing to do: the task is already finished. "
+                                    "Say 'reset' for a new start.",
+                                    "Es gibt nichts zu tun: die Aufgabe ist schon erledigt. Sag 'neu' für einen neuen Start."))]
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
         replies = [Reply("info", _t(self.lang, f"I did: {done}.", f"Ich habe gemacht: {done}."))]
-        unmet = self._unmet_goal(self.world.state())
         if result.outcome == "success" and not unmet:
             replies.append(Reply("say", _t(self.lang, "Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")))
             return replies + [self._state_reply()]
@@ -423,14 +432,14 @@ class SessionManager:
         tokens = self.phrases.parse(text, self.lang)
         replies: list[Reply] = []
         if self.open is None:
-            replies += self.cmd_demonstrate("")
+            replies += self._flush(self.cmd_demonstrate(""))
         assert self.open is not None
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
                 self.open.steps.append(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1))
                 self.observer.on_external(token.name)
-                replies.append(Reply("info", _t(self.lang, f"Event: {token.text}.", f"Ereignis: {token.text}.")))
+                replies += self._flush([Reply("info", _t(self.lang, f"Event: {token.text}.", f"Ereignis: {token.text}."))])
                 continue
             result = self.world.act(token.name)
             label = self.domain.action(token.name).label(self.lang)
@@ -439,7 +448,7 @@ class SessionManager:
                                                  f"„{label}“ ging nicht: {result.message}")))
                 break
             self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
-            replies.append(Reply("info", f"✓ {label}"))
+            replies += self._flush([Reply("info", f"✓ {label}")])
         replies.append(self._state_reply())
         return replies
 

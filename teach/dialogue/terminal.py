@@ -38,8 +38,11 @@ class Terminal:
 
     def _toolbar(self) -> str:
         m = self.manager
-        state = " ".join(f"{n}={int(v)}" for n, v in zip(m.domain.condition_names, m.world.state()))
-        return f" {m.mode} | {state} | questions left {m.budget.left} | generation {m.generation} | Ctrl-D: save & quit"
+        holds = ", ".join(n for n, v in zip(m.domain.condition_names, m.world.state()) if v) or "—"
+        if m.lang == "de":
+            mode = {"idle": "bereit", "demonstrating": "Vorführung", "asking": "Frage offen"}[m.mode]
+            return f" {mode} │ wahr: {holds} │ Fragen übrig: {m.budget.left} │ Generation {m.generation} │ Strg-D: Ende"
+        return f" {m.mode} │ true: {holds} │ questions left: {m.budget.left} │ generation {m.generation} │ Ctrl-D: quit"
 
     def run(self) -> None:
         self.manager.emit = lambda reply: show(self.console, self.manager, [reply])
@@ -64,7 +67,8 @@ class Terminal:
     def _run_robot(self, rest: str) -> list:
         """Run the tree; Ctrl-C sets the interrupt flag instead of ending the program."""
         self._interrupt.clear()
-        self.console.print("[dim]robot running, Ctrl-C interrupts ...[/dim]")
+        self.console.print("[dim]" + ("Roboter läuft, Strg-C hält ihn an ..." if self.manager.lang == "de"
+                                      else "robot running, Ctrl-C interrupts ...") + "[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._interrupt.set()) if in_main else None
         try:

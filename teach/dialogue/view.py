@@ -18,8 +18,8 @@ def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableTy
     if reply.kind == "tree" and reply.tree is not None:
         from teach.bt.render import render_tree
 
-        labels = None
-        return Panel(render_tree(reply.tree, labels=labels), title="learned tree", expand=False)
+        title = "gelernter Baum" if lang == "de" else "learned tree"
+        return Panel(render_tree(reply.tree, compact=True), title=title, expand=False)
     if reply.kind == "state" and reply.state is not None:
         text = Text("  state: ", style="dim")
         for name, value in reply.state.items():

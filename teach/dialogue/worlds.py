@@ -51,7 +51,8 @@ class TeachingWorld(Protocol):
     def perturb(self, event: str) -> ActResult: ...
 
     def run(self, tree: Node, max_actions: int, interrupt: Callable[[], bool] | None,
-            stop_after: int | None = None) -> RunResult: ...
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        """Tick ``tree`` until it finishes; ``on_action`` hears of every action as it starts."""
 
     def close(self) -> None: ...
 
@@ -105,7 +106,7 @@ class SymbolicWorld:
         return ActResult(True, before, self._state, f"{self.domain.conditions[index].name} changed")
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None) -> RunResult:
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
         names = self.domain.condition_names
         result = RunResult("timeout")
         for _ in range(max_actions):
@@ -118,6 +119,8 @@ class SymbolicWorld:
                 result.outcome = "success" if ticked.status is Status.SUCCESS else "failure"
                 break
             before = self._state
+            if on_action is not None:
+                on_action(ticked.action)
             if not self.act(ticked.action).ok:
                 result.outcome = "failure"
                 break
@@ -154,7 +157,7 @@ class OfflineWorld:
         return ActResult(False, self._state, self._state, "this session has no world to act in")
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None) -> RunResult:
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
         return RunResult("failure", [], self._state)
 
     def close(self) -> None:
