@@ -28,15 +28,16 @@ SECONDS_PER_ACTION = 30.0
 class _ActionCounter(Observer):
     """Counts the actions a run starts (so ``run N`` can stop after N) and announces each."""
 
-    def __init__(self, on_action: Callable[[str], None] | None) -> None:
+    def __init__(self, on_action: Callable[[str], None] | None, stop_after: int | None) -> None:
         self.started = 0
         self._last: str | None = None
         self._on_action = on_action
+        self._stop_after = stop_after
 
     def on_tick(self, tree: Node, result: TickResult) -> None:
         if result.action is not None and result.action != self._last:
             self.started += 1
-            if self._on_action is not None:
+            if self._on_action is not None and (self._stop_after is None or self.started <= self._stop_after):
                 self._on_action(result.action)
         self._last = result.action
 
@@ -90,7 +91,7 @@ class MujocoWorld:
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        counter = _ActionCounter(on_action)
+        counter = _ActionCounter(on_action, stop_after)
 
         def stop() -> bool:
             return (interrupt is not None and interrupt()) or (stop_after is not None and counter.started > stop_after)

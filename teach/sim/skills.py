@@ -213,14 +213,11 @@ class GraspBall(PhasedSkill):
             if world.finger_closure() > FINGER_CLOSED - 0.01:
                 return FAILURE  # closed on nothing
             if world.ball_grasped() and elapsed > 0.2:
-                self._enter("lift")
-            elif elapsed > 1.0:
-                return FAILURE
-        elif self.phase == "lift":
-            if not world.ball_grasped():
-                return FAILURE  # slipped out
-            if self.lift_ready():
+                # done as soon as the ball is held: a reactive tree stops ticking this skill the
+                # moment BallGrasped holds, so lifting belongs to whatever comes next
                 return SUCCESS
+            if elapsed > 1.0:
+                return FAILURE
         return RUNNING
 
 

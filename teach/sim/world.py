@@ -12,9 +12,11 @@ Conditions and their thresholds (distances horizontal unless said otherwise):
   lost since. The robot keeps the last seen position; while the ball is held or lies within
   ``TRACK_RADIUS`` of the grasp point the gripper keeps that position up to date; the ball is
   lost once it is more than ``LOST_DISTANCE`` from the remembered position and out of view.
-- BallClose: the ball lies low (centre below ``LOW_HEIGHT``) within ``CLOSE_RADIUS`` of the
-  grasp point, i.e. GraspBall can reach it without driving; a ball carried up in the gripper
-  is not "close" in this sense.
+- BallClose: the ball is within ``CLOSE_RADIUS`` of the grasp point (horizontally) and its
+  centre below ``LOW_HEIGHT``, i.e. within the gripper's reach: on the floor in front of it, or
+  held and carried (so no skill flips it halfway, and a reactive tree sees the states the
+  demonstrations recorded). A ball held at the lift's top (``LIFT_TOP``) is out of reach:
+  that is how ``arrange`` makes BallGrasped without BallClose, which Δ2's start states need.
 - BallGrasped: the ball touches both fingers (pads or the hooks at their tips).
 - BinClose: the bin's centre is within ``BIN_RADIUS`` of the grasp point (PlaceBall reaches it).
 - BallPlaced: the ball's centre is inside the bin's walls, below their top, and the gripper
@@ -51,7 +53,8 @@ GRASP_OFFSET = 0.42         # grasp point ahead of the base centre (m)
 BALL_RADIUS = 0.035
 VIEW_RANGE = 6.0            # the camera sees the ball this far (m): the whole room
 CLOSE_RADIUS = 0.25         # BallClose: ball within this of the grasp point (m)
-LOW_HEIGHT = 0.1            # BallClose: ball centre below this height (m)
+LOW_HEIGHT = 0.31           # BallClose: ball centre below this height (m): carried balls count
+LIFT_TOP = 0.3              # the lift's top; a ball held up there is out of reach (not BallClose)
 TRACK_RADIUS = 0.25         # the gripper tracks a known ball this close to the grasp point (m)
 LOST_DISTANCE = 0.2         # a remembered ball farther than this from memory is lost (m)
 BIN_RADIUS = 0.4            # BinClose: bin centre within this of the grasp point (m)
@@ -324,7 +327,7 @@ class World:
         if want["BallPlaced"]:
             ball = (*(bin_xy + _polar(rng, 0.0, 0.05)), 0.06)
         elif want["BallGrasped"]:
-            lift = 0.0 if want["BallClose"] else LIFT_CARRY
+            lift = 0.0 if want["BallClose"] else LIFT_TOP
             fingers = FINGER_CLOSED
             ball = (*grasp, BALL_RADIUS + lift)
         else:
