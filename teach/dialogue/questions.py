@@ -15,8 +15,9 @@ Choosing the situation is active learning by *expected model change* over a comm
    Guards that a demonstration or answer needs are certainly real.
 2. A committee of trees is sampled by dropping guards at random under that prior, keeping
    only trees that still do what every demonstration and answer says.
-3. For each unseen situation, the committee's votes estimate what the teacher will answer;
-   for each likely answer, the learner is updated on a copy, and the change of behaviour is
+3. For each unseen situation, the committee's votes estimate what the teacher will answer
+   (with a small share for actions never demonstrated: the teacher may want one); for
+   each possible answer, the learner is updated on a copy, and the change of behaviour is
    measured over the situations the robot is likely to pass through (simulated from every
    start with the effects seen in the demonstrations).
 4. The situation with the largest expected change is asked.
@@ -48,6 +49,7 @@ STATE_SAMPLE = 512
 COMMITTEE_DRAWS = 300
 COMMITTEE_FOR_VISITS = 40
 CANDIDATE_LIMIT = 64
+SURPRISE = 0.2  # share of the answer expectation spread over actions never demonstrated
 
 PRIOR_REAL_OWN_EFFECT = 0.95
 PRIOR_REAL_ENABLING = 0.9
@@ -239,8 +241,6 @@ def select_question(learner: "Specializer", demos: Sequence[Demonstration], labe
     ``asked``: situations already asked about (also the skipped ones), never asked again.
     """
     domain = learner.domain
-    if not learner.order:
-        return None
     names = domain.condition_names
     rng = random.Random(seed * 7919 + len(labels))
     effects = effects_from(domain, demos)
@@ -250,27 +250,49 @@ def select_question(learner: "Specializer", demos: Sequence[Demonstration], labe
     unseen = [s for s in states if s not in excluded]
     if not unseen:
         return None
-    weights = visit_weights(members[:COMMITTEE_FOR_VISITS], states, effects, 2 * len(learner.order) + 2)
+    weights = visit_weights(members[:COMMITTEE_FOR_VISITS], states, effects, 2 * len(domain.actions) + 2)
     current = members[0]
     now = {s: _answer(current, s) for s in unseen}
     candidates = sorted(unseen, key=lambda s: (-weights.get(s, 0), s))[:CANDIDATE_LIMIT]
+    unshown: list[Answer] = [a for a in domain.action_names if a not in learner.order]
+    goal = _goal_literals([s for s, label in labels.items() if label is None])
     best: Question | None = None
     for state in candidates:
-        votes: dict[Answer, int] = {}
-        for member in members:
-            vote = _answer(member, state)
-            if vote is not False:
-                votes[vote] = votes.get(vote, 0) + 1  # type: ignore[index]
-        total = sum(votes.values())
+        reached = goal is not None and all(state[i] == v for i, v in goal)
+        shares = _answer_shares(members, state, () if reached else unshown)
         score = 0.0
-        for answer, count in sorted(votes.items(), key=lambda item: (item[0] is None, item[0] or "")):
-            if answer == now[state]:
-                continue  # the robot already does this: no change
-            score += count / total * _change(learner, state, answer, unseen, now, weights)
+        for answer, share in shares.items():
+            if answer != now[state]:  # the robot already does this: no change
+                score += share * _change(learner, state, answer, unseen, now, weights)
         if score > 0 and (best is None or score > best.score + 1e-9):
-            shares = tuple((a or "done", c / total) for a, c in sorted(votes.items(), key=lambda i: -i[1]))
-            best = Question(state, score, shares)
+            expected = tuple((a or "done", p) for a, p in sorted(shares.items(), key=lambda i: (-i[1], i[0] or "")))
+            best = Question(state, score, expected)
     return best
+
+
+def _goal_literals(goal_states: Sequence[State]) -> list[Lit] | None:
+    """The literals every demonstrated goal state shares (None before any goal was shown)."""
+    if not goal_states:
+        return None
+    first = goal_states[0]
+    return [(i, v) for i, v in enumerate(first) if all(s[i] == v for s in goal_states)]
+
+
+def _answer_shares(members: Sequence[CompiledTree], state: State, unshown: Sequence[Answer]) -> dict[Answer, float]:
+    """How likely each answer is: the committee's votes, and, while some actions have never
+    been demonstrated, a ``SURPRISE`` share spread over them (the teacher may want one; not
+    where everything every demonstrated goal state had already holds)."""
+    votes: dict[Answer, int] = {}
+    for member in members:
+        vote = _answer(member, state)
+        if vote is not False:
+            votes[vote] = votes.get(vote, 0) + 1  # type: ignore[index]
+    total = sum(votes.values())
+    surprise = SURPRISE if unshown else 0.0
+    shares: dict[Answer, float] = {answer: surprise / len(unshown) for answer in unshown}
+    for answer, count in votes.items():
+        shares[answer] = shares.get(answer, 0.0) + (1 - surprise) * count / total
+    return shares
 
 
 def _change(learner: "Specializer", state: State, answer: Answer, unseen: Sequence[State],

@@ -257,7 +257,7 @@ class SessionManager:
 
     def cmd_run(self, rest: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
         # the unpruned tree runs: pruning assumes actions have only the effects seen so far
-        tree = self.learner.tree if self.demos else self.planned
+        tree = self.learner.tree if self.learner.order else self.planned
         if tree is None:
             return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
                                       "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
@@ -565,6 +565,12 @@ class SessionManager:
         event always has its generation on disk), then show, replay and maybe ask."""
         from teach.replay import replay
 
+        if not self.learner.order:  # only goal states so far: there is no behaviour to show yet
+            if events:
+                self.journal.events.extend(events)
+                self.journal.save(self.config.journal_path)
+            return self._flush([Reply("info", _t(self.lang, "I have seen the finished task, but no steps yet.",
+                                                 "Ich habe die erledigte Aufgabe gesehen, aber noch keine Schritte."))])
         self.pruned = self._prune()
         path = self._save_generation(self.pruned, "learned from demonstrations and answers")
         if events:
@@ -646,7 +652,7 @@ class SessionManager:
                         self.labels[state] = answer
                     except LearnError:
                         pass  # it was rejected when it was given, too
-        self.pruned = self._prune() if self.demos else None
+        self.pruned = self._prune() if self.learner.order else None
         if self.model_repair is not None:
             outcome = self.model_repair.plan()
             self.planned = outcome.tree if outcome.usable else None
