@@ -63,3 +63,11 @@ def test_study_with_five_oracle_questions(tmp_path, capsys):
     # with at most five questions, three of the four unusable definitions make the robot finish the
     # task in the world of Table 6.1; participant 3's becomes plannable but grasps without approaching
     assert rescued == [1, 2, 6]
+
+
+def test_german_dialogue_teaches_the_task(tmp_path, capsys):
+    out = replay([ROOT / "dialogues" / "deutsch.dialogue", "--base", tmp_path, "--no-record"], capsys)
+    assert "Roboter fragt:" in out and "Danke." in out
+    # the last run, after a correction, finishes the task in MuJoCo
+    assert out.rstrip().count("Fertig! Die Aufgabe ist erledigt.") == 1
+    assert "nicht aufgezeichnet" not in out or "Vorführung" in out

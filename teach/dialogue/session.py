@@ -447,6 +447,11 @@ class SessionManager:
                 replies.append(Reply("error", _t(self.lang, f"I could not {label}: {result.message}",
                                                  f"„{label}“ ging nicht: {result.message}")))
                 break
+            if result.after == result.before:
+                # a step that changes nothing would teach two different actions in one state
+                replies += self._flush([Reply("info", _t(self.lang, f"✓ {label} (nothing changed: not recorded)",
+                                                         f"✓ {label} (nichts hat sich geändert: nicht aufgezeichnet)"))])
+                continue
             self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
             replies += self._flush([Reply("info", f"✓ {label}")])
         replies.append(self._state_reply())

@@ -48,7 +48,9 @@ class Terminal:
         self.manager.emit = lambda reply: show(self.console, self.manager, [reply])
         show(self.console, self.manager, self.manager.greet())
         while not self.manager.finished:
-            prompt = "answer> " if self.manager.pending is not None else "teach> "
+            asking = self.manager.mode == "asking"
+            prompt = ("Antwort> " if asking else "teach> ") if self.manager.lang == "de" else \
+                ("answer> " if asking else "teach> ")
             try:
                 line = self.prompt.prompt(prompt)
             except KeyboardInterrupt:

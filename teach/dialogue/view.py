@@ -11,7 +11,8 @@ from teach.dialogue.session import Reply
 from teach.domain import Domain
 
 STYLES = {"say": "bold cyan", "info": "white", "error": "bold red", "question": "bold magenta"}
-PREFIX = {"say": "robot: ", "question": "robot asks: ", "error": "! "}
+PREFIX = {"en": {"say": "robot: ", "question": "robot asks: ", "error": "! ", "state": "  state: "},
+          "de": {"say": "Roboter: ", "question": "Roboter fragt: ", "error": "! ", "state": "  Zustand: "}}
 
 
 def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableType:
@@ -21,12 +22,12 @@ def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableTy
         title = "gelernter Baum" if lang == "de" else "learned tree"
         return Panel(render_tree(reply.tree, compact=True), title=title, expand=False)
     if reply.kind == "state" and reply.state is not None:
-        text = Text("  state: ", style="dim")
+        text = Text(PREFIX[lang]["state"], style="dim")
         for name, value in reply.state.items():
             text.append(f"{name}", style="green" if value else "red")
             text.append("=1 " if value else "=0 ", style="dim")
         return text
-    return Text(PREFIX.get(reply.kind, "") + reply.text, style=STYLES.get(reply.kind, ""))
+    return Text(PREFIX[lang].get(reply.kind, "") + reply.text, style=STYLES.get(reply.kind, ""))
 
 
 def render_teacher(line: str) -> Text:
