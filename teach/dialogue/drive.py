@@ -34,7 +34,7 @@ def answer_with_oracle(manager: SessionManager, oracle: Oracle | None, console: 
         else:
             return
         if console is not None:
-            console.print(render_teacher(f"{said}   [oracle]"))
+            console.print(render_teacher(f"{said}   [oracle]", manager.mode, manager.lang))
         replies = manager.handle(said)
         if console is not None:
             show(console, manager, replies)
@@ -46,7 +46,7 @@ def run_script(script: Script, manager: SessionManager, console: Console, oracle
     show(console, manager, manager.greet())
     for _, line in script.lines:
         answer_with_oracle(manager, oracle, console, model_oracle)
-        console.print(render_teacher(line))
+        console.print(render_teacher(line, manager.mode, manager.lang))
         show(console, manager, manager.handle(line))
         if manager.finished:
             break

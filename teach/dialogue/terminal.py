@@ -20,6 +20,7 @@ from rich.console import Console
 from teach.dialogue.completion import TeachCompleter, command_words
 from teach.dialogue.drive import show
 from teach.dialogue.session import COMMANDS, SessionManager
+from teach.dialogue.view import prompt
 
 RUN_WORDS = {"run", "los", "ausfuhren"}
 
@@ -48,11 +49,8 @@ class Terminal:
         self.manager.emit = lambda reply: show(self.console, self.manager, [reply])
         show(self.console, self.manager, self.manager.greet())
         while not self.manager.finished:
-            asking = self.manager.mode == "asking"
-            prompt = ("Antwort> " if asking else "teach> ") if self.manager.lang == "de" else \
-                ("answer> " if asking else "teach> ")
             try:
-                line = self.prompt.prompt(prompt)
+                line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang))
             except KeyboardInterrupt:
                 continue
             except EOFError:

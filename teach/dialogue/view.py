@@ -30,7 +30,15 @@ def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableTy
     return Text(PREFIX[lang].get(reply.kind, "") + reply.text, style=STYLES.get(reply.kind, ""))
 
 
-def render_teacher(line: str) -> Text:
-    text = Text("teacher> ", style="bold green")
+def prompt(mode: str, lang: str) -> str:
+    """The prompt the terminal shows: ``teach>``, or ``answer>`` while a question is open."""
+    if mode == "asking":
+        return "Antwort> " if lang == "de" else "answer> "
+    return "teach> "
+
+
+def render_teacher(line: str, mode: str = "idle", lang: str = "en") -> Text:
+    """A typed line as it stands after the prompt (for transcripts of scripted dialogues)."""
+    text = Text(prompt(mode, lang), style="bold green")
     text.append(line)
     return text
