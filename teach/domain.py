@@ -143,6 +143,14 @@ class Domain:
         return any(a.pre or a.ram for a in self.actions)
 
 
+def check_tree_fits(domain: Domain, conditions: "set[str]", actions: "set[str]", path: str | Path | None) -> None:
+    """A tree (given by its condition and action names) may only use the domain's names."""
+    for name in sorted(conditions - set(domain.condition_names)):
+        raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", path)
+    for name in sorted(actions - set(domain.action_names)):
+        raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", path)
+
+
 def _line_of(text: str, needle: str, after_line: int = 1) -> int | None:
     """The first line (1-based) at or after ``after_line`` that contains ``needle``."""
     for number, line in enumerate(text.splitlines()[after_line - 1:], start=after_line):

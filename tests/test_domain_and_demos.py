@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from teach.demos import Demonstration, Step, parse_demonstration, read_demo_set, write_demonstration
+from teach.demos import Step, parse_demonstration, read_demo_set, write_demonstration
 from teach.domain import Literal, load_domain
 from teach.errors import FormatError
 

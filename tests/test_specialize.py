@@ -13,7 +13,7 @@ from conftest import ROOT, colledanchise_tree
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, Status, size, walk
 from teach.bt.tick import compile_tree
 from teach.demos import Demonstration, Step, parse_demonstration, read_demo_set
-from teach.domain import ActionDef, ConditionDef, Domain, Literal
+from teach.domain import ActionDef, ConditionDef, Domain
 from teach.errors import LearnError
 from teach.learn.model import detect_model
 from teach.learn.prune import prune, ramifications_of

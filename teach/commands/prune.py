@@ -29,18 +29,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from teach.bt.nodes import action_names, condition_names, size
     from teach.bt.xml import read_tree, write_tree
-    from teach.domain import load_domain
-    from teach.errors import DomainError
+    from teach.domain import check_tree_fits, load_domain
     from teach.learn.prune import prune_with_report, ramifications_of
 
     tree = read_tree(args.tree)
     ramifications = {}
     if args.domain:
         domain = load_domain(args.domain)
-        for name in sorted(condition_names(tree) - set(domain.condition_names)):
-            raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", args.tree)
-        for name in sorted(action_names(tree) - set(domain.action_names)):
-            raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", args.tree)
+        check_tree_fits(domain, condition_names(tree), action_names(tree), args.tree)
         ramifications = ramifications_of(domain)
     pruned, removed = prune_with_report(tree, ramifications)
     write_tree(args.output, pruned)

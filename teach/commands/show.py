@@ -30,7 +30,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.bt.render import render_text, render_tree
     from teach.bt.tick import tick
     from teach.bt.xml import read_tree
-    from teach.domain import load_domain
+    from teach.domain import check_tree_fits, load_domain
     from teach.errors import DomainError
 
     tree = read_tree(args.tree)
@@ -38,10 +38,7 @@ def run(args: argparse.Namespace) -> int:
     known = sorted(condition_names(tree))
     if args.domain:
         domain = load_domain(args.domain)
-        for name in sorted(condition_names(tree) - set(domain.condition_names)):
-            raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", args.tree)
-        for name in sorted(action_names(tree) - set(domain.action_names)):
-            raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", args.tree)
+        check_tree_fits(domain, condition_names(tree), action_names(tree), args.tree)
         labels = {c.name: c.label(args.lang) for c in domain.conditions}
         labels.update({a.name: a.label(args.lang) for a in domain.actions})
         known = list(domain.condition_names)

@@ -25,15 +25,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from teach.bt.nodes import action_names, condition_names
     from teach.bt.xml import read_tree
     from teach.demos import read_demo_set
-    from teach.domain import load_domain
+    from teach.domain import check_tree_fits, load_domain
     from teach.replay import replay
 
     domain = load_domain(args.domain) if args.domain else None
     domain, demos = read_demo_set(args.demos, domain)
     tree = read_tree(args.tree)
-    _check_vocabulary(tree, domain, args.tree)
+    check_tree_fits(domain, condition_names(tree), action_names(tree), args.tree)
     report = replay(tree, domain, demos, lenient=args.lenient)
     if args.json:
         print(json.dumps(_as_json(report, domain), indent=2))
@@ -50,18 +51,6 @@ def run(args: argparse.Namespace) -> int:
     mode = "lenient" if args.lenient else "strict"
     print(f"{report.summary()} ({mode})")
     return 0
-
-
-def _check_vocabulary(tree, domain, path) -> None:  # type: ignore[no-untyped-def]
-    from teach.bt.nodes import action_names, condition_names
-    from teach.errors import DomainError
-
-    for name in sorted(condition_names(tree)):
-        if not domain.has_condition(name):
-            raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", path)
-    for name in sorted(action_names(tree)):
-        if not domain.has_action(name):
-            raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", path)
 
 
 def _as_json(report, domain) -> dict:  # type: ignore[no-untyped-def]
