@@ -148,15 +148,18 @@ class RerunLogger(Observer):
     caller forgot it.
     """
 
-    def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *,
+    def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *, resume: bool = False,
                  scene_hz: float = 10.0, camera_hz: float = 2.0, jpeg_quality: int = 80, batch_rows: int | None = None):
         if spawn and not has_display():
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
         self.path = Path(path) if path is not None else default_recording_path(session_name)
         self._part = self.path.with_name(self.path.name + ".part")
+        self._earlier: list[Path] = []  # a resumed session's recording so far, merged in on close
         try:  # fail here with a clear line rather than inside rerun's writer
             self.path.parent.mkdir(parents=True, exist_ok=True)
+            if resume:
+                self._earlier = self._keep_earlier()
             self._part.open("wb").close()
         except OSError as exc:
             raise TeachError(f"cannot write the recording: {exc.strerror}", exc.filename or self._part) from None
@@ -413,6 +416,12 @@ class RerunLogger(Observer):
         self._log("learner/replay", rr.TextLog(f"replay: reproduced {reproduced}/{total} ({mode})", level="replay"),
                   _values(reproduced=reproduced, total=total, lenient=lenient))
 
+    def checkpoint(self) -> None:
+        """Write what is queued to the file now, so a killed session keeps it."""
+        if not self._closed:
+            self._flush()
+            self._rec.flush()
+
     def close(self) -> None:
         """Flush, finish the file (rerun writes its footer on disconnect) and move it into place."""
         if self._closed:
@@ -422,7 +431,35 @@ class RerunLogger(Observer):
         atexit.unregister(self.close)
         self._rec.flush()
         self._rec.disconnect()
-        os.replace(self._part, self.path)
+        if self._earlier:
+            self._merge_into_place()
+        else:
+            os.replace(self._part, self.path)
+
+    def _keep_earlier(self) -> list[Path]:
+        """Before a resumed session writes: what the session recorded so far, including the
+        unfinished part file a killed process left behind."""
+        earlier = [self.path] if self.path.exists() else []
+        if self._part.exists():
+            crashed = self.path.with_name(self.path.name + ".crashed")
+            os.replace(self._part, crashed)
+            earlier.append(crashed)
+        return earlier
+
+    def _merge_into_place(self) -> None:
+        """One recording of the whole session: the earlier parts and this one, merged by rerun."""
+        rerun = shutil.which("rerun") or str(Path(sys.executable).with_name("rerun"))
+        merged = self.path.with_name(self.path.name + ".merged")
+        result = subprocess.run([rerun, "rrd", "merge", "--continue-on-error", *map(str, self._earlier),
+                                 str(self._part), "-o", str(merged)], capture_output=True, text=True)
+        if result.returncode != 0 or not merged.exists():
+            # keep every piece rather than lose one: this part goes beside the earlier recording
+            os.replace(self._part, self.path.with_name(self.path.stem + ".resumed.rrd"))
+            return
+        os.replace(merged, self.path)
+        for piece in (self._part, *self._earlier):
+            if piece != self.path:
+                piece.unlink(missing_ok=True)
 
     def __enter__(self) -> RerunLogger:
         return self

@@ -64,6 +64,9 @@ class Observer:
     def on_external(self, name: str) -> None:
         """An external action (perturbation) nobody in the tree caused."""
 
+    def checkpoint(self) -> None:
+        """Make everything reported so far survive a crash; called before each new prompt."""
+
     def close(self) -> None:
         """Flush and release resources."""
 
@@ -75,7 +78,7 @@ class Observers(Observer):
         self.observers = [o for o in observers if o is not None]
 
     def __getattribute__(self, name: str) -> Any:
-        if name.startswith(("on_", "set_time", "close")):
+        if name.startswith(("on_", "set_time", "checkpoint", "close")):
             targets = object.__getattribute__(self, "observers")
 
             def fan_out(*args: Any, **kwargs: Any) -> None:

@@ -51,3 +51,34 @@ def test_sigkill_then_resume(ball, tmp_path):
                              "--no-record", "--base", str(tmp_path)], input="quit\n", text=True,
                             capture_output=True, timeout=120)
     assert result.returncode == 0 and f"{len(events)} demonstrations" in result.stdout
+
+
+def test_recording_survives_a_kill_and_a_resume(tmp_path):
+    from teach.log import read_recording
+
+    script = tmp_path / "rec.dialogue"
+    lines = ["@world symbolic", "@questions 0", SEQUENCE, "done"]
+    for _ in range(400):
+        lines += ["start BallFound", "go to the ball, grasp the ball, go to the bin, put the ball in the bin", "done"]
+    script.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    journal = tmp_path / "recordings" / "rec.journal.json"
+    process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay", str(script), "--base", str(tmp_path)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline:
+            if journal.exists() and len(json.loads(journal.read_text())["events"]) >= 3:
+                break
+            time.sleep(0.05)
+        os.kill(process.pid, signal.SIGKILL)
+    finally:
+        process.wait()
+    result = subprocess.run([sys.executable, "-m", "teach.cli", "session", "--resume", "rec", "--base", str(tmp_path)],
+                            input="state\nquit\n", text=True, capture_output=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    contents = read_recording(tmp_path / "recordings" / "rec.rrd")
+    said = [line.text for line in contents.dialogue if line.speaker == "teacher"]
+    # what was said before the kill and after the resume are both in the one recording, in order
+    assert SEQUENCE in said and said[-2:] == ["state", "quit"]
+    steps = [line.step for line in contents.dialogue]
+    assert steps == sorted(steps)

@@ -32,6 +32,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--spawn", action="store_true", help="also stream to a live rerun viewer")
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
     parser.add_argument("--viewer", action="store_true", help="show the MuJoCo viewer (needs a display)")
+    parser.add_argument("--pace", type=float, default=1.0,
+                        help="simulated seconds per wall-clock second, so you can watch and interrupt "
+                             "(default 1: real time; 0 = as fast as possible)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -42,7 +45,8 @@ def run(args: argparse.Namespace) -> int:
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     options = SessionOptions(session=name, domain=args.domain, lang=args.lang, questions=args.questions,
                              seed=args.seed, world=args.world, base=args.base, record=not args.no_record,
-                             spawn=args.spawn, resume=bool(args.resume), viewer=args.viewer)
+                             spawn=args.spawn, resume=bool(args.resume), viewer=args.viewer,
+                             pace=args.pace)
     manager = open_session(options)
     try:
         Terminal(manager, history=args.base / "recordings" / ".teach_history").run()

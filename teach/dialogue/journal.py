@@ -34,6 +34,7 @@ class Journal:
     questions: int = 5
     world: str = "mujoco"
     seed: int = 0
+    step: int = 0  # the session's step clock, so a resumed session's recording goes on from it
     events: list[dict] = field(default_factory=list)
     version: int = VERSION
 

@@ -8,6 +8,7 @@ adapts ``teach.sim`` to the session.
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
@@ -52,11 +53,32 @@ class _ViewerSync(Observer):
         self.viewer.sync()  # type: ignore[attr-defined]
 
 
+class _Pacer(Observer):
+    """Holds simulated time to at most ``pace`` times wall time, so a person can watch a run
+    (and press Ctrl-C in time); scripted replays run unpaced."""
+
+    def __init__(self, world: World, pace: float):
+        self.world, self.pace = world, pace
+        self._origin: tuple[float, float] | None = None
+
+    def on_scene(self, shapes: object) -> None:
+        now, sim = time.monotonic(), self.world.sim_time
+        if self._origin is None or now - self._origin[0] > 1.0 + (sim - self._origin[1]) / self.pace:
+            self._origin = (now, sim)  # first frame, or after a pause at the prompt: start afresh
+            return
+        ahead = (sim - self._origin[1]) / self.pace - (now - self._origin[0])
+        if ahead > 0:
+            time.sleep(ahead)
+
+
 class MujocoWorld:
-    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False):
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False,
+                 pace: float = 0.0):
         self.world = World(seed, domain)
         self.domain = self.world.domain
         self.observer = observer or Observer()
+        if pace > 0:
+            self.observer = Observers(self.observer, _Pacer(self.world, pace))
         if viewer:
             if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
                 raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
@@ -102,6 +124,8 @@ class MujocoWorld:
                  if fresh and action is not None]
         if stop_after is not None and trace.outcome == "interrupted":
             steps = steps[:stop_after]
+        if trace.outcome == "interrupted" and steps and steps[-1][0] == self.world.state():
+            steps.pop()  # stopped before it changed anything: the teacher's next step replaces it
         return RunResult(trace.outcome, steps, self.world.state())
 
     def close(self) -> None:

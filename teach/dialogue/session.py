@@ -178,6 +178,8 @@ class SessionManager:
         except TeachError as error:
             replies = [Reply("error", str(error))]
         self._say_all(replies)
+        self.observer.checkpoint()
+        self.journal.save(self.config.journal_path)  # the step clock too, so a resume goes on from it
         return replies
 
     def close(self) -> None:
@@ -667,6 +669,8 @@ class SessionManager:
         journal = Journal.load(config.journal_path)
         manager = cls(config, world, observer, journal)
         manager._rebuild_from_journal()
+        manager.step = journal.step + 1  # a step of its own: the kill may have come before the save
+        manager.observer.set_time(manager.step)
         current = manager.pruned or manager.planned
         if current is not None:
             from teach.bt.xml import tree_to_xml
@@ -701,6 +705,7 @@ class SessionManager:
 
     def _tick_clock(self) -> None:
         self.step += 1
+        self.journal.step = self.step
         self.observer.set_time(self.step)
 
     def _flush(self, replies: list[Reply]) -> list[Reply]:

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import shutil
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
+from teach.dialogue.journal import Journal
 from teach.dialogue.session import SessionConfig, SessionManager
 from teach.dialogue.worlds import OfflineWorld, SymbolicWorld, TeachingWorld
 from teach.domain import Domain, load_domain
@@ -30,6 +31,7 @@ class SessionOptions:
     resume: bool = False
     fresh: bool = False
     viewer: bool = False
+    pace: float = 0.0
 
 
 def default_domain() -> Domain:
@@ -40,11 +42,12 @@ def default_domain() -> Domain:
     return load_domain(Path(str(files("teach.sim") / "assets" / "ball_in_bin.toml")))
 
 
-def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer: bool = False) -> TeachingWorld:
+def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer: bool = False,
+               pace: float = 0.0) -> TeachingWorld:
     if kind == "mujoco":
         from teach.dialogue.mujoco_world import MujocoWorld
 
-        return MujocoWorld(domain, seed, observer, viewer)
+        return MujocoWorld(domain, seed, observer, viewer, pace)
     if viewer:
         raise TeachError("--viewer shows the MuJoCo world: use it with --world mujoco")
     if kind == "symbolic":
@@ -55,7 +58,12 @@ def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer:
 
 
 def open_session(options: SessionOptions) -> SessionManager:
-    """A new or resumed session with its world and its recording."""
+    """A new or resumed session with its world and its recording. A resumed session keeps the
+    domain, language, budget, world and seed it was started with."""
+    if options.resume:
+        journal = Journal.load(options.base / "recordings" / f"{options.session}.journal.json")
+        options = replace(options, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
+                          questions=journal.questions, world=journal.world, seed=journal.seed)
     domain = load_domain(options.domain) if options.domain else default_domain()
     if options.lang not in ("en", "de"):
         raise TeachError(f"unknown language {options.lang!r} (choose en or de)")
@@ -71,13 +79,13 @@ def open_session(options: SessionOptions) -> SessionManager:
         raise TeachError(f"session {options.session!r} exists already: resume it with --resume {options.session}",
                          config.journal_path)
     observer = Observers()
-    world = make_world(options.world, domain, options.seed, observer, options.viewer)
+    world = make_world(options.world, domain, options.seed, observer, options.viewer, options.pace)
     if options.record:
         from teach.log import RerunLogger
 
         rrd = config.base / "recordings" / f"{options.session}.rrd"
         rrd.parent.mkdir(parents=True, exist_ok=True)
-        observer.observers.append(RerunLogger(rrd, options.session, spawn=options.spawn))
+        observer.observers.append(RerunLogger(rrd, options.session, spawn=options.spawn, resume=options.resume))
     if options.resume:
         return SessionManager.resume(config, world, observer)
     return SessionManager(config, world, observer)
