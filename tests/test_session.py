@@ -127,6 +127,10 @@ def test_run_interrupt_and_correction(ball, tmp_path):
     session.handle("done")
     _, demos = read_demo_set(tmp_path / "demos" / "t")
     assert demos[-1].actions == (1, 2, 3, 4, 5)
+    if session.pending is not None:
+        # while a question is open the world stays as it is: answer (or skip) first
+        assert "answer my question first" in session.handle("start")[0].text
+        session.handle("skip")
     replies = session.handle("start")
     replies = session.handle("run")
     assert any("finished" in r.text for r in replies)
@@ -179,3 +183,89 @@ def test_commands_answer(ball, tmp_path, line):
     session.handle(SEQUENCE)
     session.handle("done")
     assert "error" not in kinds(session.handle(line))
+
+
+def test_undo_never_refunds_a_question(ball, tmp_path):
+    session = new_session(ball, tmp_path, questions=1)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    session.handle("done")
+    assert session.pending is not None and session.budget.left == 0
+    session.handle("undo")  # takes back the demonstration the open question was about
+    assert session.pending is None and session.budget.left == 0
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    session.handle("done")
+    assert session.pending is None and "used all my questions" in session.handle("ask")[0].text
+
+
+def test_world_stays_put_while_a_question_is_open(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    session.handle("done")
+    assert session.pending is not None
+    for line in ("run 1", "reset", "start BinClose", "demonstrate"):
+        assert session.handle(line)[0].kind == "error" and session.pending is not None
+
+
+def test_bad_numbers_are_one_line_errors(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    for line in ("run ²", "reset x", "run -1"):
+        replies = session.handle(line)
+        assert [r.kind for r in replies] == ["error"]
+
+
+def test_generations_are_never_overwritten(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(f"model {ball.path}")
+    session.handle("plan")  # shows the plan again: no new generation
+    session.handle(SEQUENCE)
+    session.handle("done")
+    first = sorted(p.name for p in (tmp_path / "trees" / "t").glob("gen-*.xml"))
+    assert first == ["gen-01.xml", "gen-02.xml"]
+    saved = (tmp_path / "trees" / "t" / "gen-01.xml").read_bytes()
+    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
+    resumed = SessionManager.resume(config, SymbolicWorld(ball))
+    resumed.handle("start BallFound")
+    resumed.handle(SECOND)
+    resumed.handle("done")
+    assert (tmp_path / "trees" / "t" / "gen-01.xml").read_bytes() == saved
+    assert (tmp_path / "trees" / "t" / "gen-03.xml").is_file()
+
+
+def test_damaged_journal_and_bad_names_through_the_cli(ball, tmp_path, capsys):
+    from teach.cli import main
+
+    (tmp_path / "recordings").mkdir()
+    (tmp_path / "recordings" / "bad.journal.json").write_text(
+        '{"version": 1, "session": "bad", "domain": "", "events": [{"kind": "demo"}]}')
+    assert main(["session", "--resume", "bad", "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 2
+    assert "journal is damaged" in capsys.readouterr().err
+    keep = tmp_path / "precious"
+    keep.mkdir()
+    script = tmp_path / "x.dialogue"
+    script.write_text("state\n")
+    assert main(["replay", str(script), "--session", "..", "--world", "symbolic", "--no-record",
+                 "--base", str(tmp_path / "demos")]) == 2
+    assert "session name" in capsys.readouterr().err and keep.is_dir()
+
+
+def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
+    from teach.cli import main
+
+    script = tmp_path / "de.dialogue"
+    script.write_text("@lang de\n@world symbolic\nBall finden\n", encoding="utf-8")
+    assert main(["replay", str(script), "--no-record", "--base", str(tmp_path)]) == 0
+    capsys.readouterr()
+    import subprocess
+    import sys
+    result = subprocess.run([sys.executable, "-m", "teach.cli", "session", "--resume", "de", "--no-record",
+                             "--base", str(tmp_path)], input="quit\n", text=True, capture_output=True, timeout=120)
+    assert result.returncode == 0 and "Hallo!" in result.stdout  # German, as it was started

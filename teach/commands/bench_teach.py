@@ -43,6 +43,10 @@ def run(args: argparse.Namespace) -> int:
     from teach.observe import Observer
     from teach.replay import replay
 
+    from teach.errors import TeachError
+
+    if args.questions < 0:
+        raise TeachError("--questions must be 0 or more")
     domain = load_domain(args.domain) if args.domain else None
     domain, train = read_demo_set(args.train, domain)
     _, test = read_demo_set(args.test, domain)
@@ -66,7 +70,8 @@ def run(args: argparse.Namespace) -> int:
                 break
             answer_with_oracle(manager, oracle, None)
         tree = manager.pruned
-    assert tree is not None
+    if tree is None:
+        raise TeachError("the training demonstrations show no action, so there is nothing to learn", args.train)
     strict = replay(tree, domain, test)
     lenient = replay(tree, domain, test, lenient=True)
     if args.json:

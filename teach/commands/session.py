@@ -48,8 +48,10 @@ def run(args: argparse.Namespace) -> int:
                              spawn=args.spawn, resume=bool(args.resume), viewer=args.viewer,
                              pace=args.pace)
     manager = open_session(options)
+    history = args.base / "recordings" / ".teach_history"
+    history.parent.mkdir(parents=True, exist_ok=True)
     try:
-        Terminal(manager, history=args.base / "recordings" / ".teach_history").run()
+        Terminal(manager, history=history).run()
     finally:
         manager.close()
     return 0

@@ -25,7 +25,7 @@ from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import Answer, Question, QuestionBudget, describe_situation, select_question
 from teach.dialogue.worlds import TeachingWorld
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
-from teach.errors import LearnError, TeachError
+from teach.errors import FormatError, LearnError, TeachError
 from teach.observe import Observer
 
 if TYPE_CHECKING:
@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     from teach.learn.specialize import Update
 
 QUESTIONS_PER_TURN = 2
+BLOCKED_WHILE_ASKING = {"demonstrate", "run", "start", "reset", "perturb", "model", "ask"}
 MIN_DEMOS_BEFORE_ASKING = 2
 
 
@@ -161,12 +162,15 @@ class SessionManager:
         self._tick_clock()
         self.observer.on_dialogue("teacher", line, self.budget.left)
         try:
-            command, rest = self._command(line)
+            command, rest = self.command(line)
             answering = command is None or command.names[0] in ("done", "skip")
             if self.pending_model is not None and answering:
                 replies = self._answer_model(line)
             elif self.pending is not None and answering:
                 replies = self._answer(line)
+            elif command is not None and self.mode == "asking" and command.names[0] in BLOCKED_WHILE_ASKING:
+                replies = [Reply("error", _t(self.lang, "Please answer my question first (an action, 'done' or 'skip').",
+                                             "Bitte beantworte zuerst meine Frage (eine Handlung, 'fertig' oder 'weiter')."))]
             elif command is not None:
                 self._turn_questions = 0
                 replies = command.handler(self, rest)
@@ -189,7 +193,7 @@ class SessionManager:
 
     # --- commands --------------------------------------------------------------------------
 
-    def _command(self, line: str) -> tuple[Command | None, str]:
+    def command(self, line: str) -> tuple[Command | None, str]:
         words = line.split(maxsplit=1)
         head = normalize(words[0]) if words else ""
         for command in COMMANDS:
@@ -219,8 +223,8 @@ class SessionManager:
 
     def cmd_done(self, rest: str) -> list[Reply]:
         if self.open is None or not self.open.steps:
-            return [Reply("error", _t(self.lang, "No demonstration is open: show me some steps first.",
-                                      "Es läuft keine Vorführung: zeig mir erst ein paar Schritte."))]
+            return [Reply("error", _t(self.lang, "You have not shown me any steps yet.",
+                                      "Du hast mir noch keine Schritte gezeigt."))]
         state = self.world.state()
         unmet = self._unmet_goal(state)
         if unmet:
@@ -243,6 +247,7 @@ class SessionManager:
                     self._state_reply()]
         if not self.demos:
             return [Reply("error", _t(self.lang, "Nothing to undo.", "Nichts rückgängig zu machen."))]
+        self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
         self.journal.add(self.config.journal_path, kind="undo")
         self._rebuild_from_journal()
         head = self._flush([Reply("info", _t(self.lang, "Undone: the last demonstration or answer.",
@@ -263,7 +268,7 @@ class SessionManager:
         if tree is None:
             return [Reply("error", _t(self.lang, "I have not learned anything yet: show me first.",
                                       "Ich habe noch nichts gelernt: zeig es mir zuerst."))]
-        stop_after = int(rest) if rest.strip().isdigit() else None
+        stop_after = _number(rest, self.lang)
         if self.open is not None and self.open.steps:
             return [Reply("error", _t(self.lang, "Finish ('done') or cancel the open demonstration first.",
                                       "Beende ('fertig') oder verwirf zuerst die laufende Vorführung."))]
@@ -299,6 +304,8 @@ class SessionManager:
         return [Reply("info", _t(self.lang, "The robot is not running.", "Der Roboter läuft gerade nicht."))]
 
     def cmd_show(self, rest: str) -> list[Reply]:
+        if self.pruned is None and self.planned is not None:
+            return [Reply("tree", tree=self.planned)]
         if self.pruned is None:
             return [Reply("info", _t(self.lang, "No tree yet.", "Noch kein Baum."))]
         tree = self.learner.tree if normalize(rest) in ("full", "ganz", "all") else self.pruned
@@ -319,7 +326,11 @@ class SessionManager:
         return [self._state_reply()]
 
     def cmd_reset(self, rest: str) -> list[Reply]:
-        self.world.reset(int(rest) if rest.strip().isdigit() else None)
+        if self.open is not None and self.open.steps:
+            return [Reply("error", _t(self.lang, "Finish or cancel the open demonstration first.",
+                                      "Beende oder verwirf zuerst die laufende Vorführung."))]
+        self.open = None
+        self.world.reset(_number(rest, self.lang))
         return [self._state_reply()]
 
     def cmd_ask(self, rest: str) -> list[Reply]:
@@ -378,7 +389,7 @@ class SessionManager:
             raise TeachError(f"its conditions and actions must be those of {self.domain.path}", path)
         self.model_repair = ModelRepair(model, self.budget, lang=self.lang)
         self.pending_model = None
-        self.journal.add(self.config.journal_path, kind="model", file=str(path))
+        self.journal.add(self.config.journal_path, kind="model", file=str(path.resolve()))
         return self._show_plan(ask=True)
 
     def cmd_plan(self, rest: str) -> list[Reply]:
@@ -388,11 +399,14 @@ class SessionManager:
         return self._show_plan(ask=False)
 
     def _show_plan(self, ask: bool) -> list[Reply]:
+        """What the action definitions give; after a change (``ask``) the tree is saved as a
+        generation and, while it is not usable, the next repair question is asked."""
         assert self.model_repair is not None
         outcome = self.model_repair.plan()
         if outcome.usable and outcome.tree is not None:
             self.planned = outcome.tree
-            self._save_generation(outcome.tree, "planned from the action definitions")
+            if ask:
+                self._save_generation(outcome.tree, "planned from the action definitions")
             return [Reply("say", _t(self.lang, "I can build a behaviour from these definitions.",
                                     "Aus diesen Beschreibungen kann ich ein Verhalten bauen.")),
                     Reply("tree", tree=outcome.tree)]
@@ -408,6 +422,7 @@ class SessionManager:
         if question is None:
             return [Reply("info", _t(self.lang, "I do not know what else to ask.", "Ich weiß nicht, was ich noch fragen soll."))]
         self.pending_model = question
+        self.journal.add(self.config.journal_path, kind="asked", model_question=_question_data(question))
         text = self.model_repair.text(question, self.lang)
         self.observer.on_question(text, self.budget.left)
         return [Reply("question", text)]
@@ -468,9 +483,11 @@ class SessionManager:
         try:
             update = self.learner.update(demo, source=source)
         except LearnError as error:
-            self.open = None
-            return [Reply("error", _t(self.lang, f"I cannot learn this demonstration: {error.message}",
-                                      f"Diese Vorführung kann ich nicht lernen: {error.message}"))]
+            self.open.steps.pop()  # the goal line: the demonstration stays open to be mended
+            return [Reply("error", _t(self.lang, f"I cannot learn this demonstration: {error.message}. "
+                                      "Say 'undo' to take back steps, or 'cancel'.",
+                                      f"Diese Vorführung kann ich nicht lernen: {error.message}. "
+                                      "Sag 'zurück', um Schritte zurückzunehmen, oder 'abbrechen'."))]
         write_demonstration(path, demo)
         self.open = None
         self._remember(demo)
@@ -509,6 +526,7 @@ class SessionManager:
         self._turn_questions += 1
         self.pending = question
         self.asked.add(question.state)
+        self.journal.add(self.config.journal_path, kind="asked", state=state_text(question.state))
         text = question.text(self.domain, self.lang)
         self.observer.on_question(text, self.budget.left)
         options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
@@ -611,7 +629,7 @@ class SessionManager:
         """Write the next ``gen-NN.xml`` atomically and report it to the observer."""
         from teach.bt.xml import tree_to_xml, write_tree
 
-        self.generation += 1
+        self.generation = _last_generation(self.config.tree_dir) + 1  # never overwrite a kept generation
         path = self.config.tree_dir / f"gen-{self.generation:02d}.xml"
         write_tree(path, tree)
         self.observer.on_tree(self.generation, tree, tree_to_xml(tree), f"generation {self.generation}: {reason}")
@@ -621,15 +639,24 @@ class SessionManager:
 
     def _rebuild_from_journal(self) -> None:
         """Re-learn everything in the journal (after an undo or on resume), deterministically."""
+        try:
+            self._replay_journal()
+        except (KeyError, TypeError, ValueError, AttributeError) as error:
+            raise FormatError(f"the session journal is damaged ({type(error).__name__}: {error})",
+                              self.config.journal_path) from None
+
+    def _replay_journal(self) -> None:
         from teach.learn.specialize import Specializer
 
-        events = _effective_events(self.journal.events)
         self.learner = Specializer(self.domain)
         self.demos, self.labels, self.asked = [], {}, set()
         self.model_repair, self.pending_model, self.planned = None, None, None
-        self.budget = QuestionBudget(self.config.questions)
-        self.generation = sum(1 for e in self.journal.events if e["kind"] in ("demo", "answer", "undo"))
-        for event in events:
+        # every question asked stays paid for, even when what it was about is undone
+        self.budget = QuestionBudget(self.config.questions,
+                                     sum(1 for e in self.journal.events if e["kind"] == "asked"))
+        self.generation = _last_generation(self.config.tree_dir)
+        answered = 0
+        for event in _effective_events(self.journal.events):
             if event["kind"] == "demo":
                 demo = read_demonstration(self.config.demo_dir / event["file"], self.domain)
                 self.learner.update(demo, source=event.get("source"))
@@ -642,20 +669,20 @@ class SessionManager:
             elif event["kind"] == "model_answer" and self.model_repair is not None:
                 from teach.dialogue.model_repair import ModelQuestion
 
-                self.budget.used += 1
                 if event["answer"] != "skip":
                     data = dict(event["question"])
                     literal = Literal.parse(data.pop("literal")) if data.get("literal") else None
-                    data.pop("literal", None)
                     self.model_repair.apply(ModelQuestion(literal=literal, **data), event["answer"])
             elif event["kind"] == "answer":
-                self.budget.used += 1
+                answered += 1
                 state = parse_state_text(event["state"])
+                if len(state) != len(self.domain.conditions):
+                    raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
                 self.asked.add(state)
                 if event["answer"] != "skip":
                     answer = None if event["answer"] == "done" else event["answer"]
                     try:
-                        self.learner.teach_step(state, answer, source=f"answer to question {self.budget.used}")
+                        self.learner.teach_step(state, answer, source=f"answer to question {answered}")
                         self.labels[state] = answer
                     except LearnError:
                         pass  # it was rejected when it was given, too
@@ -724,6 +751,26 @@ class SessionManager:
                 self.observer.on_dialogue("robot", reply.text, self.budget.left)
 
 
+def _last_generation(folder: Path) -> int:
+    """The highest ``gen-NN.xml`` number in a folder (0 when there is none)."""
+    numbers = [int(p.stem[4:]) for p in folder.glob("gen-*.xml") if p.stem[4:].isdecimal()]
+    return max(numbers, default=0)
+
+
+def _number(text: str, lang: str) -> int | None:
+    """An optional whole number argument ("run 3", "reset 7")."""
+    if not text.strip():
+        return None
+    try:
+        value = int(text.strip())
+    except ValueError:
+        raise TeachError(_t(lang, f"expected a whole number, not {text.strip()!r}",
+                            f"erwartet eine ganze Zahl, nicht {text.strip()!r}")) from None
+    if value < 0:
+        raise TeachError(_t(lang, "the number cannot be negative", "die Zahl darf nicht negativ sein"))
+    return value
+
+
 def _question_data(question: "ModelQuestion") -> dict:
     return {"kind": question.kind, "action": question.action, "other": question.other,
             "literal": str(question.literal) if question.literal is not None else ""}
@@ -781,7 +828,7 @@ SKIP_WORDS = {"skip", "dont know", "don t know", "i dont know", "i don t know", 
               "ich weiss nicht", "keine ahnung", "uberspringen"}
 
 COMMANDS: list[Command] = [
-    Command(("help", "hilfe", "h", "?"), "help", "show this help", "diese Hilfe zeigen", SessionManager.cmd_help),
+    Command(("help", "hilfe", "h"), "help", "show this help", "diese Hilfe zeigen", SessionManager.cmd_help),
     Command(("demonstrate", "demo", "zeigen", "vorfuhren"), "demonstrate [steps]", "start a demonstration",
             "eine Vorführung beginnen", SessionManager.cmd_demonstrate),
     Command(("done", "fertig"), "done", "the task is finished: learn this demonstration",

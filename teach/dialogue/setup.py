@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -57,9 +58,15 @@ def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer:
     raise TeachError(f"unknown world {kind!r} (choose from {', '.join(WORLDS)})")
 
 
+SESSION_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
+
+
 def open_session(options: SessionOptions) -> SessionManager:
     """A new or resumed session with its world and its recording. A resumed session keeps the
     domain, language, budget, world and seed it was started with."""
+    if not SESSION_NAME.match(options.session):
+        raise TeachError(f"session name {options.session!r} must be letters, digits, '-' and '_' "
+                         "(it names folders under demos/ and trees/)")
     if options.resume:
         journal = Journal.load(options.base / "recordings" / f"{options.session}.journal.json")
         options = replace(options, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,

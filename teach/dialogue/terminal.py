@@ -22,7 +22,6 @@ from teach.dialogue.drive import show
 from teach.dialogue.session import COMMANDS, SessionManager
 from teach.dialogue.view import prompt
 
-RUN_WORDS = {"run", "los", "ausfuhren"}
 
 
 class Terminal:
@@ -59,9 +58,9 @@ class Terminal:
             show(self.console, self.manager, self._handle(line))
 
     def _handle(self, line: str) -> list:
-        words = line.strip().split()
-        if words and words[0].lower() in RUN_WORDS and self.manager.pending is None:
-            return self._run_robot(" ".join(words[1:]))
+        command, rest = self.manager.command(line)
+        if command is not None and command.names[0] == "run" and self.manager.mode != "asking":
+            return self._run_robot(rest)
         return self.manager.handle(line)
 
     def _run_robot(self, rest: str) -> list:

@@ -110,13 +110,13 @@ class SymbolicWorld:
         names = self.domain.condition_names
         result = RunResult("timeout")
         for _ in range(max_actions):
-            if interrupt is not None and interrupt() or stop_after is not None and len(result.steps) >= stop_after:
-                result.outcome = "interrupted"
-                break
             ticked = tick(tree, dict(zip(names, self._state)))
             self.observer.on_tick(tree, ticked)
             if ticked.status is not Status.RUNNING or ticked.action is None:
                 result.outcome = "success" if ticked.status is Status.SUCCESS else "failure"
+                break
+            if interrupt is not None and interrupt() or stop_after is not None and len(result.steps) >= stop_after:
+                result.outcome = "interrupted"
                 break
             before = self._state
             if on_action is not None:
