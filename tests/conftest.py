@@ -6,7 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from teach.bt.nodes import Action, Condition, Fallback, Node, Sequence
+from teach import evaluate
+from teach.bt.nodes import Node
 from teach.domain import Domain, load_domain
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -20,9 +21,4 @@ def ball() -> Domain:
 
 def colledanchise_tree() -> Node:
     """Fig. 2.5 without AskForHelp: the 16-node reference tree of Colledanchise & Ögren."""
-    def pair(condition: str, action: str) -> Node:
-        return Fallback((Condition(condition), Action(action)))
-
-    return Sequence((pair("BallFound", "FindBall"), pair("BallClose", "ApproachBall"),
-                     pair("BallGrasped", "GraspBall"), pair("BinClose", "ApproachBin"),
-                     pair("BallPlaced", "PlaceBall")))
+    return evaluate.colledanchise_tree(load_domain(BALL_DOMAIN))

@@ -57,7 +57,40 @@ class TeachingWorld(Protocol):
     def close(self) -> None: ...
 
 
-class SymbolicWorld:
+class OfflineWorld:
+    """No world at all, only a state: the session learns from demonstration files and answers.
+    (``SymbolicWorld`` adds actions to it.)"""
+
+    events: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {}
+
+    def __init__(self, domain: Domain):
+        self.domain = domain
+        self._state: State = tuple(False for _ in domain.conditions)
+
+    def state(self) -> State:
+        return self._state
+
+    def arrange(self, state: State) -> None:
+        self._state = tuple(state)
+
+    def reset(self, seed: int | None = None) -> None:
+        self._state = tuple(False for _ in self.domain.conditions)
+
+    def act(self, action: str) -> ActResult:
+        return ActResult(False, self._state, self._state, "this session has no world to act in")
+
+    def perturb(self, event: str) -> ActResult:
+        return ActResult(False, self._state, self._state, "this session has no world to act in")
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        return RunResult("failure", [], self._state)
+
+    def close(self) -> None:
+        pass
+
+
+class SymbolicWorld(OfflineWorld):
     """Any domain with an action model, simulated symbolically (no physics)."""
 
     events = {
@@ -68,21 +101,14 @@ class SymbolicWorld:
         if not domain.has_model:
             from teach.errors import DomainError
             raise DomainError("the symbolic world needs an action model (pre/ram) in the domain file", domain.path)
-        self.domain = domain
+        super().__init__(domain)
         self.observer = observer or Observer()
         self._rng = random.Random(seed)
-        self._state: State = tuple(False for _ in domain.conditions)
-
-    def state(self) -> State:
-        return self._state
-
-    def arrange(self, state: State) -> None:
-        self._state = tuple(state)
 
     def reset(self, seed: int | None = None) -> None:
         if seed is not None:
             self._rng = random.Random(seed)
-        self._state = tuple(False for _ in self.domain.conditions)
+        super().reset(seed)
 
     def act(self, action: str) -> ActResult:
         before = self._state
@@ -127,39 +153,3 @@ class SymbolicWorld:
             result.steps.append((before, ticked.action))
         result.final_state = self._state
         return result
-
-    def close(self) -> None:
-        pass
-
-
-class OfflineWorld:
-    """No world at all: the session learns only from demonstration files and answers."""
-
-    events: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {}
-
-    def __init__(self, domain: Domain):
-        self.domain = domain
-        self._state: State = tuple(False for _ in domain.conditions)
-
-    def state(self) -> State:
-        return self._state
-
-    def arrange(self, state: State) -> None:
-        self._state = tuple(state)
-
-    def reset(self, seed: int | None = None) -> None:
-        self._state = tuple(False for _ in self.domain.conditions)
-
-    def act(self, action: str) -> ActResult:
-        return ActResult(False, self._state, self._state, "this session has no world to act in")
-
-    def perturb(self, event: str) -> ActResult:
-        return ActResult(False, self._state, self._state, "this session has no world to act in")
-
-    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        return RunResult("failure", [], self._state)
-
-    def close(self) -> None:
-        pass
-
