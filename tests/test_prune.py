@@ -361,3 +361,13 @@ def test_prune_command_bad_input(tmp_path: Path) -> None:
     assert "Traceback" not in done.stderr and str(bad) in done.stderr
     assert len(done.stderr.strip().splitlines()) == 1
     assert not out.exists()
+
+
+def test_parallel_with_a_threshold_between_one_and_all_inside_another_parallel():
+    # found by fuzzing: the inner 2-of-3 Parallel's result used to count as never known, so the
+    # outer one looked as if it never returned, and FindBall was dropped as unreachable
+    from teach.bt.nodes import Action, Condition, Inverter, Parallel, Sequence
+
+    inner = Parallel((Condition("BallFound"), Condition("BallClose"), Condition("BinClose")), 2)
+    tree = Sequence((Inverter(Parallel((inner, Condition("BallGrasped")), 2)), Action("FindBall")))
+    assert_equivalent(tree, prune(tree), ["BallFound", "BallClose", "BallGrasped", "BinClose", "BallPlaced"])

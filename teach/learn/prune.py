@@ -333,6 +333,19 @@ class _Exact:
         self.states, self.ramifications, self.removed = states, ramifications, removed
         self.pure: dict[int, tuple[int, int]] = {}
 
+    def _counted(self, pairs: list[tuple[int, int]], threshold: int, pure: int) -> tuple[int, int]:
+        """SUCCESS / FAILURE states of an M-of-N Parallel whose children are all pure there."""
+        success = failure = 0
+        for bit in range(pure.bit_length()):
+            mask = 1 << bit
+            if pure & mask:
+                wins = sum(1 for won, _ in pairs if won & mask)
+                if wins >= threshold:
+                    success |= mask
+                elif len(pairs) - wins > len(pairs) - threshold:
+                    failure |= mask
+        return success, failure
+
     def purity(self, node: Node) -> tuple[int, int]:
         """States in which the subtree returns SUCCESS / FAILURE without ticking an action."""
         key = id(node)
@@ -356,7 +369,7 @@ class _Exact:
                 through &= go
             passes = through
             result = (passes, stops) if isinstance(node, Sequence) else (stops, passes)
-        else:  # Parallel: exact for M = N and M = 1, else nothing is promised
+        else:  # Parallel: exact for every M, by counting where 1 < M < N
             pairs = [self.purity(kid) for kid in node.children]
             pure = s.all
             for success, failure in pairs:
@@ -371,7 +384,7 @@ class _Exact:
             elif node.success_threshold == 1:
                 result = (pure & any_success, all_failure)
             else:
-                result = (0, 0)
+                result = self._counted(pairs, node.success_threshold, pure)
         self.pure[key] = result
         return result
 
@@ -436,7 +449,5 @@ class _Exact:
         rebuilt_node = node if all(a is b for a, b in zip(kids, node.children)) else replace(node, children=tuple(kids))
         if acts:
             return rebuilt_node, s.all, s.all
-        success, failure = self.purity(node)
-        if node.success_threshold in (1, len(kids)):
-            return rebuilt_node, reach & success, reach & failure
-        return rebuilt_node, reach, reach
+        success, failure = self.purity(node)  # exact: no child ticks an action
+        return rebuilt_node, reach & success, reach & failure
