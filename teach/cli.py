@@ -51,6 +51,10 @@ def main(argv: list[str] | None = None) -> int:
     except TeachError as error:
         print(f"teach: {error}", file=sys.stderr)
         return 2
+    except OSError as error:  # a file the command needed could not be read or written
+        where = f"{error.filename}: " if error.filename else ""
+        print(f"teach: {where}{error.strerror or error}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("teach: interrupted", file=sys.stderr)
         return 130

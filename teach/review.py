@@ -33,7 +33,8 @@ def summary(contents: RecordingContents) -> Group:
 
 
 def _header(contents: RecordingContents) -> Panel:
-    steps = [t.step for t in contents.ticks if t.step is not None]
+    steps = [line.step for line in contents.dialogue if line.step is not None] + \
+        [t.step for t in contents.ticks if t.step is not None]
     counts = [_count(len(contents.demonstrations), "demonstration"), _count(len(contents.questions), "question"),
               _count(len(contents.generations), "tree generation"), _count(len(contents.ticks), "tick"),
               _count(len(contents.externals), "external action")]

@@ -1,7 +1,7 @@
 """Write a tree as Graphviz DOT (render it with `dot -Tsvg`).
 
 Example:
-    teach dot trees/ball/colledanchise.xml -o colledanchise.dot
+    teach dot demos/ball/reference/colledanchise.xml -o colledanchise.dot
 """
 
 from __future__ import annotations

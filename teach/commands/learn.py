@@ -1,7 +1,7 @@
 """Learn a behaviour tree with one of the thesis's three approaches (§4.1-4.3).
 
 Example:
-    teach learn demos/ball/delta1 --approach specialize --prune -o trees/ball/delta1.xml
+    teach learn demos/ball/delta1 --approach specialize --prune -o delta1.xml
 
 Approaches:
   pabt        PA-BT from the domain's own action model and goal (no demonstrations needed;
@@ -64,10 +64,10 @@ def run(args: argparse.Namespace) -> int:
         tree = prune(tree, ramifications)
         generations = [*generations, tree]
         parts.append(f"{size(tree)} after pruning")
+    write_tree(args.output, tree)  # the result first: a bad -o path leaves nothing behind
     if args.generations:
         write_generations(args.generations, generations)
         parts.append(f"{len(generations)} generations in {args.generations}")
-    write_tree(args.output, tree)
     if demos:
         parts.append(f"training set {replay(tree, domain, demos).summary()} (strict)")
     print(", ".join(parts) + f" -> {args.output}")
@@ -94,6 +94,7 @@ def _inputs(args: argparse.Namespace):  # type: ignore[no-untyped-def]
 
 def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     """Generations (last = the learned tree) and the ramifications pruning may use."""
+    from teach.errors import LearnError
     from teach.learn.model import detect_model, learn_detect
     from teach.learn.pabt import expand
     from teach.learn.specialize import Specializer
@@ -105,6 +106,9 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     ramifications = {a.name: a.ram for a in model.actions if a.ram}
     if approach == "detect":
         return learn_detect(domain, demos), ramifications
+    if not any(demo.actions for demo in demos):
+        raise LearnError("no demonstration shows an action (only goal states), so there is no order to learn",
+                         demos[0].path.parent if demos and demos[0].path else None)
     learner = Specializer(domain, action_order(domain, demos))
     generations = [learner.tree]
     for demo in demos:

@@ -1,7 +1,8 @@
 """Remove redundant and unreachable nodes from a tree without changing what it does (thesis §4.2.2).
 
 Example:
-    teach prune trees/ball/pabt.xml -o trees/ball/pabt-pruned.xml --domain demos/ball/domain.toml
+    teach learn demos/ball/delta1 --approach detect -o delta1.xml
+    teach prune delta1.xml -o delta1-pruned.xml --domain demos/ball/domain.toml
 
 With --domain, an action's ramifications count as known once it has succeeded (a condition
 right after Fallback(BallFound, FindBall) need not test BallFound again); without it only the

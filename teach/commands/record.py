@@ -1,7 +1,7 @@
 """Record a demonstration in the MuJoCo world by guiding the robot (headless, scripted).
 
 Example:
-    teach record --set ball/sim --start BallFound,BinClose --seed 3 ApproachBall GraspBall PlaceBall
+    teach record --set ball/sim --start BallFound,BinClose --seed 0 ApproachBall GraspBall ApproachBin PlaceBall
 
 Each argument is an action (name or phrase, e.g. "grasp the ball") or a perturbation
 (knock_ball, take_ball, move_bin, push_robot). The state before and after every step is read
@@ -57,8 +57,18 @@ def run(args: argparse.Namespace) -> int:
             if viewer is not None:
                 viewer.sync()
         demo = recorder.done()
-        path = save_demonstration(demo, args.root / args.demo_set, world.domain)
+        path = save_demonstration(demo, _set_folder(args.root, args.demo_set), world.domain)
     sys.stdout.write(format_demonstration(demo))
     print(f"written {path}", file=sys.stderr)
     return 0
 
+
+
+def _set_folder(root: Path, name: str) -> Path:
+    """ROOT/SET, refusing names that would leave ROOT or write into it directly."""
+    from teach.errors import TeachError
+
+    parts = Path(name).parts
+    if not parts or any(p in ("..", ".") for p in parts) or Path(name).is_absolute():
+        raise TeachError(f"--set {name!r} must name a folder under {root} (like ball/sim)")
+    return root / name

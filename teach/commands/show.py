@@ -1,7 +1,7 @@
 """Show a tree in the terminal, optionally ticked once in a given state.
 
 Example:
-    teach show trees/ball/colledanchise.xml --state BallFound,BallClose --domain demos/ball/domain.toml
+    teach show demos/ball/reference/colledanchise.xml --state BallFound,BallClose --domain demos/ball/domain.toml
 """
 
 from __future__ import annotations

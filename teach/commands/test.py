@@ -1,7 +1,7 @@
 """Replay demonstrations against a tree (the thesis's sanity check, §5).
 
 Example:
-    teach test trees/ball/colledanchise.xml demos/ball/delta2
+    teach test demos/ball/reference/colledanchise.xml demos/ball/delta2
 """
 
 from __future__ import annotations

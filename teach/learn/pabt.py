@@ -160,10 +160,14 @@ def _conjunction(literals: Seq[Literal]) -> str:
 
 
 def write_generations(folder: str | Path, generations: Seq[Node]) -> list[Path]:
-    """Write each generation as ``gen-NN.xml`` (atomically) and return the paths."""
+    """Write each generation as ``gen-NN.xml`` (atomically) and return the paths; generations
+    an earlier run left in the folder are removed, so the highest number is this run's result."""
     from teach.bt.xml import write_tree
 
     folder = Path(folder)
+    if folder.is_dir():
+        for stale in folder.glob("gen-*.xml"):
+            stale.unlink()
     paths = []
     for number, tree in enumerate(generations):
         path = folder / f"gen-{number:02d}.xml"

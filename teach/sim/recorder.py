@@ -15,7 +15,7 @@ from pathlib import Path
 
 from teach.bt.nodes import Status
 from teach.demos import Demonstration, Step, next_demo_path, write_demonstration
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import DomainError, FormatError
 from teach.fsutil import atomic_write_text
 from teach.observe import Observer
@@ -117,10 +117,17 @@ def save_demonstration(demo: Demonstration, folder: str | Path, domain: Domain |
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     try:
-        find_domain_file(folder)
+        existing = find_domain_file(folder)
     except FormatError:
         source = domain.path if domain is not None and domain.path is not None else DOMAIN_FILE
         atomic_write_text(folder / "domain.toml", Path(source).read_text(encoding="utf-8"))
+    else:
+        theirs = load_domain(existing)
+        ours = domain if domain is not None else load_domain(DOMAIN_FILE)
+        if theirs.condition_names != ours.condition_names or \
+                [(a.id, a.name) for a in theirs.actions] != [(a.id, a.name) for a in ours.actions]:
+            raise DomainError("this set's domain has other conditions or actions than the simulation's: "
+                              "record into another set", existing)
     path = next_demo_path(folder, prefix)
     write_demonstration(path, demo)
     return path

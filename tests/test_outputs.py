@@ -1,0 +1,73 @@
+"""What the commands write: readable files, one-line errors for unusable output paths, no
+stale or half-written results."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from teach.cli import main
+from teach.demos import Demonstration, Step
+from teach.errors import DomainError
+from teach.fsutil import atomic_write_text
+
+from conftest import ROOT
+
+REFERENCE = ROOT / "demos" / "ball" / "reference" / "colledanchise.xml"
+
+
+def test_written_files_get_the_umasks_mode(tmp_path):
+    old = os.umask(0o022)
+    try:
+        atomic_write_text(tmp_path / "a.txt", "x")
+    finally:
+        os.umask(old)
+    assert (tmp_path / "a.txt").stat().st_mode & 0o777 == 0o644
+
+
+@pytest.mark.parametrize("target", ["folder", "under-a-file"])
+def test_unusable_output_path_is_one_line(tmp_path, capsys, target):
+    (tmp_path / "file").write_text("x")
+    out = tmp_path if target == "folder" else tmp_path / "file" / "x.dot"
+    assert main(["dot", str(REFERENCE), "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("teach: ") and "Traceback" not in err
+
+
+def test_learn_writes_nothing_when_the_output_path_is_bad(tmp_path, capsys):
+    generations = tmp_path / "gens"
+    assert main(["learn", str(ROOT / "demos" / "ball" / "delta4"), "-o", str(tmp_path),
+                 "--generations", str(generations)]) == 2
+    assert not generations.exists()
+    capsys.readouterr()
+
+
+def test_goal_only_demonstrations_are_a_clear_error(tmp_path, capsys):
+    (tmp_path / "g").mkdir()
+    (tmp_path / "g" / "d.csv").write_text("1;1;1;1;1;0\n")
+    (tmp_path / "domain.toml").write_text((ROOT / "demos" / "ball" / "domain.toml").read_text())
+    assert main(["learn", str(tmp_path / "g"), "-o", str(tmp_path / "g.xml")]) == 2
+    assert "no demonstration shows an action" in capsys.readouterr().err
+    assert not (tmp_path / "g.xml").exists()
+
+
+def test_generations_folder_holds_only_this_runs_generations(tmp_path, capsys):
+    folder = tmp_path / "gens"
+    main(["learn", str(ROOT / "demos" / "ball" / "delta1"), "-o", str(tmp_path / "a.xml"), "--generations", str(folder)])
+    main(["learn", str(ROOT / "demos" / "ball" / "delta4"), "-o", str(tmp_path / "b.xml"), "--generations", str(folder)])
+    capsys.readouterr()
+    last = sorted(folder.glob("gen-*.xml"))[-1]
+    assert last.read_bytes() == (tmp_path / "b.xml").read_bytes()
+
+
+def test_recording_into_a_set_of_another_domain_is_refused(tmp_path):
+    from teach.sim.recorder import save_demonstration
+
+    folder = tmp_path / "other"
+    folder.mkdir()
+    (folder / "domain.toml").write_text('[[condition]]\nname = "A"\n[[action]]\nid = 1\nname = "FindBall"\n')
+    demo = Demonstration("d", (Step((False,) * 5, 1, 1),))
+    with pytest.raises(DomainError, match="other conditions or actions"):
+        save_demonstration(demo, folder)
+    assert not list(folder.glob("*.csv"))
