@@ -56,6 +56,7 @@ class SessionConfig:
     seed: int = 0
     world: str = "mujoco"
     base: Path = Path(".")
+    recording: Path | None = None  # the rerun recording, when there is one
 
     @property
     def demo_dir(self) -> Path:
@@ -362,10 +363,12 @@ class SessionManager:
 
     def cmd_save(self, rest: str) -> list[Reply]:
         self.journal.save(self.config.journal_path)
-        return [Reply("info", _t(self.lang, f"Saved: {self.config.demo_dir}, {self.config.tree_dir}, "
-                                            f"{self.config.journal_path}.",
-                                 f"Gespeichert: {self.config.demo_dir}, {self.config.tree_dir}, "
-                                 f"{self.config.journal_path}."))]
+        self.observer.checkpoint()
+        places = [self.config.demo_dir, self.config.tree_dir, self.config.journal_path]
+        if self.config.recording is not None:
+            places.append(self.config.recording)
+        where = ", ".join(map(str, places))
+        return [Reply("info", _t(self.lang, f"Saved: {where}.", f"Gespeichert: {where}."))]
 
     def cmd_quit(self, rest: str) -> list[Reply]:
         self.finished = True

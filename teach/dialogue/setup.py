@@ -76,8 +76,9 @@ def open_session(options: SessionOptions) -> SessionManager:
         raise TeachError(f"unknown language {options.lang!r} (choose en or de)")
     if options.questions < 0:
         raise TeachError("--questions must be 0 or more")
+    rrd = options.base / "recordings" / f"{options.session}.rrd"
     config = SessionConfig(options.session, domain, options.lang, options.questions, options.seed,
-                           options.world, options.base)
+                           options.world, options.base, rrd if options.record else None)
     if options.fresh and not options.resume:
         for stale in (config.demo_dir, config.tree_dir):
             shutil.rmtree(stale, ignore_errors=True)
@@ -90,7 +91,6 @@ def open_session(options: SessionOptions) -> SessionManager:
     if options.record:
         from teach.log import RerunLogger
 
-        rrd = config.base / "recordings" / f"{options.session}.rrd"
         rrd.parent.mkdir(parents=True, exist_ok=True)
         observer.observers.append(RerunLogger(rrd, options.session, spawn=options.spawn, resume=options.resume))
     if options.resume:
