@@ -34,4 +34,10 @@ class DomainError(TeachError):
 
 
 class LearnError(TeachError):
-    """A learner cannot produce a tree from what it was given; the message says why."""
+    """A learner cannot produce a tree from what it was given; the message says why, and
+    ``kind`` names the reason ("contradiction", "repeated", "order") for front-ends that
+    explain it in the teacher's language."""
+
+    def __init__(self, message: str, path: str | Path | None = None, line: int | None = None, kind: str = ""):
+        super().__init__(message, path, line)
+        self.kind = kind

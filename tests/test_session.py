@@ -269,3 +269,20 @@ def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
     result = subprocess.run([sys.executable, "-m", "teach.cli", "session", "--resume", "de", "--no-record",
                              "--base", str(tmp_path)], input="quit\n", text=True, capture_output=True, timeout=120)
     assert result.returncode == 0 and "Hallo!" in result.stdout  # German, as it was started
+
+
+def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
+    from teach.demos import Step, parse_demonstration
+    from teach.dialogue.session import _OpenDemo
+
+    session = new_session(ball, tmp_path, lang="de")
+    session.import_demonstrations([parse_demonstration("0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n"
+                                                       "1;1;1;1;0;5\n1;1;1;1;1;0\n", ball, "a.csv")])
+    # from the same start the teacher now goes to the bin before finding the ball
+    session.open = _OpenDemo([Step(ball.state([]), 4, 1)])
+    session.world.arrange(ball.state(["BinClose"]))
+    session.handle("Ball finden, zum Ball gehen, Ball greifen, Ball in den Eimer legen")
+    replies = session.handle("fertig")
+    assert replies[0].kind == "error" and "in einer anderen Reihenfolge" in replies[0].text
+    assert "ApproachBin" in replies[1].text  # the details follow for the facilitator
+    assert session.mode == "demonstrating"  # kept open, to be mended with 'zurück'

@@ -487,10 +487,11 @@ class SessionManager:
             update = self.learner.update(demo, source=source)
         except LearnError as error:
             self.open.steps.pop()  # the goal line: the demonstration stays open to be mended
-            return [Reply("error", _t(self.lang, f"I cannot learn this demonstration: {error.message}. "
+            return [Reply("error", _t(self.lang, f"I cannot learn this demonstration: {_why(error, 'en')} "
                                       "Say 'undo' to take back steps, or 'cancel'.",
-                                      f"Diese Vorführung kann ich nicht lernen: {error.message}. "
-                                      "Sag 'zurück', um Schritte zurückzunehmen, oder 'abbrechen'."))]
+                                      f"Diese Vorführung kann ich nicht lernen: {_why(error, 'de')} "
+                                      "Sag 'zurück', um Schritte zurückzunehmen, oder 'abbrechen'.")),
+                    Reply("info", f"({error.message})")]
         write_demonstration(path, demo)
         self.open = None
         self._remember(demo)
@@ -571,8 +572,9 @@ class SessionManager:
         try:
             update = self.learner.teach_step(question.state, answer, source=source)
         except LearnError as error:
-            return [Reply("error", _t(self.lang, f"That contradicts what you showed me: {error.message}",
-                                      f"Das widerspricht dem Gezeigten: {error.message}"))]
+            return [Reply("error", _t(self.lang, f"That contradicts what you showed me: {_why(error, 'en')}",
+                                      f"Das widerspricht dem Gezeigten: {_why(error, 'de')}")),
+                    Reply("info", f"({error.message})")]
         self.labels[question.state] = answer
         change = _describe_update(update, self.domain, self.lang)
         self.observer.on_answer(text, said, change)
@@ -752,6 +754,24 @@ class SessionManager:
         for reply in replies:
             if reply.kind in ("say", "info", "error") and reply.text:  # questions go to on_question
                 self.observer.on_dialogue("robot", reply.text, self.budget.left)
+
+
+_WHY = {
+    "contradiction": ("in the same situation you once showed one thing and once another.",
+                      "in derselben Lage hast du einmal das eine und einmal etwas anderes gezeigt."),
+    "repeated": ("it does the same step twice; I can only learn each step once in a task.",
+                 "darin kommt ein Schritt zweimal vor; ich kann jeden Schritt nur einmal lernen."),
+    "order": ("it does the steps in another order than before.",
+              "darin kommen die Schritte in einer anderen Reihenfolge vor als vorher."),
+}
+
+
+def _why(error: LearnError, lang: str) -> str:
+    """A learner's refusal in the teacher's words (the details follow for the facilitator)."""
+    if error.kind in _WHY:
+        en, de = _WHY[error.kind]
+        return de if lang == "de" else en
+    return error.message
 
 
 def _last_generation(folder: Path) -> int:

@@ -89,7 +89,7 @@ class OrderGraph:
         """Refuse the edge a -> b if b already leads back to a (the edge would close a cycle)."""
         if a == b:
             raise LearnError(f"no action order fits the demonstrations: {a} follows itself "
-                             f"({self.evidence[(a, a)]}), and an order cannot repeat an action")
+                             f"({self.evidence[(a, a)]}), and an order cannot repeat an action", kind="repeated")
         if not nx.has_path(self.graph, b, a):
             return
         path = nx.shortest_path(self.graph, b, a)
@@ -97,7 +97,7 @@ class OrderGraph:
         shown = ", ".join(f"{u} before {v} ({self.evidence[(u, v)]})" for u, v in cycle)
         names = sorted({u for u, _v in cycle})
         raise LearnError(f"no action order fits the demonstrations: {', '.join(names)} appear in "
-                         f"contradicting orders: {shown}")
+                         f"contradicting orders: {shown}", kind="order")
 
     def order(self) -> list[str]:
         """The topological order, ties broken by first appearance."""

@@ -266,7 +266,8 @@ class Specializer:
                 other, where = known
                 raise LearnError(f"the demonstrations contradict each other: in the state "
                                  f"[{self.domain.describe(self._state(mask))}] {where} shows {_label(other)} "
-                                 f"but {evidence} shows {_label(label)}; one tree cannot do both")
+                                 f"but {evidence} shows {_label(label)}; one tree cannot do both",
+                                 kind="contradiction")
             local.setdefault(mask, (label, evidence))
 
     def _adopt(self, graph: OrderGraph, where: str, changes: list[Change]) -> None:
