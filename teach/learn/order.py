@@ -11,11 +11,11 @@ the demonstration file and line that shows it.
 
 from __future__ import annotations
 
-from collections.abc import Sequence as Seq
+from collections.abc import Iterator, Sequence as Seq
 
 import networkx as nx
 
-from teach.demos import Demonstration
+from teach.demos import Demonstration, Step
 from teach.domain import Domain
 from teach.errors import LearnError
 
@@ -23,6 +23,20 @@ from teach.errors import LearnError
 def demo_source(demo: Demonstration) -> str:
     """How a demonstration is named in messages: its file, or its name."""
     return str(demo.path) if demo.path is not None else demo.name
+
+
+def _chain(domain: Domain, demo: Demonstration) -> Iterator[tuple[tuple[str, int] | None, str, Step]]:
+    """Each robot action of a demonstration with the one right before it ((name, line), or None
+    at the start and after an external action, which ends a chain)."""
+    previous: tuple[str, int] | None = None
+    for step in demo.steps:
+        if step.action < 0:
+            previous = None
+        if step.action <= 0:
+            continue
+        name = domain.action(step.action).name
+        yield previous, name, step
+        previous = (name, step.line)
 
 
 class OrderGraph:
@@ -50,30 +64,15 @@ class OrderGraph:
 
     def is_new(self, domain: Domain, demo: Demonstration) -> bool:
         """True if the demonstration shows an action or an edge not seen yet (cheap, no copy)."""
-        previous: str | None = None
-        for step in demo.steps:
-            if step.action < 0:
-                previous = None
-            if step.action <= 0:
-                continue
-            name = domain.action(step.action).name
-            if name not in self.first_seen or (previous is not None and (previous, name) not in self.evidence):
-                return True
-            previous = name
-        return False
+        return any(name not in self.first_seen or (previous is not None and (previous[0], name) not in self.evidence)
+                   for previous, name, _step in _chain(domain, demo))
 
     def add_demo(self, domain: Domain, demo: Demonstration, source: str | None = None) -> bool:
         """Add a demonstration's actions and edges; True if anything was new. Raises
         ``LearnError`` (leaving the graph possibly changed: call it on a copy) if no order fits."""
         where = source or demo_source(demo)
         changed = False
-        previous: tuple[str, int] | None = None
-        for step in demo.steps:
-            if step.action < 0:
-                previous = None
-            if step.action <= 0:
-                continue
-            name = domain.action(step.action).name
+        for previous, name, _step in _chain(domain, demo):
             changed |= self.add_action(name)
             if previous is not None:
                 edge = (previous[0], name)
@@ -82,7 +81,6 @@ class OrderGraph:
                     self._check_edge(*edge)
                     self.graph.add_edge(*edge)
                     changed = True
-            previous = (name, step.line)
         return changed
 
     def _check_edge(self, a: str, b: str) -> None:
