@@ -37,6 +37,15 @@ def new_session(ball, tmp_path, questions=5, lang="en", observer=None):
     return SessionManager(config, SymbolicWorld(ball), observer)
 
 
+def teach_two_demonstrations(session):
+    """The whole task from nothing, then the rest of it from a start where the ball is in view."""
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallFound")
+    session.handle(SECOND)
+    return session.handle("done")
+
+
 def kinds(replies):
     return [r.kind for r in replies]
 
@@ -79,11 +88,7 @@ def test_unknown_words_never_crash(ball, tmp_path):
 def test_questions_never_exceed_the_budget(ball, tmp_path):
     events = Events()
     session = new_session(ball, tmp_path, questions=2, observer=events)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    session.handle("start BallFound")
-    session.handle(SECOND)
-    session.handle("done")
+    teach_two_demonstrations(session)
     asked = 0
     for _ in range(10):
         if session.pending is None:
@@ -98,11 +103,7 @@ def test_questions_never_exceed_the_budget(ball, tmp_path):
 
 def test_an_answer_changes_the_tree(ball, tmp_path):
     session = new_session(ball, tmp_path)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    session.handle("start BallFound")
-    session.handle(SECOND)
-    replies = session.handle("done")
+    replies = teach_two_demonstrations(session)
     assert session.pending is not None, "two demonstrations leave guards in doubt: the robot asks"
     before = session.learner.tree
     question = session.pending
@@ -153,11 +154,7 @@ def test_undo_a_step_and_a_demonstration(ball, tmp_path):
 
 def test_resume_after_a_killed_session(ball, tmp_path):
     session = new_session(ball, tmp_path)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    session.handle("start BallFound")
-    session.handle(SECOND)
-    session.handle("done")
+    teach_two_demonstrations(session)
     if session.pending is not None:
         session.handle("skip")
     tree, used = session.learner.tree, session.budget.used
@@ -187,11 +184,7 @@ def test_commands_answer(ball, tmp_path, line):
 
 def test_undo_never_refunds_a_question(ball, tmp_path):
     session = new_session(ball, tmp_path, questions=1)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    session.handle("start BallFound")
-    session.handle(SECOND)
-    session.handle("done")
+    teach_two_demonstrations(session)
     assert session.pending is not None and session.budget.left == 0
     session.handle("undo")  # takes back the demonstration the open question was about
     assert session.pending is None and session.budget.left == 0
@@ -203,11 +196,7 @@ def test_undo_never_refunds_a_question(ball, tmp_path):
 
 def test_world_stays_put_while_a_question_is_open(ball, tmp_path):
     session = new_session(ball, tmp_path)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    session.handle("start BallFound")
-    session.handle(SECOND)
-    session.handle("done")
+    teach_two_demonstrations(session)
     assert session.pending is not None
     for line in ("run 1", "reset", "start BinClose", "demonstrate"):
         assert session.handle(line)[0].kind == "error" and session.pending is not None
