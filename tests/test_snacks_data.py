@@ -191,3 +191,10 @@ def test_dialogues_show_repeats_events_runs_and_a_correction(path, domain, tmp_p
     assert sum(1 for token in tokens if token.name == "OfferSnack") >= 8
     runs = [rest.strip() for command, rest in kinds if command is not None and command.names[0] == "run"]
     assert "" in runs and any(runs)  # a whole run, and one stopped early and corrected
+
+
+def test_every_possible_action_changes_something_the_session_can_see(domain):
+    # the session drops a step that changes no condition; here every action needs the negation
+    # of one of its own visible effects, so whenever it can run it is recorded
+    for action in domain.actions:
+        assert any(literal.negated() in action.pre for literal in action.ram), action.name
