@@ -361,6 +361,8 @@ class HiddenRunResult(RunResult):
 
 @dataclass
 class _RunLog:
+    """What a run has done so far, for the events between its actions."""
+
     actions: int = 0
     external: list[tuple[int, str, State]] = field(default_factory=list)
 
@@ -458,11 +460,11 @@ class HiddenStateWorld(SymbolicWorld):
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> HiddenRunResult:
         """``SymbolicWorld.run``; after every action each event may happen (``events_in_runs``)."""
-        self._run = _RunLog()
+        log = self._run = _RunLog()
         try:
             plain = super().run(tree, max_actions, interrupt, stop_after, on_action)
         finally:
-            log, self._run = self._run, None
+            self._run = None
         return HiddenRunResult(plain.outcome, plain.steps, plain.final_state, log.external)
 
     def _random_events(self, log: _RunLog) -> None:
