@@ -66,7 +66,7 @@ def test_the_generator_writes_the_committed_files_byte_for_byte(tmp_path):
     committed = {p.relative_to(SNACKS): p.read_bytes() for folder in ("train", "heldout", "reference")
                  for p in sorted((SNACKS / folder).rglob("*")) if p.is_file()}
     assert written == committed
-    assert len([p for p in written if p.parts[0] == "train"]) == 10
+    assert len([p for p in written if p.parts[0] == "train"]) == 11
 
 
 def test_the_reference_tree_is_the_generators_and_loads_in_behaviortree_cpp(domain, reference):

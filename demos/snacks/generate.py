@@ -6,7 +6,7 @@ Example:
 
 The thesis gives the behaviour (Fig. 3.3) but no demonstrations, so they are made here by
 running that behaviour, written as ``reference_tree()``, in the hidden-state world of
-``world.toml`` (teach/hidden_world.py): ``train/`` holds ten demonstrations with repeated
+``world.toml`` (teach/hidden_world.py): ``train/`` holds eleven demonstrations with repeated
 actions, both orders of actions and external events; ``heldout/`` one demonstration from
 every other start state. Every choice is a named constant below and is explained in
 demos/snacks/README.md. The output is deterministic: running this twice gives the same bytes.
@@ -48,8 +48,8 @@ TRAINING: tuple[Scenario, ...] = (
     Scenario("the request is withdrawn after someone is found", ("AtOffice",), 4,
              events=((3, "request_withdrawn"),)),
     Scenario("the person walks away before the offer", ("AtOffice",), 5, events=((3, "partner_leaves"),)),
-    Scenario("someone takes the last snack unnoticed", ("Requested", "TrayTaken", "AtOffice"), 1, snacks=2,
-             events=((2, "snack_taken"),)),
+    Scenario("someone takes the last snack before it is offered", ("Requested", "TrayTaken", "AtOffice"), 1,
+             snacks=2, events=((3, "snack_taken"),)),
     Scenario("the tray is lost after the first offer", ("Requested", "AtOffice"), 5,
              events=((3, "tray_lost"),)),
     Scenario("a request comes before the robot waits", ("AtOffice",), 6, events=((0, "new_request"),)),
@@ -57,6 +57,7 @@ TRAINING: tuple[Scenario, ...] = (
              events=((1, "request_withdrawn"),)),
     Scenario("someone is there at the office already", ("Requested", "TrayTaken", "PartnerFound", "AtOffice"), 1,
              snacks=3),
+    Scenario("an empty tray stands in the office", ("Requested", "TrayEmpty", "AtOffice"), 4),
 )
 
 
