@@ -21,9 +21,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from strategies import trees
 
-from teach.bt.btcpp_status import BtcppTree, BtStatus, Change
+from teach.bt.btcpp_status import BtcppTree, BtStatus, Change, TickChanges
 from teach.bt.btlog import MAGIC, BtlogWriter, btcpp_xml, read_btlog
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, walk
+from teach.bt.tick import tick
 from teach.bt.xml import read_tree, tree_to_xml
 from teach.domain import load_domain
 from teach.errors import FormatError, TeachError
@@ -264,6 +265,40 @@ def test_a_reactive_sequence_halts_the_running_action_when_a_guard_fails() -> No
     assert ours[1] == (Status.FAILURE, [Change(2, BtStatus.FAILURE), Change(2, BtStatus.IDLE),
                                         Change(3, BtStatus.IDLE), Change(1, BtStatus.FAILURE),
                                         Change(1, BtStatus.IDLE)])
+
+
+# --- logging the ticks our own tick ran ---------------------------------------------------------
+
+def _has_parallel(tree: Node) -> bool:
+    return any(isinstance(n, Parallel) for n in walk(tree))
+
+
+@settings(max_examples=80, deadline=None)
+@given(trees(CONDITIONS, ACTIONS, max_leaves=12).filter(lambda t: not _has_parallel(t)), st.data())
+def test_logging_our_ticks_gives_bt_cpps_changes_without_ticking_twice(tree: Node, data: st.DataObject) -> None:
+    """Without a Parallel, BehaviorTree.CPP reaches exactly the leaves our tick reached, so the
+    log made from our tick's trace is the one BehaviorTree.CPP's run would give."""
+    script = data.draw(scripts(CONDITIONS, ACTIONS))
+    direct = BtcppTree(tree)
+    with tempfile.TemporaryDirectory() as folder:
+        writer = BtlogWriter(Path(folder) / "run.btlog", tree, clock=lambda: 0)
+        for conditions, actions in script:
+            ours = tick(tree, conditions, actions.__getitem__)
+            logged = writer.log_tick(ours)
+            assert logged == direct.tick(conditions, actions.__getitem__)
+            assert logged.status is ours.status
+
+
+def test_a_remembering_parallel_makes_the_log_differ_from_our_tick() -> None:
+    """Table 2.2 fails the Parallel once Near is false; BehaviorTree.CPP still remembers Near's
+    SUCCESS and keeps running, and the log says so."""
+    tree = Fallback((Parallel((C("Near"), A("Move")), 2), A("Look")))
+    with tempfile.TemporaryDirectory() as folder:
+        writer = BtlogWriter(Path(folder) / "run.btlog", tree, clock=lambda: 0)
+        first = tick(tree, {"Near": True})
+        assert writer.log_tick(first).status is first.status is Status.RUNNING
+        second = tick(tree, {"Near": False})
+        assert second.action == "Look" and writer.log_tick(second) == TickChanges(Status.RUNNING, ())
 
 
 # --- the file -----------------------------------------------------------------------------------

@@ -11,8 +11,9 @@ built-in node models, byte for byte, so a log written here and one written by Be
 for the same tree start with the same header.
 
 ``BtlogWriter`` ticks the tree with ``BtcppTree`` (the status changes BehaviorTree.CPP would
-log) and writes the file atomically at ``close``; ``read_btlog`` reads any ``FileLogger2`` file
-and reports a damaged one in one line.
+log), either in a world of its own (``tick``) or from the trace of a tick our executor already
+ran (``log_tick``), and writes the file atomically at ``close``; ``read_btlog`` reads any
+``FileLogger2`` file and reports a damaged one in one line.
 """
 
 from __future__ import annotations
@@ -28,8 +29,8 @@ from types import TracebackType
 from lxml import etree
 
 from teach.bt.btcpp_status import ActionTick, BtcppTree, BtStatus, Change, ConditionLookup, HaltHook, TickChanges
-from teach.bt.nodes import Action, Condition, Inverter, Node, Parallel, Sequence, children, walk
-from teach.bt.tick import always_running
+from teach.bt.nodes import Action, Condition, Inverter, Node, Parallel, Sequence, Status, children, walk
+from teach.bt.tick import TickResult, always_running
 from teach.bt.xml import MAIN_TREE, MAX_BYTES, tree_to_xml
 from teach.errors import FormatError, TeachError
 from teach.fsutil import atomic_write_bytes
@@ -279,6 +280,7 @@ class BtlogWriter:
             raise TeachError(f"a log for Groot2 must be named *{SUFFIX}", self.path)
         self.xml = btcpp_xml(tree)
         self.live = BtcppTree(tree)
+        self.leaves = [(n.uid, n) for n in walk(tree) if isinstance(n, (Condition, Action))]
         self.clock = clock
         self.start_us = clock()
         self.records = bytearray()
@@ -289,6 +291,25 @@ class BtlogWriter:
         result = self.live.tick(condition, action, on_halt)
         self._record(result.changes)
         return result
+
+    def log_tick(self, result: TickResult) -> TickChanges:
+        """Log a tick ``teach.bt.tick.tick`` already ran (what an observer's ``on_tick`` sees):
+        every leaf answers as it answered there, so no skill is ticked twice.
+
+        BehaviorTree.CPP reaches the same leaves, or fewer (a Parallel stops at its threshold),
+        unless a running Parallel remembers a child's earlier result: then it may return
+        another status than our memoryless tick and reach leaves ours did not, which answer
+        FAILURE (conditions) and RUNNING (actions, as if just started). The returned status
+        is BehaviorTree.CPP's, so a caller can tell when that happened."""
+        visited = dict(result.trace)
+        conditions: dict[str, bool] = {}
+        actions: dict[str, Status] = {}
+        for uid, leaf in self.leaves:
+            if uid in visited and isinstance(leaf, Condition):
+                conditions[leaf.name] = visited[uid] is Status.SUCCESS
+            elif uid in visited:
+                actions[leaf.name] = visited[uid]
+        return self.tick(lambda name: conditions.get(name, False), lambda name: actions.get(name, Status.RUNNING))
 
     def halt(self, on_halt: HaltHook | None = None) -> tuple[Change, ...]:
         """Halt the tree (a run stopped while RUNNING), logging the resets to IDLE."""
