@@ -25,7 +25,7 @@ from teach.bt.btcpp_status import BtcppTree, BtStatus, Change, TickChanges
 from teach.bt.btlog import MAGIC, BtlogWriter, btcpp_xml, read_btlog
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, walk
 from teach.bt.tick import tick
-from teach.bt.xml import read_tree, tree_to_xml
+from teach.bt.xml import read_tree, tree_from_xml, tree_to_xml
 from teach.domain import load_domain
 from teach.errors import FormatError, TeachError
 
@@ -343,6 +343,25 @@ def test_the_reader_reads_bt_cpps_own_files(tmp_path: Path) -> None:
     log = read_btlog(tmp_path / "theirs.btlog")
     assert log.changes() == list(expected) and log.names[4] == "Move"
     assert abs(log.start_us - time.time_ns() // 1000) < 3600 * 10**6  # µs since the epoch
+
+
+def test_a_logs_xml_reads_back_as_the_tree(tmp_path: Path) -> None:
+    tree = read_tree(ROOT / "demos" / "ball" / "reference" / "table61.xml")
+    BtlogWriter(tmp_path / "run.btlog", tree).close()
+    assert tree_from_xml(read_btlog(tmp_path / "run.btlog").xml) == tree
+
+
+def test_a_clock_going_back_is_refused(tmp_path: Path) -> None:
+    readings = iter([1000, 999])
+    writer = BtlogWriter(tmp_path / "run.btlog", SMALL, clock=lambda: next(readings))
+    with pytest.raises(ValueError, match="-1 µs"):
+        writer.tick({"Near": True, "Seen": False})
+
+
+def test_trees_too_large_for_two_byte_uids_are_refused() -> None:
+    btcpp_xml(Sequence(tuple(C("Near") for _ in range(65534))))
+    with pytest.raises(FormatError, match="65536 nodes; a .btlog numbers at most 65535"):
+        btcpp_xml(Sequence(tuple(C("Near") for _ in range(65535))))
 
 
 def test_names_bt_cpp_reserves_are_refused() -> None:

@@ -25,6 +25,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
+from typing import NamedTuple
 
 from lxml import etree
 
@@ -338,8 +339,7 @@ class BtlogWriter:
 
 # --- reading ------------------------------------------------------------------------------------
 
-@dataclass(frozen=True, slots=True)
-class Transition:
+class Transition(NamedTuple):
     """One record: µs after the first timestamp, the node's uid, its new status."""
 
     time_us: int
@@ -373,6 +373,7 @@ def read_btlog(path: str | Path) -> Btlog:
 
 
 def parse_btlog(data: bytes, path: str | Path = "<bytes>") -> Btlog:
+    """The contents of a ``.btlog`` file; ``path`` only names it in errors."""
     if not data.startswith(MAGIC):
         raise FormatError(f"not a BehaviorTree.CPP log: it does not start with {MAGIC.decode()}", path)
     at = len(MAGIC)
@@ -394,18 +395,19 @@ def parse_btlog(data: bytes, path: str | Path = "<bytes>") -> Btlog:
     if body % RECORD:
         raise FormatError(f"the log ends inside a record: {body % RECORD} bytes after the last whole one "
                           f"(byte {len(data) - body % RECORD})", path)
-    transitions = []
-    for index, offset in enumerate(range(at, len(data), RECORD)):
-        stamp = int.from_bytes(data[offset:offset + 6], "little")
-        uid = int.from_bytes(data[offset + 6:offset + 8], "little")
-        status = data[offset + 8]
-        if status > max(BtStatus):
-            raise FormatError(f"record {index + 1} (byte {offset}): status {status} is not a BehaviorTree.CPP status",
-                              path)
-        if uid not in names:
-            raise FormatError(f"record {index + 1} (byte {offset}): node uid {uid} is not in the log's tree", path)
-        transitions.append(Transition(stamp, uid, BtStatus(status)))
-    return Btlog(xml, start_us, names, tuple(transitions))
+    records = list(struct.iter_unpack("<IHHB", data[at:]))
+    statuses = list(BtStatus)
+    bad = next((i for i, (_, _, uid, status) in enumerate(records) if status >= len(statuses) or uid not in names),
+               None)
+    if bad is not None:
+        _, _, uid, status = records[bad]
+        where = f"record {bad + 1} (byte {at + bad * RECORD})"
+        if status >= len(statuses):
+            raise FormatError(f"{where}: status {status} is not a BehaviorTree.CPP status", path)
+        raise FormatError(f"{where}: node uid {uid} is not in the log's tree", path)
+    make = Transition._make
+    transitions = tuple(make((low | high << 32, uid, statuses[status])) for low, high, uid, status in records)
+    return Btlog(xml, start_us, names, transitions)
 
 
 def _read_xml(raw: bytes, path: str | Path) -> tuple[str, dict[int, str]]:
