@@ -24,10 +24,13 @@ from strategies import trees
 from teach.bt.btcpp_status import BtcppTree, BtStatus, Change, TickChanges
 from teach.bt.btlog import MAGIC, BtlogWriter, btcpp_xml, read_btlog
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, walk
-from teach.bt.tick import tick
+from teach.bt.tick import TickResult, tick
 from teach.bt.xml import read_tree, tree_from_xml, tree_to_xml
 from teach.domain import load_domain
 from teach.errors import FormatError, TeachError
+from teach.observe import Observer
+from teach.sim.executor import run_tree
+from teach.sim.world import World
 
 C, A = Condition, Action
 CONDITIONS = ["Near", "Holding", "Seen", "Done"]
@@ -299,6 +302,38 @@ def test_a_remembering_parallel_makes_the_log_differ_from_our_tick() -> None:
         assert writer.log_tick(first).status is first.status is Status.RUNNING
         second = tick(tree, {"Near": False})
         assert second.action == "Look" and writer.log_tick(second) == TickChanges(Status.RUNNING, ())
+
+
+class BtlogObserver(Observer):
+    """What a session would do: log each tick the executor reports."""
+
+    def __init__(self, writer: BtlogWriter):
+        self.writer = writer
+        self.statuses: list[Status] = []
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        self.statuses.append(self.writer.log_tick(result).status)
+
+
+def test_a_mujoco_run_logged_from_the_executors_ticks(tmp_path: Path) -> None:
+    """The ball task in MuJoCo, logged on simulated time: the log shows the run's actions
+    starting in the order the executor started them, and the tree finishing."""
+    world = World(seed=5)
+    world.reset(seed=5)
+    tree = read_tree(ROOT / "demos" / "ball" / "reference" / "table61.xml")
+    session_start_us = 1_767_225_600_000_000  # the session's own start, so files are reproducible
+    writer = BtlogWriter(tmp_path / "run-01.btlog", tree, clock=lambda: session_start_us + round(world.sim_time * 1e6))
+    observer = BtlogObserver(writer)
+    with writer:
+        trace = run_tree(world, tree, observer)
+    assert trace.outcome == "success" and observer.statuses == trace.statuses
+    log = read_btlog(tmp_path / "run-01.btlog")
+    started = [log.names[t.uid] for t in log.transitions
+               if t.status == BtStatus.RUNNING and log.names[t.uid] in load_domain(BALL_DOMAIN).action_names]
+    assert started == [a for a, fresh in zip(trace.actions, trace.started, strict=True) if fresh and a]
+    assert log.changes()[-2:] == [Change(1, BtStatus.SUCCESS), Change(1, BtStatus.IDLE)]
+    # the last tick's changes carry its simulated time, counted from when the log was opened
+    assert log.start_us + log.transitions[-1].time_us == session_start_us + round(trace.times[-1] * 1e6)
 
 
 # --- the file -----------------------------------------------------------------------------------

@@ -260,7 +260,7 @@ def _write_node(node: Node, level: int, uids: Iterator[int], lines: list[str]) -
     lines.append(f'{"    " * level}</{tag}>')
 
 
-def btlog_header(xml: str, start_us: int) -> bytes:
+def _header(xml: str, start_us: int) -> bytes:
     data = xml.encode("utf-8")
     return MAGIC + bytes([PROTOCOL]) + struct.pack("<i", len(data)) + data + struct.pack("<q", start_us)
 
@@ -327,7 +327,7 @@ class BtlogWriter:
             self.records += stamp + change.uid.to_bytes(2, "little") + bytes([change.status])
 
     def close(self) -> None:
-        atomic_write_bytes(self.path, btlog_header(self.xml, self.start_us) + bytes(self.records))
+        atomic_write_bytes(self.path, _header(self.xml, self.start_us) + bytes(self.records))
 
     def __enter__(self) -> BtlogWriter:
         return self
