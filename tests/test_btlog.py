@@ -69,10 +69,10 @@ class BtcppRun:
     """BehaviorTree.CPP ticking our XML of ``tree``, logged by its FileLogger to ``path``.
 
     The tree is loaded from ``xml`` (our tree file's text by default) by a factory that knows
-    only the tree's leaves, as ``btcpp_xml`` assumes. FileLogger2 writes
-    from a thread of its own (every 10 ms or when notified), so after each tick we wait
-    until it has written as many records as expected; the records counted then are that
-    tick's, and any surplus shows up in the next tick's or in the final count."""
+    only the tree's leaves, as ``btcpp_xml`` assumes. FileLogger2 writes from a thread of its
+    own (every 10 ms or when notified), so after each tick we wait until it has written as
+    many records as expected; the records counted then are that tick's, and any surplus
+    shows up in the next tick's or in the final count."""
 
     def __init__(self, tree: Node, path: Path, world: ScriptedWorld, xml: str | None = None):
         self.world = world
@@ -85,7 +85,7 @@ class BtcppRun:
             factory.register_simple_stateful_action(name, self._action(name), self._action(name), self._halt(name))
         self.tree = factory.create_tree_from_text(tree_to_xml(tree) if xml is None else xml)
         self.logger: btcpp.FileLogger | None = btcpp.FileLogger(self.tree, str(path))
-        self.header = self._size()
+        self.header = len(MAGIC) + 5 + len(btcpp_xml(tree).encode()) + 8  # its own is asserted equal
         self.counts: list[int] = [0]
 
     def _condition(self, name: str):  # type: ignore[no-untyped-def]
@@ -128,8 +128,8 @@ class BtcppRun:
     def close(self) -> list[list[Change]]:
         """Stop the logger and split its records into ticks by the counts seen after each."""
         time.sleep(0.03)  # a surplus record would be written by now
-        # BehaviorTree.CPP 4.8.2 drops records still queued when the logger is destroyed
-        # mid-write; everything is written by now, so nothing is lost here
+        # BehaviorTree.CPP 4.8.2's logger drops what is still queued when it is destroyed
+        # (a whole run's records if its thread has not run yet); nothing is queued by now
         self.logger = None
         changes = read_btlog(self.path).changes()
         self.counts[-1] = len(changes)
