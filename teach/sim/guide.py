@@ -128,7 +128,7 @@ def _profile(remaining: float, speed: float, top: float, acceleration: float, dt
 class Guide:
     """Drives a ``World`` by guiding primitives and records a ``Sample`` every control period."""
 
-    def __init__(self, world: World, listener: Callable[[Sample], None] | None = None,
+    def __init__(self, world: World, listener: Callable[[Sample], object] | None = None,
                  observer: Observer | None = None):
         self.world = world
         self.listener = listener
