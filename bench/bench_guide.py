@@ -26,12 +26,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from teach.domain import Domain, load_domain  # noqa: E402
 from teach.learn.recognise import recognise  # noqa: E402
 from teach.log import RerunLogger  # noqa: E402
 from teach.observe import Observer  # noqa: E402
 from teach.sim.guide import Guide, Sample, parse_guide_line  # noqa: E402
 from teach.sim.segment import Segmenter  # noqa: E402
-from teach.sim.world import World  # noqa: E402
+from teach.sim.world import DOMAIN_FILE, World  # noqa: E402
 
 SCRIPT = ["guide lift 0.26", "guide back 0.3", "guide turn 120", "guide turn -120", "guide forward 0.3",
           "guide lift 0", "guide close", "guide lift 0.26", "guide turn 90", "guide forward 0.4", "guide lift 0",
@@ -57,10 +58,9 @@ def guided_run(observer: Observer | None, segmented: bool) -> tuple[float, float
     return time.perf_counter() - start, world.sim_time - sim0, guide.samples
 
 
-def segmentation_cost(samples: list[Sample], domain_world: World) -> tuple[float, int]:
+def segmentation_cost(samples: list[Sample], domain: Domain) -> tuple[float, int]:
     """Seconds per sample of segmenting and recognising a recorded stream, and its segments."""
     segmenter = Segmenter()
-    domain = domain_world.domain
     start = time.perf_counter()
     for sample in samples:
         done = segmenter.add(sample)
@@ -76,6 +76,7 @@ def main() -> None:
     ratios: dict[str, list[float]] = {"bare": [], "recorded": [], "recorded + segmented": []}
     per_step: list[float] = []
     samples: list[Sample] = []
+    domain = load_domain(DOMAIN_FILE)
     with tempfile.TemporaryDirectory() as folder:
         for round_ in range(args.rounds):
             for kind in ratios:
@@ -84,8 +85,8 @@ def main() -> None:
                 if logger is not None:
                     logger.close()
                 ratios[kind].append(sim / wall)
-            per_step.append(segmentation_cost(samples, World(seed=0))[0])
-    steps, segments = len(samples), segmentation_cost(samples, World(seed=0))[1]
+            per_step.append(segmentation_cost(samples, domain)[0])
+    steps, segments = len(samples), segmentation_cost(samples, domain)[1]
     print(f"guided script: {len(SCRIPT)} commands, {steps} control steps ({steps * 0.02:.1f} s simulated), "
           f"{segments} segments")
     for kind, values in ratios.items():

@@ -24,6 +24,8 @@ from teach.sim.world import FINGER_CLOSED, World, _wrap
 ])
 def test_lines_parse(line: str, command: GuideCommand) -> None:
     assert is_guide_line(line) and parse_guide_line(line) == command
+    # a command written back (a key press kept in a journal, say) reads as the same command
+    assert parse_guide_line(str(command)) == command
 
 
 @pytest.mark.parametrize(("line", "message"), [

@@ -26,6 +26,7 @@ def test_a_held_change_makes_a_segment_that_ends_where_it_began() -> None:
     assert (only.before, only.after) == (A, B)
     # the segment runs from the start to the first sample of the new state
     assert only.samples[0] is stream[0] and only.samples[-1] is stream[10]
+    assert (only.start_time, only.end_time) == (0.0, stream[10].time)
 
 
 def test_a_glimpse_shorter_than_the_hold_makes_no_step() -> None:
