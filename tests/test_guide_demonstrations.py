@@ -15,10 +15,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from teach.bt.nodes import Status
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Status
 from teach.domain import Literal
 from teach.errors import FormatError
 from teach.learn.recognise import question
+from teach.sim.executor import run_tree
 from teach.sim.guide import Guide, parse_guide_line
 from teach.sim.guided_skill import guided_skill, load_motion, motion_from_segment, motion_text, save_motion
 from teach.sim.recorder import Recorder
@@ -265,6 +266,20 @@ def test_a_push_taught_by_guidance_becomes_a_replayable_skill(push: tuple[World,
             moved = float(np.linalg.norm(other.ball_position()[:2] - ball[:2]))
             pushed += status is Status.SUCCESS and not other.conditions()["BallClose"] and moved > 0.1
         assert pushed == 3
+    finally:
+        SKILLS.pop("PushBall")
+
+
+def test_the_executor_runs_a_guided_skill_in_a_tree(push: tuple[World, Segmenter]) -> None:
+    world, segmenter = push
+    register(guided_skill(motion_from_segment("PushBall", segmenter.segments[0], world.domain)))
+    try:
+        other = World(seed=0)
+        other.arrange({"BallFound": True, "BallClose": True}, seed=13)
+        # "? (not BallClose) PushBall": push until the ball is out of reach
+        trace = run_tree(other, Fallback((Inverter(Condition("BallClose")), Action("PushBall"))))
+        assert trace.outcome == "success" and set(trace.actions[:-1]) == {"PushBall"}
+        assert not other.conditions()["BallClose"]
     finally:
         SKILLS.pop("PushBall")
 
