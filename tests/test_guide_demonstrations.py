@@ -175,6 +175,8 @@ def test_guided_demonstration_gives_the_named_transitions(start: dict[str, bool]
     assert all(line.startswith("guide ") for line in teacher.lines)
     assert labelled(world, segmenter) == named_demonstration(start, seed)
     assert world.conditions()["BallPlaced"]
+    # every step is recognised without a labelling question
+    assert not any(r.needs_question for _, r in explain_segments(world.domain, segmenter.segments))
 
 
 def test_a_guided_script_replays_exactly() -> None:

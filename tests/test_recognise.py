@@ -47,6 +47,27 @@ def test_learned_effects_rank_and_tie(ball: Domain) -> None:
     assert moved.candidates[1].unexplained == (Literal("BinClose", False),)
 
 
+def test_learned_preconditions_count(ball: Domain) -> None:
+    before, after = ball.state(["BallFound"]), ball.state(["BallFound", "BallClose"])
+    learned = {"PushBall": [Literal("BallClose")]}
+    assert [c.action for c in recognise(ball, before, after, learned, {"PushBall": [Literal("BinClose")]}).candidates] \
+        == ["ApproachBall"]
+    assert [c.action for c in recognise(ball, before, after, learned, {"PushBall": []}).candidates] \
+        == ["ApproachBall", "PushBall"]
+
+
+def test_a_gain_left_unexplained_asks_a_loss_does_not(ball: Domain) -> None:
+    # leaving the bin behind on the way to the ball: a side effect, no question
+    lost = recognise(ball, ball.state(["BallFound", "BinClose"]), ball.state(["BallFound", "BallClose"]))
+    assert lost.best == "ApproachBall" and not lost.needs_question
+    # the ball ended in the hand too: maybe a second thing the teacher did, so the robot asks
+    gained = recognise(ball, ball.state(["BallFound"]), ball.state(["BallFound", "BallClose", "BallGrasped"]))
+    assert gained.best == "ApproachBall" and not gained.ambiguous and gained.needs_question
+    # reach and the bin at once: going to the ball and going to the bin explain it equally
+    both = recognise(ball, ball.state(["BallFound"]), ball.state(["BallFound", "BallClose", "BinClose"]))
+    assert both.ambiguous and question(ball, both).endswith("Was that 'go to the ball' or 'go to the bin'?")
+
+
 def test_a_side_effect_before_the_change_joins_it(ball: Domain) -> None:
     # driving to the ball first leaves the bin behind, then reaches the ball: one ApproachBall
     s = ball.state

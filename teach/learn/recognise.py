@@ -5,7 +5,8 @@ effects hold after, and at least one of them was new. Effects are the domain's d
 ``ram`` or, for actions named in ``effects``, what was learned for them (a mapping wins over
 the file, so a session can pass what its learner knows so far). Candidates are ranked by how
 much of the change they explain: an action whose effects cover every change beats one that
-leaves a side effect unexplained; ties keep the domain's order.
+leaves a side effect unexplained; ties keep the domain's order. A question is due when nothing
+fits, when two fit equally, or when the best leaves a gained condition unexplained.
 
 Guided motion often loses a condition on the way to the one it is after (driving to the ball
 leaves the bin behind). ``explain`` therefore joins a change that no action explains with the
@@ -59,7 +60,11 @@ class Recognition:
 
     @property
     def needs_question(self) -> bool:
-        return not self.fits or self.ambiguous
+        """Nothing fits, two fit, or the best leaves a condition that became true unexplained.
+
+        A condition lost on the way (the bin left behind) is a side effect and asks nothing; one
+        gained that the action does not promise may be a second thing the teacher did."""
+        return not self.fits or self.ambiguous or any(lit.value for lit in self.candidates[0].unexplained)
 
 
 def changed_literals(domain: Domain, before: State, after: State) -> tuple[Literal, ...]:
