@@ -286,6 +286,28 @@ def test_the_executor_runs_a_guided_skill_in_a_tree(push: tuple[World, Segmenter
         SKILLS.pop("PushBall")
 
 
+def test_a_motion_near_the_bin_replays_relative_to_the_bin() -> None:
+    # putting the ball in, guided: the ball is carried along, so the motion is anchored on the bin
+    start = {"BallFound": True, "BallClose": True, "BallGrasped": True, "BinClose": True}
+    world = World(seed=0)
+    world.arrange(start, seed=4)
+    segmenter = Segmenter()
+    Teacher(world, Guide(world, segmenter.add)).place_ball()
+    motion = motion_from_segment("DropInBin", segmenter.segments[0], world.domain)
+    assert motion.anchor == "bin"
+    assert motion.effects == (Literal("BallGrasped", False), Literal("BallPlaced"))
+    register(guided_skill(motion))
+    try:
+        placed = 0
+        for seed in (10, 11, 12):
+            other = World(seed=0)
+            other.arrange(start, seed=seed)
+            placed += run_skill(other, "DropInBin") is Status.SUCCESS and other.conditions()["BallPlaced"]
+        assert placed == 3
+    finally:
+        SKILLS.pop("DropInBin")
+
+
 def test_a_guided_skill_fails_without_its_object(push: tuple[World, Segmenter]) -> None:
     world, segmenter = push
     motion = motion_from_segment("PushBall", segmenter.segments[0], world.domain)

@@ -1,12 +1,14 @@
 """A new action from guidance: a guided segment kept as a motion primitive and replayed as a skill.
 
-The motion is stored relative to the object it acted on (the ball or the bin, whichever moved
-most in the segment, else the one nearest the gripper at its end): where that object lay in
+The motion is stored relative to the object it acted on: of the ball and the bin, leaving out one
+carried along (it moved, but not relative to the robot), the one that moved most in the segment,
+or if neither moved, the one nearest the gripper at its end. Stored are where that object lay in
 the robot's frame at the segment's start, the lift and finger commands then, and the base's
 path in the start frame with the commands that drove it. Replaying from another start, the
-skill first brings the robot to the same pose relative to the object (driving around the bin
-like ApproachBall), sets lift and fingers, then follows the path anchored on the object, the
-recorded commands fed forward and the pose error fed back. SUCCESS once the effects (what
+skill first brings the robot to the same pose relative to the object (around the bin to the
+ball as ApproachBall drives, straight to the bin as ApproachBin does), sets lift and fingers,
+then follows the path anchored on the object, the recorded commands fed forward and the pose
+error fed back. SUCCESS once the effects (what
 changed in the segment) hold after the path has begun; FAILURE when the object is unknown,
 when the path ends without them, or on timeout.
 
@@ -32,6 +34,7 @@ from teach.domain import Domain, Literal
 from teach.errors import FormatError
 from teach.fsutil import atomic_write_text, read_text
 from teach.learn.recognise import changed_literals
+from teach.sim.guide import Sample
 from teach.sim.segment import Segment
 from teach.sim.skills import FAILURE, RUNNING, SUCCESS, Skill
 from teach.sim.world import GRASP_OFFSET, LIFT_CARRY, World, _wrap
@@ -41,6 +44,7 @@ MOVED = 0.02            # m: an object that moved this much was acted on
 PLACED = 0.02           # m: the approach ends this close to the stored start pose
 FACED = math.radians(1.0)
 SETTLE = 0.3            # s after the path before the effects are judged
+FINGER_SETTLE = 0.5     # s the fingers get to reach their start closure
 APPROACH_TIMEOUT = 20.0  # s
 FORMAT = "teach-guided-motion"
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -80,14 +84,24 @@ class GuidedMotion:
 
 
 def _acted_on(segment: Segment) -> str:
+    """The object the segment's motion was done to (see the module docstring)."""
     first, last = segment.samples[0], segment.samples[-1]
+
+    def in_robot_frame(sample: Sample, name: str) -> np.ndarray:
+        x, y, yaw = sample.base
+        dx, dy = getattr(sample, name)[0] - x, getattr(sample, name)[1] - y
+        return np.array([dx * math.cos(yaw) + dy * math.sin(yaw), -dx * math.sin(yaw) + dy * math.cos(yaw)])
+
     moved = {name: float(np.linalg.norm(np.subtract(getattr(last, name)[:2], getattr(first, name)[:2])))
              for name in ANCHORS}
-    if max(moved.values()) >= MOVED:
-        return max(ANCHORS, key=lambda name: moved[name])
+    carried = {name for name in ANCHORS if moved[name] >= MOVED and
+               float(np.linalg.norm(in_robot_frame(last, name) - in_robot_frame(first, name))) < MOVED}
+    candidates = [name for name in ANCHORS if name not in carried] or list(ANCHORS)
+    if max(moved[name] for name in candidates) >= MOVED:
+        return max(candidates, key=lambda name: moved[name])
     x, y, yaw = last.base
     grasp = (x + GRASP_OFFSET * math.cos(yaw), y + GRASP_OFFSET * math.sin(yaw))
-    return min(ANCHORS, key=lambda name: math.dist(grasp, getattr(last, name)[:2]))
+    return min(candidates, key=lambda name: math.dist(grasp, getattr(last, name)[:2]))
 
 
 def motion_from_segment(name: str, segment: Segment, domain: Domain, en: Sequence[str] = (),
@@ -144,7 +158,8 @@ class GuidedSkill(Skill):
                 world.set_fingers(motion.fingers)
                 if not self.lift_ready(LIFT_CARRY):
                     world.drive(0.0, 0.0)  # the arm up before driving, as ApproachBall does
-                elif self.go_around_bin(target, reach) < PLACED:
+                elif (self.go_around_bin(target, reach) if motion.anchor == "ball" else
+                      self.go_to(target, reach)) < PLACED:
                     self.phase = "face"
             if self.phase == "face":
                 x, y, yaw = world.base_pose()
@@ -153,10 +168,12 @@ class GuidedSkill(Skill):
                 world.drive(0.0, max(-2.0, min(2.0, 4.0 * error)))
                 if abs(error) < FACED:
                     world.drive(0.0, 0.0)
-                    self.phase = "prepare"
-            if self.phase == "prepare":
+                    self.phase, self.since = "prepare", world.sim_time
+            if self.phase == "prepare":  # fingers closed on a held ball stop short of their target
                 world.set_fingers(motion.fingers)
-                if self.lift_ready(motion.lift) and abs(world.finger_closure() - motion.fingers) < 0.005:
+                fingers_set = abs(world.finger_closure() - motion.fingers) < 0.005 or \
+                    world.sim_time - self.since > FINGER_SETTLE
+                if self.lift_ready(motion.lift) and fingers_set:
                     self._anchor_frame(target)
                     self.phase = "follow"
                     self.since = world.sim_time
