@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Status
+from teach.demos import format_demonstration
 from teach.domain import Literal
 from teach.errors import FormatError
 from teach.learn.recognise import question
@@ -23,7 +24,7 @@ from teach.sim.executor import run_tree
 from teach.sim.guide import Guide, parse_guide_line
 from teach.sim.guided_skill import guided_skill, load_motion, motion_from_segment, motion_text, save_motion
 from teach.sim.recorder import Recorder
-from teach.sim.segment import Segmenter, explain_segments, segment
+from teach.sim.segment import Segmenter, explain_segments, guided_demonstration, segment
 from teach.sim.skills import SKILLS, register, run_skill
 from teach.sim.world import GRASP_OFFSET, LIFT_CARRY, LIFT_PLACE, World, _wrap
 
@@ -129,7 +130,7 @@ def _snake(name: str) -> str:
     return "".join(f"_{c.lower()}" if c.isupper() else c for c in name).lstrip("_")
 
 
-def named_demonstration(start: dict[str, bool], seed: int) -> list[tuple[tuple[bool, ...], str, tuple[bool, ...]]]:
+def named_recording(start: dict[str, bool], seed: int) -> Recorder:
     """The teacher naming the skills instead: each step whose effect does not hold yet."""
     world = World(seed=0)
     world.arrange(start, seed=seed)
@@ -137,7 +138,11 @@ def named_demonstration(start: dict[str, bool], seed: int) -> list[tuple[tuple[b
     for name, condition in STEPS:
         if not world.conditions()[condition]:
             recorder.step(name)
-    return [(s.before, s.name, s.after) for s in recorder.recorded]
+    return recorder
+
+
+def named_demonstration(start: dict[str, bool], seed: int) -> list[tuple[tuple[bool, ...], str, tuple[bool, ...]]]:
+    return [(s.before, s.name, s.after) for s in named_recording(start, seed).recorded]
 
 
 def guided(start: dict[str, bool], seed: int, teach: str = "demonstrate") -> tuple[World, Guide, Teacher, Segmenter]:
@@ -173,10 +178,14 @@ STARTS = [({}, 1), ({"BinClose": True}, 1), ({"BallClose": True}, 1), ({"BallClo
 def test_guided_demonstration_gives_the_named_transitions(start: dict[str, bool], seed: int) -> None:
     world, _, teacher, segmenter = guided(start, seed)
     assert all(line.startswith("guide ") for line in teacher.lines)
-    assert labelled(world, segmenter) == named_demonstration(start, seed)
+    named = named_recording(start, seed)
+    assert labelled(world, segmenter) == [(s.before, s.name, s.after) for s in named.recorded]
     assert world.conditions()["BallPlaced"]
-    # every step is recognised without a labelling question
-    assert not any(r.needs_question for _, r in explain_segments(world.domain, segmenter.segments))
+    explained = explain_segments(world.domain, segmenter.segments)
+    # every step is recognised without a labelling question, and the CSV lines are the same
+    assert not any(r.needs_question for _, r in explained)
+    demo = guided_demonstration(world.domain, [(s, r.best or "") for s, r in explained], world.state())
+    assert format_demonstration(demo) == format_demonstration(named.done())
 
 
 def test_a_guided_script_replays_exactly() -> None:

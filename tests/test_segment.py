@@ -2,16 +2,20 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import pytest
 
-from teach.errors import TeachError
+from teach.demos import format_demonstration
+from teach.domain import Domain, State
+from teach.errors import DomainError, TeachError
 from teach.sim.guide import Sample
-from teach.sim.segment import Segmenter, join_all, segment
+from teach.sim.segment import Segmenter, guided_demonstration, join_all, segment
 
 A, B, C = (False, False), (True, False), (True, True)
 
 
-def samples(states: list[tuple[bool, bool]], period: float = 0.02) -> list[Sample]:
+def samples(states: Sequence[State], period: float = 0.02) -> list[Sample]:
     """A stream of samples 20 ms apart with the given states (poses are irrelevant here)."""
     zero = (0.0, 0.0, 0.0)
     return [Sample(i * period, state, zero, 0.0, 0.0, zero, zero, (0.0, 0.0, 0.0, 0.0))
@@ -66,3 +70,13 @@ def test_online_segments_and_tail() -> None:
 def test_the_hold_must_be_a_duration() -> None:
     with pytest.raises(TeachError, match="hold time"):
         Segmenter(hold=-1.0)
+
+
+def test_labelled_segments_become_csv_lines(ball: Domain) -> None:
+    s = ball.state
+    stream = samples([s([])] * 5 + [s(["BallFound"])] * 20 + [s(["BallFound", "BallClose"])] * 20)
+    found = segment(stream)
+    demo = guided_demonstration(ball, [(found[0], "FindBall"), (found[1], "ApproachBall")], stream[-1].state)
+    assert format_demonstration(demo) == "0;0;0;0;0;1\n1;0;0;0;0;2\n"  # no goal line: the ball is not in the bin
+    with pytest.raises(DomainError, match="Dance"):
+        guided_demonstration(ball, [(found[0], "Dance")], stream[-1].state)

@@ -15,7 +15,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from teach.domain import Domain, State
+from teach.demos import Demonstration, Step
+from teach.domain import GOAL_ACTION, Domain, State
 from teach.errors import TeachError
 from teach.learn.recognise import Effects, Recognition, explain
 from teach.sim.guide import Sample
@@ -104,3 +105,13 @@ def explain_segments(domain: Domain, segments: Sequence[Segment], effects: Effec
     """Each guided action: its (possibly joined) segment and what it was recognised as."""
     groups = explain(domain, [(s.before, s.after) for s in segments], effects, preconditions)
     return [(join_all(segments[group.start:group.stop]), recognition) for group, recognition in groups]
+
+
+def guided_demonstration(domain: Domain, labelled: Sequence[tuple[Segment, str]], final: State,
+                         name: str = "demo") -> Demonstration:
+    """The labelled segments as CSV lines (one per segment, by action name), then the goal line
+    when the domain's goal holds in ``final``, as ``Recorder.done`` writes a named-skill one."""
+    steps = [Step(seg.before, domain.action(label).id, number) for number, (seg, label) in enumerate(labelled, 1)]
+    if domain.goal and all(domain.holds(literal, final) for literal in domain.goal):
+        steps.append(Step(final, GOAL_ACTION, len(steps) + 1))
+    return Demonstration(name, tuple(steps))
