@@ -148,45 +148,51 @@ class GuidedSkill(Skill):
         return all(state.get(lit.name) == lit.value for lit in self.motion.effects)
 
     def update(self) -> Status:
-        world, motion = self.world, self.motion
         if self.phase in ("approach", "face", "prepare"):
             target = self._anchor()
             if target is None:
                 return FAILURE  # the robot does not know where the object is
-            reach = math.hypot(*motion.offset)
-            if self.phase == "approach":
-                world.set_fingers(motion.fingers)
-                if not self.lift_ready(LIFT_CARRY):
-                    world.drive(0.0, 0.0)  # the arm up before driving, as ApproachBall does
-                elif (self.go_around_bin(target, reach) if motion.anchor == "ball" else
-                      self.go_to(target, reach)) < PLACED:
-                    self.phase = "face"
-            if self.phase == "face":
-                x, y, yaw = world.base_pose()
-                bearing = math.atan2(motion.offset[1], motion.offset[0])
-                error = _wrap(math.atan2(target[1] - y, target[0] - x) - bearing - yaw)
-                world.drive(0.0, max(-2.0, min(2.0, 4.0 * error)))
-                if abs(error) < FACED:
-                    world.drive(0.0, 0.0)
-                    self.phase, self.since = "prepare", world.sim_time
-            if self.phase == "prepare":  # fingers closed on a held ball stop short of their target
-                world.set_fingers(motion.fingers)
-                fingers_set = abs(world.finger_closure() - motion.fingers) < 0.005 or \
-                    world.sim_time - self.since > FINGER_SETTLE
-                if self.lift_ready(motion.lift) and fingers_set:
-                    self._anchor_frame(target)
-                    self.phase = "follow"
-                    self.since = world.sim_time
+            {"approach": self._approach, "face": self._face, "prepare": self._prepare}[self.phase](target)
             return RUNNING
         if self._effects_hold():
             return SUCCESS
         if self.phase == "follow":
             self._follow()
             return RUNNING
-        world.drive(0.0, 0.0)
-        if world.sim_time - self.since > SETTLE:
+        self.world.drive(0.0, 0.0)
+        if self.world.sim_time - self.since > SETTLE:
             return FAILURE  # the path is done and its effects do not hold
         return RUNNING
+
+    def _approach(self, target: np.ndarray) -> None:
+        """Drive (arm up, as ApproachBall does) until the object is as far ahead as it was."""
+        world, motion = self.world, self.motion
+        world.set_fingers(motion.fingers)
+        reach = math.hypot(*motion.offset)
+        if not self.lift_ready(LIFT_CARRY):
+            world.drive(0.0, 0.0)
+        elif (self.go_around_bin(target, reach) if motion.anchor == "ball" else self.go_to(target, reach)) < PLACED:
+            self.phase = "face"
+
+    def _face(self, target: np.ndarray) -> None:
+        """Turn on the spot until the object lies at the bearing it had for the teacher."""
+        x, y, yaw = self.world.base_pose()
+        bearing = math.atan2(self.motion.offset[1], self.motion.offset[0])
+        error = _wrap(math.atan2(target[1] - y, target[0] - x) - bearing - yaw)
+        self.world.drive(0.0, max(-2.0, min(2.0, 4.0 * error)))
+        if abs(error) < FACED:
+            self.world.drive(0.0, 0.0)
+            self.phase, self.since = "prepare", self.world.sim_time
+
+    def _prepare(self, target: np.ndarray) -> None:
+        """Lift and fingers to where they started (fingers on a held ball stop short of it)."""
+        world, motion = self.world, self.motion
+        world.set_fingers(motion.fingers)
+        fingers_set = abs(world.finger_closure() - motion.fingers) < 0.005 or \
+            world.sim_time - self.since > FINGER_SETTLE
+        if self.lift_ready(motion.lift) and fingers_set:
+            self._anchor_frame(target)
+            self.phase, self.since = "follow", world.sim_time
 
     def _anchor_frame(self, target: np.ndarray) -> None:
         """The start frame: the robot's heading, placed so the object lies where it lay for the teacher."""
