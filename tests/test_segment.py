@@ -67,6 +67,18 @@ def test_online_segments_and_tail() -> None:
     assert (whole.before, whole.after) == (A, C) and whole.samples == tuple(stream[:26])
 
 
+def test_the_end_of_guidance_confirms_the_state_it_ends_in() -> None:
+    stream = samples([A] * 10 + [B] * 5)  # B for 0.08 s when the teacher says done
+    segmenter = Segmenter(hold=0.3)
+    for sample in stream:
+        assert segmenter.add(sample) is None
+    ended = segmenter.finish()
+    assert ended is not None and (ended.before, ended.after) == (A, B) and ended.samples[-1] is stream[10]
+    assert segmenter.finish() is None and segmenter.segments == [ended]
+    # ending back where it was: the flicker is no change
+    assert segment(samples([A] * 10 + [B] * 5 + [A] * 2)) == []
+
+
 def test_the_hold_must_be_a_duration() -> None:
     with pytest.raises(TeachError, match="hold time"):
         Segmenter(hold=-1.0)

@@ -5,7 +5,8 @@ A change counts only once the new state has held for ``hold`` simulated seconds 
 condition for a moment and makes no step. The segment ends where the new state first
 appeared, so the motion that made the change belongs to it and the dithering after it does
 not. What follows the last change (lifting the arm after placing, say) is the tail: motion
-without a change, which no transition describes.
+without a change, which no transition describes. When guidance ends (``finish``), a change
+still inside its hold time counts: the robot ends in that state.
 
 The segmenter works online, one sample per control period, at a few microseconds each.
 """
@@ -79,16 +80,28 @@ class Segmenter:
         self._candidate = -1
         return segment
 
+    def finish(self) -> Segment | None:
+        """End of guidance: a change still within its hold time counts, as the robot ends in it
+        (a wobble the teacher stopped in the middle of is not undone by anyone)."""
+        samples = self._samples
+        if self._stable is None or self._candidate < 0 or samples[-1].state != samples[self._candidate].state:
+            return None
+        segment = Segment(self._stable, samples[-1].state, tuple(samples[: self._candidate + 1]))
+        self.segments.append(segment)
+        self._stable, self._samples, self._candidate = segment.after, samples[self._candidate:], -1
+        return segment
+
     def tail(self) -> tuple[Sample, ...]:
         """The motion after the last confirmed change (a pending, unconfirmed change included)."""
         return tuple(self._samples)
 
 
 def segment(samples: Iterable[Sample], hold: float = HOLD_SECONDS) -> list[Segment]:
-    """All segments of a finished recording (a change still unconfirmed at its end makes none)."""
+    """All segments of a finished recording, the state it ends in included."""
     segmenter = Segmenter(hold)
     for sample in samples:
         segmenter.add(sample)
+    segmenter.finish()
     return segmenter.segments
 
 
