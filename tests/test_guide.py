@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import pytest
 
 from teach.errors import FormatError
+from teach.observe import Observer
 from teach.sim.guide import Guide, GuideCommand, is_guide_line, parse_guide_line
 from teach.sim.world import FINGER_CLOSED, World, _wrap
 
@@ -89,6 +91,25 @@ def test_blocked_motion_stops() -> None:
     guide.forward(4.9)  # into a wall of the 4 m room: the hand stops when the body does
     x, y, _ = world.base_pose()
     assert max(abs(x), abs(y)) < 2.0
+
+
+class States(Observer):
+    def __init__(self) -> None:
+        self.running: list[str | None] = []
+
+    def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
+        self.running.append(action)
+
+
+def test_the_recording_shows_the_command_being_guided() -> None:
+    world = World(seed=1)
+    world.arrange({}, seed=1)
+    states = States()
+    guide = Guide(world, observer=states)
+    guide.run(parse_guide_line("guide turn 90"))
+    guide.run(parse_guide_line("führen vor 0,2"))
+    # scene frames at 10 Hz of simulated time, each naming the command carried out
+    assert set(states.running) == {"guide", "guide turn 90", "guide forward 0.2"} and len(states.running) > 20
 
 
 def test_same_seed_same_motion() -> None:

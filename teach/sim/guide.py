@@ -137,6 +137,7 @@ class Guide:
         self.lift_target = world.lift_height()
         self.finger_target = FINGER_CLOSED if world.finger_closure() > FINGER_CLOSED / 2 else FINGER_OPEN
         self._dt = CONTROL_STEPS * world.model.opt.timestep
+        self.doing = "guide"  # what the recording shows as running: the command being carried out
         self.sample((0.0, 0.0))
 
     # --- sampling --------------------------------------------------------------------------
@@ -151,7 +152,7 @@ class Guide:
         self.samples.append(sample)
         if self.listener is not None:
             self.listener(sample)
-        self.frames("guide")
+        self.frames(self.doing)
         return sample
 
     def _period(self, forward: float, turn: float) -> None:
@@ -170,6 +171,7 @@ class Guide:
             "forward": lambda: self.forward(command.amount), "turn": lambda: self.turn(command.amount),
             "lift": lambda: self.lift(command.amount), "open": self.open, "close": self.close,
             "wait": lambda: self.wait(command.amount)}
+        self.doing = str(command)
         actions[command.verb]()
 
     def forward(self, metres: float) -> None:
