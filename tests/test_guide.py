@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
+import numpy as np
 import pytest
 
 from teach.errors import FormatError
@@ -110,6 +111,23 @@ def test_the_recording_shows_the_command_being_guided() -> None:
     guide.run(parse_guide_line("führen vor 0,2"))
     # scene frames at 10 Hz of simulated time, each naming the command carried out
     assert set(states.running) == {"guide", "guide turn 90", "guide forward 0.2"} and len(states.running) > 20
+
+
+def test_a_hand_on_the_robot_guides_it() -> None:
+    world = World(seed=4)
+    world.arrange({}, seed=4)
+    guide = Guide(world)
+    x0, y0, yaw0 = world.base_pose()
+    guide.by_hand(0.5)  # nobody touches it: it stays
+    assert math.dist(world.base_pose()[:2], (x0, y0)) < 0.005
+    # a 20 N push along the heading and a turning hand: it walks forward and turns left
+    world.push_base(20.0 * np.array([math.cos(yaw0), math.sin(yaw0)]), 2.0)
+    guide.by_hand(1.0)
+    world.push_base(np.zeros(2), 0.0)
+    x1, y1, yaw1 = world.base_pose()
+    ahead = (x1 - x0) * math.cos(yaw0) + (y1 - y0) * math.sin(yaw0)
+    assert 0.1 < ahead < 0.35 and 0.1 < _wrap(yaw1 - yaw0) < 0.5
+    assert guide.samples[-1].command[:2] != (0.0, 0.0)
 
 
 def test_same_seed_same_motion() -> None:

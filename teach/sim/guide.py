@@ -9,7 +9,8 @@ by touch, as FindBall does for a held ball. Every control period (20 ms) the gui
 records a ``Sample`` (the symbolic state, the bodies' poses and the commands) and hands it to
 its listener, so a segmenter can cut the motion online.
 
-Script lines: ``guide forward 0.4``, ``guide turn -30``, ``guide lift 0.25``, ``guide close``
+In the MuJoCo viewer the teacher drags the robot instead (Ctrl + drag): ``by_hand`` follows the
+force on the base. Script lines: ``guide forward 0.4``, ``guide turn -30``, ``guide lift 0.25``, ``guide close``
 (German: ``führen vor 0.4``, ``führen drehen -30``, ``führen heben 0.25``, ``führen schließen``).
 Keys (``Guide.key``): up/down move 10 cm, left/right turn 15 degrees, pageup/pagedown move
 the lift 5 cm, space opens or closes the fingers.
@@ -38,6 +39,8 @@ BLOCKED_SECONDS = 0.6    # no progress for this long: the body is blocked, the p
 MAX_DISTANCE = 5.0       # m: the room is 4 m wide
 MAX_TURN = 720.0         # degrees
 MAX_WAIT = 60.0          # seconds
+HAND_DAMPING = 100.0     # N per m/s: a hand pushing with 30 N walks the robot at 0.3 m/s
+HAND_TURN_DAMPING = 10.0  # N m per rad/s
 KEY_STEP = 0.1           # m per arrow key
 KEY_TURN = 15.0          # degrees per arrow key
 KEY_LIFT = 0.05          # m per page key
@@ -253,6 +256,20 @@ class Guide:
         """Hold still for ``seconds`` of simulated time (the world goes on: a ball rolls)."""
         for _ in range(round(seconds / self._dt)):
             self._period(0.0, 0.0)
+
+    def by_hand(self, seconds: float) -> None:
+        """Follow a hand on the robot for ``seconds``: the external force and torque on the base
+        (the MuJoCo viewer's Ctrl+drag, or ``World.push_base``) set its speed and turn rate,
+        as a compliant robot arm follows the hand that guides it."""
+        base = self.world.model.body("base").id
+        for _ in range(round(seconds / self._dt)):
+            fx, fy, _, _, _, torque = (float(v) for v in self.world.data.xfrc_applied[base])
+            yaw = self.world.base_pose()[2]
+            along = fx * math.cos(yaw) + fy * math.sin(yaw)
+            forward = max(-SPEED, min(SPEED, along / HAND_DAMPING))
+            turn = max(-TURN_SPEED, min(TURN_SPEED, torque / HAND_TURN_DAMPING))
+            self._period(forward, turn)
+        self._stop()
 
     def _stop(self) -> None:
         self.world.drive(0.0, 0.0)
