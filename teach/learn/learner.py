@@ -215,6 +215,18 @@ class Learner:
         situation.sources.append(source)
         return self._finish(source, [mask], [])
 
+    def state_of(self, mask: int) -> State:
+        """The state a bitmask (bit i = condition i) stands for."""
+        return self._state(mask)
+
+    def shown_states(self) -> dict[str, State]:
+        """For each action, the first labelled state in which it is to be done."""
+        shown: dict[str, State] = {}
+        for situation in self._situations.values():
+            if situation.answer is not None:
+                shown.setdefault(situation.answer, situation.state)
+        return shown
+
     def answer_in(self, state: State) -> Answer | bool:
         """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
         return self._output(self._mask(state))
@@ -282,9 +294,13 @@ class Learner:
     def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
         self._update_count += 1
         before = self._tree if self._tree is not None else self._assemble()
-        if self._current_view() != self._view:
+        view = self._view
+        if self._current_view() != view:
             self._replan()
+        wrong = [m for m in touched if self._plan_output(m) not in self._situations[m].allowed]
+        if wrong:
             self._repair_model()
+        if self._view != view:
             self._exceptions = []
             self._fix(list(self._situations))
         else:
