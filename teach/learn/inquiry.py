@@ -111,7 +111,10 @@ def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Call
                 # assumed from the step before, not the action's own "not done yet" check
                 literals = literals_of(assumed[0] & ~made_false, assumed[1] & ~made_true, width)
             else:
-                literals = literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
+                # only literals some action is known to make hold: without one, nothing could
+                # be done about the literal, and the data shows the teacher never needed one
+                literals = [lit for lit in literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
+                            if learner.model.achievers(lit)]
             for index, _value in literals:
                 probe = flipped(shown[name], index)
                 yield SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
