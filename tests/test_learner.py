@@ -158,3 +158,19 @@ def test_explain_covers_every_node_with_its_evidence() -> None:
             assert why.sources, why
     texts = [learner.explain(n.uid) for n in walk(learner.tree)]
     assert any("delta4" in t and ".csv:" in t for t in texts)
+
+
+def test_an_answer_naming_an_action_never_shown_teaches_its_effect() -> None:
+    domain, _demos = read_demo_set(BALL / "delta4")
+    # FindBall is never demonstrated: the ball is always found already
+    shown = demo("found", ("10000", 2), ("11000", 3), ("11100", 4), ("11110", 5), ("11111", 0))
+    learner = learn_online(domain, [shown])
+    not_found = (False, False, False, False, False)  # one literal away from where ApproachBall was shown
+    learner.teach_step(not_found, "FindBall", "question 1")
+    achievers = [n for n in walk(learner.tree) if learner.why(n.uid).kind == "achiever"
+                 and learner.why(n.uid).action == "FindBall"]
+    assert achievers and "guessed from the answer at question 1" in learner.explain(achievers[0].uid)
+    # the plan does it, not an exception for that one state
+    assert learner.answer_in(not_found) == "FindBall"
+    assert all(learner.why(n.uid).kind != "exception" for n in walk(learner.tree))
+    assert replay(learner.tree, domain, [shown]).reproduced == 1

@@ -15,7 +15,9 @@ Per robot action (external events, -1, belong to nobody and teach no action anyt
   right before it made hold, every time the action followed another one (it was done to
   enable this action; a side effect that happened only sometimes does not count);
 - **confirmed preconditions** (the lower bound): possible ones the learner had to add back
-  to reproduce a demonstration, with the situation that needed each.
+  to reproduce a demonstration, or that an answer showed, with the situation behind each;
+- **guessed effects** of an action never demonstrated, from an answer (until its first
+  transition replaces them).
 
 Everything is updated in O(conditions) per transition; nothing is ever recomputed from the
 old demonstrations.
@@ -65,6 +67,7 @@ class ActionKnowledge:
     followed: int = 0
     made: dict[Lit, Evidence] = field(default_factory=dict)
     confirmed: dict[Lit, str] = field(default_factory=dict)
+    guessed: dict[Lit, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.held_true = self.held_false = self.after_true = self.after_false = self.full
@@ -76,9 +79,15 @@ class ActionKnowledge:
 
     @property
     def effects(self) -> tuple[int, int]:
-        """(made true, made false) masks."""
+        """(made true, made false) masks; before any transition, the effects guessed from answers."""
         if not self.transitions:
-            return 0, 0
+            made_true = made_false = 0
+            for index, value in self.guessed:
+                if value:
+                    made_true |= 1 << index
+                else:
+                    made_false |= 1 << index
+            return made_true, made_false
         return self.became_true & self.after_true, self.became_false & self.after_false
 
     @property
@@ -155,6 +164,11 @@ class ActionModel:
         """Keep ``literal`` as a precondition of ``name`` from now on (it had to be added back)."""
         self.actions[name].confirmed.setdefault(literal, source)
 
+    def guess(self, name: str, literal: Lit, source: str) -> None:
+        """An effect inferred from an answer (see ``Learner.teach_step``); transitions of the
+        action, once demonstrated, replace every guess."""
+        self.actions[name].guessed.setdefault(literal, source)
+
     def achievers(self, literal: Lit) -> list[str]:
         """Actions that have ``literal`` as an effect, the most often demonstrated doing it first."""
         index, value = literal
@@ -163,7 +177,7 @@ class ActionModel:
             made_true, made_false = knowledge.effects
             if (made_true if value else made_false) >> index & 1:
                 found.append(knowledge)
-        found.sort(key=lambda k: (-k.made[literal].count, k.order))
+        found.sort(key=lambda k: (-k.made[literal].count if literal in k.made else 0, k.order))
         return [k.name for k in found]
 
 

@@ -6,18 +6,21 @@ point of the model, most decisive first:
 
 1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it;
 2. **possible preconditions left out**: a state where an action was shown, with one literal
-   made false that held every time the action was shown but that the learner dropped as
-   probably accidental (the tree still does the action there); if the teacher wants
-   something else, it was real;
-3. **gaps**: a state next to a demonstrated one where the tree knows nothing (FAILURE),
-   which is where actions never demonstrated come in;
-4. **assumed preconditions**: the same with a precondition the learner assumed from the
+   made false that held every time the action was shown, that some known action can make
+   hold, but that the learner dropped as probably accidental (the tree still does the action
+   there); if the teacher wants something else, it was real;
+3. **assumed preconditions**: the same with a precondition the learner assumed from the
    step before it made false; if the teacher still wants that action, it was an accident;
-5. **the goal**: a goal state with one goal *candidate* false that the learned goal does not
+4. **unknown achievers**: the same with a left-out literal no known action makes hold; the
+   answer may be an action never demonstrated, whose effect the learner then guesses
+   (``Learner.teach_step``);
+5. **gaps**: a state next to a demonstrated one where the tree knows nothing (FAILURE);
+6. **the goal**: a goal state with one goal *candidate* false that the learned goal does not
    check (the tree says "done" there); an action as answer puts the literal into the goal,
    "done" drops it from the candidates.
 
-The order puts first the situations where the tree is most likely wrong now.
+The order puts first the situations where, on random domains (``bench/bench_generalise.py``),
+the teacher's answer most often differed from what the tree did.
 A question is asked only if some answer changes the tree: the state is not labelled yet (or
 is a conflict), so every answer other than what the tree does now makes it change. The same
 state is never proposed twice (``asked``).
@@ -32,7 +35,7 @@ from teach.domain import State
 from teach.learn.action_model import literals_of
 from teach.learn.learner import Learner
 
-KINDS = ("conflict", "possible-precondition", "gap", "assumed-precondition", "goal")
+KINDS = ("conflict", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal")
 
 
 @dataclass(frozen=True)
@@ -76,12 +79,13 @@ def _candidates(learner: Learner) -> Iterable[SituationQuestion]:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
 
     yield from _preconditions(learner, does, flipped, ("possible-precondition",))
+    yield from _preconditions(learner, does, flipped, ("assumed-precondition",))
+    yield from _preconditions(learner, does, flipped, ("unknown-achiever",))
     for state in learner.situations:
         for index in range(width):
             probe = flipped(state, index)
             if does(probe) == "nothing":
                 yield SituationQuestion(probe, "gap", tree_does="nothing")
-    yield from _preconditions(learner, does, flipped, ("assumed-precondition",))
     goal_states = [learner.state_of(mask) for mask in learner.goal.goal_states]
     checked = set(learner.goal.cover)
     for index, value in learner.goal.candidates():
@@ -111,10 +115,11 @@ def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Call
                 # assumed from the step before, not the action's own "not done yet" check
                 literals = literals_of(assumed[0] & ~made_false, assumed[1] & ~made_true, width)
             else:
-                # only literals some action is known to make hold: without one, nothing could
-                # be done about the literal, and the data shows the teacher never needed one
-                literals = [lit for lit in literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
-                            if learner.model.achievers(lit)]
+                # first the literals some action is known to make hold; then those no known
+                # action makes hold (the answer may be an action never demonstrated)
+                left_out = literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
+                wanted = kind == "possible-precondition"
+                literals = [lit for lit in left_out if bool(learner.model.achievers(lit)) == wanted]
             for index, _value in literals:
                 probe = flipped(shown[name], index)
                 yield SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))

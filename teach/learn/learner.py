@@ -195,7 +195,29 @@ class Learner:
         conflict = self._label(mask, tuple(state), answer, source)
         if answer is not None:
             self.model.applied(answer, mask, source)
+            self._guess_effect(mask, answer, source)
         return self._finish(source, [mask], [mask] if conflict else [])
+
+    def _guess_effect(self, mask: int, answer: str, source: str) -> None:
+        """An action never demonstrated, asked for in a state one literal away from where
+        another action was shown, with that literal among the other action's possible
+        preconditions: the teacher wants that literal first, and this action is how. So it
+        is guessed as this action's effect and confirmed as the other's precondition."""
+        knowledge = self.model[answer]
+        if knowledge.demonstrated or knowledge.guessed:
+            return
+        for other_mask, situation in self._situations.items():
+            other = situation.answer
+            difference = other_mask ^ mask
+            if other is None or other == answer or difference & (difference - 1):
+                continue
+            index = difference.bit_length() - 1
+            literal = (index, bool(other_mask >> index & 1))
+            pos, neg = self.model[other].possible
+            if (pos if literal[1] else neg) >> index & 1:
+                self.model.guess(answer, literal, source)
+                self.model.confirm(other, literal, source)
+                return
 
     def resolve(self, state: State, answer: Answer, source: str = "the teacher's decision") -> Update:
         """Settle a conflict: ``answer`` is what to do there, or ``EITHER`` (every label is fine)."""
@@ -471,12 +493,18 @@ class Learner:
             return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "
                                f"state(s) where {role.action} was done ({', '.join(applied.sources)}), and "
                                f"{knowledge.reason(role.literal)}", role.action, literal, tuple(applied.sources))
-        evidence = knowledge.made[role.literal]
-        text = (f"{role.action} makes {literal} hold: seen {evidence.count} time(s) "
-                f"({', '.join(evidence.sources)}) and never contradicted")
+        if role.literal in knowledge.made:
+            evidence = knowledge.made[role.literal]
+            sources = tuple(evidence.sources)
+            text = (f"{role.action} makes {literal} hold: seen {evidence.count} time(s) "
+                    f"({', '.join(sources)}) and never contradicted")
+        else:
+            sources = (knowledge.guessed[role.literal],)
+            text = (f"{role.action} makes {literal} hold: guessed from the answer at {sources[0]} "
+                    f"({role.action} was never demonstrated)")
         if role.kind == "last-resort":
             text = f"last resort for {literal}: {role.action} even when its preconditions do not hold; " + text
-        return Explanation(uid, role.kind, text, role.action, literal, tuple(evidence.sources))
+        return Explanation(uid, role.kind, text, role.action, literal, sources)
 
     # --- helpers ------------------------------------------------------------------------------
 
