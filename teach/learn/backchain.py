@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence
 from teach.learn.action_model import Lit
 
-MAX_NODES = 2000
+MAX_NODES = 400
 """Beyond this size literals are no longer expanded (deep models would grow exponentially)."""
 
 

@@ -49,7 +49,7 @@ Answer = str | None
 EITHER = "<either>"
 """``resolve`` answer: every label the state was given is fine."""
 
-REPAIR_TRIALS = 12
+REPAIR_TRIALS = 4
 """Model repairs tried per update; each costs one replan and one check of every situation."""
 
 _FAILED = "<failure>"
@@ -121,6 +121,7 @@ class Learner:
         self.goal = GoalLearner(self._n)
         self._weak = weak_last_resort
         self._situations: dict[int, Situation] = {}
+        self._columns = _Columns(self._n)
         self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
         self._rank_sum: dict[Lit, int] = {}
         self._rank_count: dict[Lit, int] = {}
@@ -284,6 +285,7 @@ class Learner:
         situation = self._situations.get(mask)
         if situation is None:
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
+            self._columns.add(mask, frozenset({answer}))
             self._feed_goal(mask, frozenset({answer}), source)
             return False
         situation.sources.append(source)
@@ -302,6 +304,7 @@ class Learner:
             self.goal.remove_goal_state(mask)
         elif None not in old:
             self.goal.remove_acting_state(mask)
+        self._columns.relabel(mask, old, allowed)
         situation.allowed, situation.answer = allowed, answer
         self._feed_goal(mask, allowed, situation.sources[-1])
 
@@ -319,9 +322,11 @@ class Learner:
         view = self._view
         if self._current_view() != view:
             self._replan()
-        wrong = [m for m in touched if self._plan_output(m) not in self._situations[m].allowed]
+        # newly learned situations the tree gets wrong; after a replan, every situation the plan gets wrong
+        suspects = list(self._situations) if self._view != view else list(dict.fromkeys(touched))
+        wrong = [m for m in suspects if self._output(m) not in self._situations[m].allowed]
         if wrong:
-            self._repair_model()
+            self._repair_model(wrong)
         if self._view != view:
             self._exceptions = []
             self._fix(list(self._situations))
@@ -356,10 +361,11 @@ class Learner:
         return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
                         self._weak)
 
-    def _rank(self, literal: Lit) -> tuple[float, int]:
-        """Literals the demonstrations establish early come first (-1: never established)."""
+    def _rank(self, literal: Lit) -> tuple[int, int]:
+        """Literals the demonstrations establish early come first (-1: never established); the
+        mean step is rounded, so the plan is not rebuilt for every small change of it."""
         count = self._rank_count.get(literal, 0)
-        return (self._rank_sum[literal] / count if count else -1.0), literal[0]
+        return (round(self._rank_sum[literal] / count) if count else -1), literal[0]
 
     def _replan(self) -> None:
         self._view = self._current_view()
@@ -385,23 +391,26 @@ class Learner:
     def _plan_errors(self) -> int:
         return sum(self._plan_output(m) not in s.allowed for m, s in self._situations.items())
 
-    def _repair_model(self) -> None:
+    def _repair_model(self, wrong: list[int]) -> None:
         """Add back possible preconditions the prior left out where that reproduces more
-        situations: for a situation where the plan runs the wrong action, each possible
-        precondition of that action false there is tried, and the one that leaves the fewest
-        situations wrong is kept (ties: the one established latest, nearest the action)."""
+        situations: for a newly learned situation where the plan runs the wrong action, each
+        possible precondition of that action false there is tried, and the one that leaves
+        the fewest situations wrong is kept (ties: the one established latest, nearest the
+        action). At most ``REPAIR_TRIALS`` replans per update."""
         trials = 0
         errors = self._plan_errors()
-        for mask, situation in list(self._situations.items()):
+        for mask in wrong:
+            situation = self._situations[mask]
+            running = self._plan_output(mask)
             if trials >= REPAIR_TRIALS or not errors:
                 return
-            running = self._plan_output(mask)
             if running in situation.allowed or running is None or running == _FAILED:
                 continue
             knowledge = self.model[running]  # type: ignore[index]
             pos, neg = knowledge.possible
             have_pos, have_neg = knowledge.assumed
-            best: tuple[int, tuple[float, int], Lit] | None = None
+            kept = (self._view, self._plan, self._roles, self._compiled)
+            best: tuple[int, tuple[int, ...], Lit] | None = None
             for literal in literals_of(pos & ~have_pos, neg & ~have_neg, self._n):
                 if bool(mask >> literal[0] & 1) == literal[1] or trials >= REPAIR_TRIALS:
                     continue
@@ -411,10 +420,12 @@ class Learner:
                 score = (self._plan_errors(), tuple(-x for x in self._rank(literal)), literal)
                 del knowledge.confirmed[literal]
                 if score[0] < errors and (best is None or score < best):
-                    best = score  # type: ignore[assignment]
-            if best is not None:
-                errors = best[0]
-                knowledge.confirmed[best[2]] = situation.sources[-1]
+                    best = score
+            if best is None:
+                self._view, self._plan, self._roles, self._compiled = kept
+                continue
+            errors = best[0]
+            knowledge.confirmed[best[2]] = situation.sources[-1]
             self._replan()
 
     def _fix(self, masks: Seq[int]) -> None:
@@ -436,18 +447,7 @@ class Learner:
             violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
             if violated is not None:
                 chosen |= 1 << violated[0]
-        diffs = [m ^ mask for m, other in self._situations.items()
-                 if answer not in other.allowed and (m ^ mask) & chosen == 0]
-        while diffs:
-            counts = [0] * self._n
-            for diff in diffs:
-                while diff:
-                    low = diff & -diff
-                    counts[low.bit_length() - 1] += 1
-                    diff ^= low
-            best = max(range(self._n), key=lambda i: (counts[i], -i))
-            chosen |= 1 << best
-            diffs = [d for d in diffs if not d >> best & 1]
+        chosen = self._columns.separate(mask, answer, chosen)
         value = mask & chosen
         leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
         if answer is not None:
@@ -537,6 +537,52 @@ def _uids(node: Node) -> set[int]:
     from teach.bt.nodes import walk
 
     return {n.uid for n in walk(node)}
+
+
+class _Columns:
+    """The labelled situations by column, for building exceptions fast: per condition, a big
+    int whose bit j says whether it holds in situation j; per answer, which situations allow
+    it. Separating a state from every situation that does not allow its answer is then a few
+    popcounts per literal instead of a pass over all situations."""
+
+    def __init__(self, width: int):
+        self.width = width
+        self.position: dict[int, int] = {}
+        self.holds = [0] * width
+        self.allows: dict[Answer, int] = {}
+        self.everything = 0
+
+    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
+        bit = 1 << len(self.position)
+        self.position[mask] = len(self.position)
+        self.everything |= bit
+        for index in range(self.width):
+            if mask >> index & 1:
+                self.holds[index] |= bit
+        for answer in allowed:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
+        bit = 1 << self.position[mask]
+        for answer in old:
+            self.allows[answer] &= ~bit
+        for answer in new:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
+        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
+        which ``mask`` differs from every situation that does not allow ``answer``."""
+        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
+                   for i in range(self.width)]
+        left = self.everything & ~self.allows.get(answer, 0)
+        for index in range(self.width):
+            if chosen >> index & 1:
+                left &= ~differs[index]
+        while left:
+            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
+            chosen |= 1 << best
+            left &= ~differs[best]
+        return chosen
 
 
 def learn_online(domain: Domain, demos: Seq[Demonstration]) -> Learner:
