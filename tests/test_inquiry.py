@@ -65,3 +65,25 @@ def test_nothing_left_to_ask_when_every_state_is_known() -> None:
     learner.update(Demonstration("d", (Step((False,), 1, 1), Step((True,), 0, 2))))
     assert next_question(learner) is None
     assert all(state in learner.situations for state in itertools.product((False, True), repeat=1))
+
+
+def test_questions_answered_by_the_table_6_1_tree_reproduce_all_of_delta5() -> None:
+    from teach.bt.nodes import Status
+    from teach.bt.tick import compile_tree
+    from teach.bt.xml import read_tree
+    from teach.replay import replay
+
+    domain, delta5 = read_demo_set(BALL / "delta5")
+    oracle = compile_tree(read_tree(BALL / "reference" / "table61.xml"), domain.condition_names)
+    for name, budget in (("delta4", 5), ("delta3", 2)):
+        _domain, train = read_demo_set(BALL / name, domain)
+        learner = learn_online(domain, train)
+        asked: list[tuple[bool, ...]] = []
+        for number in range(budget):
+            question = next_question(learner, asked)
+            assert question is not None
+            asked.append(question.state)
+            status, action = oracle(question.state)
+            assert status is not Status.FAILURE
+            learner.teach_step(question.state, action if status is Status.RUNNING else None, f"q{number}")
+        assert replay(learner.tree, domain, delta5).reproduced == len(delta5), name
