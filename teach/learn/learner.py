@@ -322,14 +322,15 @@ class Learner:
         view = self._view
         if self._current_view() != view:
             self._replan()
-        # newly learned situations the tree gets wrong; after a replan, every situation the plan gets wrong
-        suspects = list(self._situations) if self._view != view else list(dict.fromkeys(touched))
-        wrong = [m for m in suspects if self._output(m) not in self._situations[m].allowed]
+        # after a replan every situation the plan gets wrong, else the new ones the tree gets wrong
+        if self._view != view:
+            wrong = [m for m, s in self._situations.items() if self._plan_output(m) not in s.allowed]
+        else:
+            wrong = [m for m in dict.fromkeys(touched) if self._output(m) not in self._situations[m].allowed]
         if wrong:
             self._repair_model(wrong)
         if self._view != view:
-            self._exceptions = []
-            self._fix(list(self._situations))
+            self._rebuild_exceptions()
         else:
             self._fix(touched)
         self._tree = None
@@ -427,6 +428,21 @@ class Learner:
             errors = best[0]
             knowledge.confirmed[best[2]] = situation.sources[-1]
             self._replan()
+
+    def _rebuild_exceptions(self) -> None:
+        """Exceptions for a new plan: one for each situation the plan gets wrong and no
+        exception built so far covers (an exception is right wherever it fires on a situation,
+        so covered situations need no check)."""
+        self._exceptions = []
+        self._tree = None
+        covered = 0
+        position = self._columns.position
+        for mask, situation in self._situations.items():
+            if covered >> position[mask] & 1 or self._plan_output(mask) in situation.allowed:
+                continue
+            exception = self._exception(mask, situation)
+            self._exceptions.insert(0, exception)
+            covered |= self._columns.firing(exception.mask, exception.value)
 
     def _fix(self, masks: Seq[int]) -> None:
         """Add an exception for every given situation the tree gets wrong."""
@@ -568,6 +584,14 @@ class _Columns:
             self.allows[answer] &= ~bit
         for answer in new:
             self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def firing(self, mask: int, value: int) -> int:
+        """The situations in which the conditions of ``mask`` have the values of ``value``."""
+        result = self.everything
+        for index in range(self.width):
+            if mask >> index & 1:
+                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
+        return result & self.everything
 
     def separate(self, mask: int, answer: Answer, chosen: int) -> int:
         """``chosen`` plus the fewest further conditions (greedily, most separating first) on
