@@ -34,7 +34,7 @@ from __future__ import annotations
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
@@ -132,7 +132,6 @@ class Learner:
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
-        self._update_count = 0
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -250,6 +249,10 @@ class Learner:
                 shown.setdefault(situation.answer, situation.state)
         return shown
 
+    def goal_holds(self, state: State) -> bool:
+        """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
+        return self.goal.holds(self._mask(state))
+
     def answer_in(self, state: State) -> Answer | bool:
         """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
         return self._output(self._mask(state))
@@ -317,7 +320,6 @@ class Learner:
     # --- planning and repair ------------------------------------------------------------------
 
     def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
-        self._update_count += 1
         before = self._tree if self._tree is not None else self._assemble()
         view = self._view
         if self._current_view() != view:
@@ -482,7 +484,7 @@ class Learner:
             root = kids[0]
         else:
             root = Fallback(tuple(kids))
-        self._root_uid = root.uid if len(kids) > 1 or not kids else -1
+        self._root_uid = root.uid if len(kids) > 1 else -1
         return root
 
     # --- explanations -------------------------------------------------------------------------
@@ -550,8 +552,6 @@ class Learner:
 
 
 def _uids(node: Node) -> set[int]:
-    from teach.bt.nodes import walk
-
     return {n.uid for n in walk(node)}
 
 
