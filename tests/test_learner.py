@@ -204,5 +204,7 @@ def test_random_messy_demonstrations_are_reproduced_except_where_they_conflict(s
     for state, allowed in learner.situations.items():
         does = learner.answer_in(state)
         assert isinstance(does, str | None) and does in allowed
+    for state in all_states(domain):
+        assert learner.answer_in(state) is not None or learner.goal_holds(state)
     assert_matches_btcpp(tree, domain)
     assert all(learner.explain(node.uid) for node in walk(tree))
