@@ -1,0 +1,192 @@
+"""An action model learned online from demonstrated transitions, kept as safe bounds.
+
+Internally a state is an int bitmask (bit i = condition i), and a set of literals is a pair
+of masks (conditions that must be true, conditions that must be false).
+
+Per robot action (external events, -1, belong to nobody and teach no action anything):
+
+- **effects** (SAM-style, Juba et al. 2021): a literal that changed to its value in some
+  transition of the action and held after every transition of it (never contradicted);
+- **possible preconditions** (the upper bound): the literals that held in every state where
+  the action was applied; a precondition the model does not list here cannot be real;
+- **assumed preconditions** (what the planner uses): the possible ones that the data gives a
+  reason for, as in the thesis's convention (§5): the negation of one of the action's own
+  effects (it runs only while its effect does not hold), or a literal that the robot action
+  right before it made hold, every time the action followed another one (it was done to
+  enable this action; a side effect that happened only sometimes does not count);
+- **confirmed preconditions** (the lower bound): possible ones the learner had to add back
+  to reproduce a demonstration, or that an answer showed, with the situation behind each;
+- **guessed effects** of an action never demonstrated, from an answer (until its first
+  transition replaces them).
+
+Everything is updated in O(conditions) per transition; nothing is ever recomputed from the
+old demonstrations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+Lit = tuple[int, bool]
+"""A literal: (condition index, value)."""
+
+EVIDENCE_KEPT = 5
+"""How many sources are kept per fact for explanations (the count is always exact)."""
+
+
+@dataclass
+class Evidence:
+    """How often something was seen, and the first few places (``file:line``) it was."""
+
+    count: int = 0
+    sources: list[str] = field(default_factory=list)
+
+    def add(self, source: str) -> None:
+        self.count += 1
+        if len(self.sources) < EVIDENCE_KEPT:
+            self.sources.append(source)
+
+
+@dataclass
+class ActionKnowledge:
+    """What the transitions and answers say about one action."""
+
+    name: str
+    order: int
+    full: int
+    applied: Evidence = field(default_factory=Evidence)
+    transitions: int = 0
+    held_true: int = -1
+    held_false: int = -1
+    became_true: int = 0
+    became_false: int = 0
+    after_true: int = -1
+    after_false: int = -1
+    enabled_true: int = -1
+    enabled_false: int = -1
+    followed: int = 0
+    made: dict[Lit, Evidence] = field(default_factory=dict)
+    confirmed: dict[Lit, str] = field(default_factory=dict)
+    guessed: dict[Lit, str] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.held_true = self.held_false = self.after_true = self.after_false = self.full
+        self.enabled_true = self.enabled_false = self.full
+
+    @property
+    def demonstrated(self) -> bool:
+        return self.transitions > 0
+
+    @property
+    def effects(self) -> tuple[int, int]:
+        """(made true, made false) masks; before any transition, the effects guessed from answers."""
+        if not self.transitions:
+            made_true = made_false = 0
+            for index, value in self.guessed:
+                if value:
+                    made_true |= 1 << index
+                else:
+                    made_false |= 1 << index
+            return made_true, made_false
+        return self.became_true & self.after_true, self.became_false & self.after_false
+
+    @property
+    def possible(self) -> tuple[int, int]:
+        """The upper bound on preconditions: what held in every application."""
+        if not self.applied.count:
+            return 0, 0
+        return self.held_true, self.held_false
+
+    @property
+    def assumed(self) -> tuple[int, int]:
+        """The preconditions the planner uses: possible ones with a reason, plus confirmed ones."""
+        pos, neg = self.possible
+        made_true, made_false = self.effects
+        enabled_true, enabled_false = (self.enabled_true, self.enabled_false) if self.followed else (0, 0)
+        keep_pos = pos & (made_false | enabled_true)
+        keep_neg = neg & (made_true | enabled_false)
+        for (index, value) in self.confirmed:
+            if value and pos >> index & 1:
+                keep_pos |= 1 << index
+            elif not value and neg >> index & 1:
+                keep_neg |= 1 << index
+        return keep_pos, keep_neg
+
+    def reason(self, literal: Lit) -> str:
+        """Why ``literal`` is an assumed precondition, in words."""
+        index, value = literal
+        if literal in self.confirmed:
+            return f"added back at {self.confirmed[literal]} to reproduce what was shown there"
+        made_true, made_false = self.effects
+        if (made_false if value else made_true) >> index & 1:
+            return "it runs only while its own effect does not hold yet"
+        return "the step right before it made it hold every time it followed another step"
+
+
+class ActionModel:
+    """The learned model of every action of a domain, updated one transition at a time."""
+
+    def __init__(self, action_names: tuple[str, ...], width: int):
+        self.width = width
+        self.full = (1 << width) - 1
+        self.actions = {name: ActionKnowledge(name, i, self.full) for i, name in enumerate(action_names)}
+
+    def __getitem__(self, name: str) -> ActionKnowledge:
+        return self.actions[name]
+
+    def applied(self, name: str, before: int, source: str, previous: tuple[int, int] | None = None) -> None:
+        """The action was chosen in ``before`` (demonstrated or answered); ``previous``: the
+        literals (made true, made false) the robot action right before it changed, if any."""
+        knowledge = self.actions[name]
+        knowledge.applied.add(source)
+        knowledge.held_true &= before
+        knowledge.held_false &= ~before & self.full
+        if previous is not None:
+            knowledge.followed += 1
+            knowledge.enabled_true &= previous[0]
+            knowledge.enabled_false &= previous[1]
+
+    def observed(self, name: str, before: int, after: int, source: str) -> None:
+        """One transition (before, action, after); ``applied`` must have been called for it."""
+        knowledge = self.actions[name]
+        knowledge.transitions += 1
+        changed = before ^ after
+        knowledge.became_true |= changed & after
+        knowledge.became_false |= changed & ~after & self.full
+        knowledge.after_true &= after
+        knowledge.after_false &= ~after & self.full
+        for index in range(self.width):
+            if changed >> index & 1:
+                literal = (index, bool(after >> index & 1))
+                knowledge.made.setdefault(literal, Evidence()).add(source)
+
+    def confirm(self, name: str, literal: Lit, source: str) -> None:
+        """Keep ``literal`` as a precondition of ``name`` from now on (it had to be added back)."""
+        self.actions[name].confirmed.setdefault(literal, source)
+
+    def guess(self, name: str, literal: Lit, source: str) -> None:
+        """An effect inferred from an answer (see ``Learner.teach_step``); transitions of the
+        action, once demonstrated, replace every guess."""
+        self.actions[name].guessed.setdefault(literal, source)
+
+    def achievers(self, literal: Lit) -> list[str]:
+        """Actions that have ``literal`` as an effect, the most often demonstrated doing it first."""
+        index, value = literal
+        found = []
+        for knowledge in self.actions.values():
+            made_true, made_false = knowledge.effects
+            if (made_true if value else made_false) >> index & 1:
+                found.append(knowledge)
+        found.sort(key=lambda k: (-k.made[literal].count if literal in k.made else 0, k.order))
+        return [k.name for k in found]
+
+
+def literals_of(pos: int, neg: int, width: int) -> list[Lit]:
+    """The literals of a (true mask, false mask) pair in condition order."""
+    result: list[Lit] = []
+    for index in range(width):
+        if pos >> index & 1:
+            result.append((index, True))
+        if neg >> index & 1:
+            result.append((index, False))
+    return result

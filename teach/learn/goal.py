@@ -1,0 +1,138 @@
+"""The goal, learned from where the teacher stopped and where they kept acting.
+
+Two bounds, as for preconditions:
+
+- the **candidates** (the over-specific bound): the literals that held in every goal state;
+  every answer "the task is done here" and every new goal state can only narrow them;
+- the **goal** the tree checks: the smallest set of candidates that explains why the teacher
+  kept acting, i.e. every state in which the teacher chose an action violates at least one of
+  them (a greedy set cover). The intersection alone keeps accidental literals nothing
+  achieves, so the tree would fail everywhere; the cover keeps only what the teacher's
+  behaviour shows to matter. A state the teacher acted in that satisfies every candidate
+  cannot be explained by any goal; it is reported as ``unexplained``.
+
+States are bitmasks; the learner feeds distinct labelled states (adding and removing, since
+the latest label of a state wins). Adding an acting state costs O(conditions); the cover is
+recomputed from the stored states only when a candidate it uses disappears (at most twice
+per condition) or a goal state is taken back.
+"""
+
+from __future__ import annotations
+
+from teach.learn.action_model import Evidence, Lit
+
+
+class GoalLearner:
+    def __init__(self, width: int):
+        self.width = width
+        self.full = (1 << width) - 1
+        self.goal_states: dict[int, Evidence] = {}
+        self.acting: dict[int, str] = {}
+        self._true_in_goals = [0] * width
+        self._true_in_acting = [0] * width
+        self.cover: list[Lit] = []
+        self.unexplained: set[int] = set()
+
+    # --- the bounds ---------------------------------------------------------------------------
+
+    @property
+    def known(self) -> bool:
+        return bool(self.goal_states)
+
+    def candidates(self) -> list[Lit]:
+        """Literals true in every goal state, in condition order (empty before any goal state)."""
+        total = len(self.goal_states)
+        if not total:
+            return []
+        result: list[Lit] = []
+        for index, count in enumerate(self._true_in_goals):
+            if count == total:
+                result.append((index, True))
+            elif count == 0:
+                result.append((index, False))
+        return result
+
+    def holds(self, mask: int) -> bool:
+        """Does the learned goal hold in this state (False while no goal is known)?"""
+        return self.known and all(bool(mask >> i & 1) == v for i, v in self.cover)
+
+    def violations(self, literal: Lit) -> int:
+        """How many acting states violate ``literal``."""
+        index, value = literal
+        ones = self._true_in_acting[index]
+        return len(self.acting) - ones if value else ones
+
+    # --- updates ------------------------------------------------------------------------------
+
+    def add_goal_state(self, mask: int, source: str) -> None:
+        evidence = self.goal_states.get(mask)
+        if evidence is not None:
+            evidence.add(source)
+            return
+        before = set(self.candidates())
+        self.goal_states[mask] = Evidence()
+        self.goal_states[mask].add(source)
+        self._count(self._true_in_goals, mask, 1)
+        lost = before - set(self.candidates()) if before else set()
+        if not before or lost & set(self.cover):
+            self._recompute()
+
+    def remove_goal_state(self, mask: int) -> None:
+        if self.goal_states.pop(mask, None) is not None:
+            self._count(self._true_in_goals, mask, -1)
+            self._recompute()
+
+    def add_acting_state(self, mask: int, source: str) -> None:
+        if mask in self.acting:
+            return
+        self.acting[mask] = source
+        self._count(self._true_in_acting, mask, 1)
+        if not self.known or self._violates_cover(mask):
+            return
+        violated = [lit for lit in self.candidates() if bool(mask >> lit[0] & 1) != lit[1]]
+        if not violated:
+            self.unexplained.add(mask)
+            return
+        self.cover.append(max(violated, key=self._preference))
+
+    def remove_acting_state(self, mask: int) -> None:
+        if self.acting.pop(mask, None) is not None:
+            self._count(self._true_in_acting, mask, -1)
+            self.unexplained.discard(mask)
+
+    # --- internals ----------------------------------------------------------------------------
+
+    def _preference(self, literal: Lit) -> tuple[int, int]:
+        return self.violations(literal), -literal[0]
+
+    def _violates_cover(self, mask: int) -> bool:
+        return any(bool(mask >> i & 1) != v for i, v in self.cover)
+
+    def _count(self, counts: list[int], mask: int, step: int) -> None:
+        for index in range(self.width):
+            if mask >> index & 1:
+                counts[index] += step
+
+    def _recompute(self) -> None:
+        """Greedy set cover of the acting states by candidate literals."""
+        self.cover = []
+        self.unexplained = set()
+        candidates = self.candidates()
+        if not self.goal_states:
+            return
+        uncovered: list[int] = []
+        for mask in self.acting:
+            if any(bool(mask >> i & 1) != v for i, v in candidates):
+                uncovered.append(mask)
+            else:
+                self.unexplained.add(mask)
+        while uncovered:
+            remaining = uncovered
+            best = max(candidates, key=lambda lit: (_violating(lit, remaining), *self._preference(lit)))
+            self.cover.append(best)
+            uncovered = [m for m in uncovered if bool(m >> best[0] & 1) == best[1]]
+
+
+def _violating(literal: Lit, states: list[int]) -> int:
+    index, value = literal
+    return sum(bool(m >> index & 1) != value for m in states)

@@ -1,0 +1,126 @@
+"""The next situation question for ``teach.learn.learner.Learner``: about what its model does not know.
+
+A pure function of the learner (nothing is copied or trial-updated): it proposes concrete
+situations ("If <state>, what should I do?") in which the teacher's answer settles one open
+point of the model, most decisive first:
+
+1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it;
+2. **possible preconditions left out**: a state where an action was shown, with one literal
+   made false that held every time the action was shown, that some known action can make
+   hold, but that the learner dropped as probably accidental (the tree still does the action
+   there); if the teacher wants something else, it was real;
+3. **assumed preconditions**: the same with a precondition the learner assumed from the
+   step before it made false; if the teacher still wants that action, it was an accident;
+4. **unknown achievers**: the same with a left-out literal no known action makes hold; the
+   answer may be an action never demonstrated, whose effect the learner then guesses
+   (``Learner.teach_step``);
+5. **gaps**: a state next to a demonstrated one where the tree knows nothing (FAILURE);
+6. **the goal**: a goal state with one goal *candidate* false that the learned goal does not
+   check (the tree says "done" there); an action as answer puts the literal into the goal,
+   "done" drops it from the candidates.
+
+The order puts first the situations where, on random domains (``bench/bench_generalise.py``),
+the teacher's answer most often differed from what the tree did.
+A question is asked only if some answer changes the tree: the state is not labelled yet (or
+is a conflict), so every answer other than what the tree does now makes it change. The same
+state is never proposed twice (``asked``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+
+from teach.domain import State
+from teach.learn.action_model import literals_of
+from teach.learn.learner import Learner
+
+KINDS = ("conflict", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal")
+
+
+@dataclass(frozen=True)
+class SituationQuestion:
+    """A state to ask "what should I do here?" about, and what the answer settles."""
+
+    state: State
+    kind: str
+    action: str | None = None
+    condition: str | None = None
+    tree_does: str = ""
+    """What the robot would do there now: an action name, "done", or "nothing". The session
+    words the question ("If <state>, what should I do?") in the teacher's language."""
+
+
+def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
+    """The most decisive open situation, or None when nothing is left to ask."""
+    skip = set(asked)
+    labelled = learner.situations
+    for question in _candidates(learner):
+        if question.state in skip:
+            continue
+        if question.kind != "conflict" and question.state in labelled:
+            continue
+        return question
+    return None
+
+
+def _candidates(learner: Learner) -> Iterable[SituationQuestion]:
+    names = learner.names
+    width = len(names)
+
+    def does(state: State) -> str:
+        result = learner.answer_in(state)
+        return "done" if result is None else "nothing" if result is False else str(result)
+
+    def flipped(state: State, index: int) -> State:
+        return tuple(not v if i == index else v for i, v in enumerate(state))
+
+    for conflict in learner.conflicts:
+        yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
+
+    yield from _preconditions(learner, does, flipped, ("possible-precondition",))
+    yield from _preconditions(learner, does, flipped, ("assumed-precondition",))
+    yield from _preconditions(learner, does, flipped, ("unknown-achiever",))
+    for state in learner.situations:
+        for index in range(width):
+            probe = flipped(state, index)
+            if does(probe) == "nothing":
+                yield SituationQuestion(probe, "gap", tree_does="nothing")
+    goal_states = [learner.state_of(mask) for mask in learner.goal.goal_states]
+    checked = set(learner.goal.cover)
+    for index, value in learner.goal.candidates():
+        if (index, value) in checked:
+            continue
+        for state in goal_states:
+            probe = flipped(state, index)
+            if does(probe) == "done":
+                yield SituationQuestion(probe, "goal", condition=names[index], tree_does="done")
+                break
+
+
+def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Callable[[State, int], State],
+                   kinds: tuple[str, ...]) -> Iterable[SituationQuestion]:
+    """A state where an action was shown, with one of its precondition literals flipped."""
+    names = learner.names
+    width = len(names)
+    shown = learner.shown_states()
+    for kind in kinds:
+        for name, knowledge in learner.model.actions.items():
+            if not knowledge.demonstrated or name not in shown:
+                continue
+            pos, neg = knowledge.possible
+            assumed = knowledge.assumed
+            made_true, made_false = knowledge.effects
+            if kind == "assumed-precondition":
+                # assumed from the step before, not the action's own "not done yet" check
+                literals = literals_of(assumed[0] & ~made_false, assumed[1] & ~made_true, width)
+            else:
+                # first the literals some action is known to make hold; then those no known
+                # action makes hold (the answer may be an action never demonstrated)
+                left_out = literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
+                wanted = kind == "possible-precondition"
+                literals = [lit for lit in left_out if bool(learner.model.achievers(lit)) == wanted]
+            for index, _value in literals:
+                probe = flipped(shown[name], index)
+                yield SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
+

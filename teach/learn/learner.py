@@ -1,0 +1,622 @@
+"""The default learner: an action model and a goal learned online, a tree planned from them.
+
+    learner = Learner(domain)
+    learner.update(demo)                      # after every demonstration
+    learner.teach_step(state, "GraspBall", "question 1")   # an answered situation question
+    learner.tree                              # a teach.bt.nodes.Node
+    learner.conflicts                         # states labelled two ways; the latest label wins
+    learner.resolve(state, EITHER)            # the teacher's decision about a conflict
+    learner.explain(uid)                      # why a node exists, naming the evidence
+
+What it keeps (all updated in O(conditions) per step, never by replaying old data):
+
+- the action model (``teach.learn.action_model``): effects and precondition bounds;
+- the goal (``teach.learn.goal``): the smallest set of goal-state literals that explains why
+  the teacher kept acting;
+- the labelled situations: each distinct state with what the robot must do there. A strict
+  replay reproduces a demonstration exactly when the tree does the label of each of its
+  states, so these are the training set. A state labelled two ways is a *conflict*: kept as
+  data, the latest label wins until ``resolve``.
+
+The tree is ``Fallback(exception..., plan)``. The plan is backchained from the goal through
+the model (``teach.learn.backchain``) and rebuilt only when what the planner reads changed.
+Where the plan does not do a state's label, the learner first tries to repair the model (a
+possible precondition the prior left out is added back if that reproduces more situations),
+and otherwise adds an *exception* in front: the fewest literals of that state that hold in
+no situation labelled otherwise (and, for an action, a violated goal literal, so an
+exception never fires where the goal holds), then the label. So every consistent
+demonstration is reproduced strictly, and the tree returns SUCCESS only where the learned
+goal holds; where nothing applies it returns FAILURE.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence as Seq
+from dataclasses import dataclass, field
+
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
+from teach.bt.tick import CompiledTree, compile_tree
+from teach.demos import Demonstration
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
+from teach.errors import LearnError
+from teach.learn.action_model import ActionModel, Lit, literals_of
+from teach.learn.backchain import PlanView, Role, literal_node, plan
+from teach.learn.goal import GoalLearner
+
+Answer = str | None
+"""An action name, or None: the task is done here (the tree must return SUCCESS)."""
+
+EITHER = "<either>"
+"""``resolve`` answer: every label the state was given is fine."""
+
+REPAIR_TRIALS = 4
+"""Model repairs tried per update; each costs one replan and one check of every situation."""
+
+_FAILED = "<failure>"
+
+
+@dataclass
+class Situation:
+    """A labelled state: the answers allowed there, the latest one, and where they came from."""
+
+    state: State
+    allowed: frozenset[Answer]
+    answer: Answer
+    sources: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Conflict:
+    """One state labelled with different answers; ``labels`` pairs each answer with its source."""
+
+    state: State
+    labels: tuple[tuple[Answer, str], ...]
+
+
+@dataclass(frozen=True)
+class Update:
+    """What one demonstration or answer did."""
+
+    source: str
+    tree_changed: bool
+    new_conflicts: tuple[Conflict, ...] = ()
+    sentence: str = ""
+
+    @property
+    def changed(self) -> bool:
+        return self.tree_changed
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """Why a node exists, as data (``kind``, the ``action`` and ``literal`` it concerns, the
+    ``sources`` behind it) and as an English sentence (``text``)."""
+
+    uid: int
+    kind: str
+    text: str
+    action: str | None = None
+    literal: Literal | None = None
+    sources: tuple[str, ...] = ()
+
+
+@dataclass
+class _Exception:
+    mask: int
+    value: int
+    answer: Answer
+    source: str
+    node: Node
+
+
+class Learner:
+    """Learns online from demonstrations and answers; see the module docstring."""
+
+    def __init__(self, domain: Domain, weak_last_resort: bool = True):
+        self.domain = domain
+        self.names = domain.condition_names
+        self._n = len(self.names)
+        self._full = (1 << self._n) - 1
+        self.model = ActionModel(domain.action_names, self._n)
+        self.goal = GoalLearner(self._n)
+        self._weak = weak_last_resort
+        self._situations: dict[int, Situation] = {}
+        self._columns = _Columns(self._n)
+        self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
+        self._rank_sum: dict[Lit, int] = {}
+        self._rank_count: dict[Lit, int] = {}
+        self._view: PlanView | None = None
+        self._plan: Node | None = None
+        self._roles: dict[int, Role] = {}
+        self._compiled: CompiledTree | None = None
+        self._exceptions: list[_Exception] = []
+        self._tree: Node | None = None
+        self._root_uid = 0
+        self._replan()
+
+    # --- public API ---------------------------------------------------------------------------
+
+    @property
+    def tree(self) -> Node:
+        if self._tree is None:
+            self._tree = self._assemble()
+        return self._tree
+
+    @property
+    def conflicts(self) -> list[Conflict]:
+        """Unresolved conflicts, in the order they arose."""
+        return [Conflict(self._state(mask), tuple(labels)) for mask, labels in self._conflicts.items()]
+
+    @property
+    def situations(self) -> dict[State, frozenset[Answer]]:
+        """Every labelled state with the answers allowed there."""
+        return {s.state: s.allowed for s in self._situations.values()}
+
+    def update(self, demo: Demonstration, source: str | None = None) -> Update:
+        """Learn one more demonstration (any order, repeats, loops, external events)."""
+        where = source or (str(demo.path) if demo.path is not None else demo.name)
+        touched: list[int] = []
+        new_conflicts: list[int] = []
+        steps = demo.steps
+        previous: tuple[int, int] | None = None
+        position = 0
+        for i, step in enumerate(steps):
+            after = self._mask(steps[i + 1].state) if i + 1 < len(steps) else None
+            mask = self._mask(step.state)
+            src = f"{where}:{step.line}"
+            if step.action == EXTERNAL_ACTION:
+                previous = None
+                continue
+            answer = None if step.action == GOAL_ACTION else self.domain.action(step.action).name
+            if self._label(mask, step.state, answer, src):
+                new_conflicts.append(mask)
+            touched.append(mask)
+            if answer is None:
+                continue
+            self.model.applied(answer, mask, src, previous)
+            if after is None:
+                continue
+            self.model.observed(answer, mask, after, src)
+            position += 1
+            changed = mask ^ after
+            previous = (changed & after, changed & ~after & self._full)
+            for index in range(self._n):
+                if changed >> index & 1:
+                    literal = (index, bool(after >> index & 1))
+                    self._rank_sum[literal] = self._rank_sum.get(literal, 0) + position
+                    self._rank_count[literal] = self._rank_count.get(literal, 0) + 1
+        return self._finish(where, touched, new_conflicts)
+
+    def teach_step(self, state: State, answer: Answer, source: str) -> Update:
+        """Learn an answered situation question: do ``answer`` in ``state`` (None: done here)."""
+        mask = self._checked_mask(state, source)
+        if answer is not None:
+            self.domain.action(answer)
+        conflict = self._label(mask, tuple(state), answer, source)
+        if answer is not None:
+            self.model.applied(answer, mask, source)
+            self._guess_effect(mask, answer, source)
+        return self._finish(source, [mask], [mask] if conflict else [])
+
+    def _guess_effect(self, mask: int, answer: str, source: str) -> None:
+        """An action never demonstrated, asked for in a state one literal away from where
+        another action was shown, with that literal among the other action's possible
+        preconditions: the teacher wants that literal first, and this action is how. So it
+        is guessed as this action's effect and confirmed as the other's precondition."""
+        knowledge = self.model[answer]
+        if knowledge.demonstrated or knowledge.guessed:
+            return
+        for other_mask, situation in self._situations.items():
+            other = situation.answer
+            difference = other_mask ^ mask
+            if other is None or other == answer or difference & (difference - 1):
+                continue
+            index = difference.bit_length() - 1
+            literal = (index, bool(other_mask >> index & 1))
+            pos, neg = self.model[other].possible
+            if (pos if literal[1] else neg) >> index & 1:
+                self.model.guess(answer, literal, source)
+                self.model.confirm(other, literal, source)
+                return
+
+    def resolve(self, state: State, answer: Answer, source: str = "the teacher's decision") -> Update:
+        """Settle a conflict: ``answer`` is what to do there, or ``EITHER`` (every label is fine)."""
+        mask = self._checked_mask(state, source)
+        labels = self._conflicts.pop(mask, None)
+        if labels is None:
+            raise LearnError(f"no conflict in the state [{self.domain.describe(tuple(state))}]", source)
+        situation = self._situations[mask]
+        if answer == EITHER:
+            allowed = frozenset(a for a, _src in labels)
+            chosen = situation.answer
+        else:
+            if answer is not None:
+                self.domain.action(answer)
+            allowed, chosen = frozenset({answer}), answer
+        self._relabel(mask, situation, allowed, chosen)
+        situation.sources.append(source)
+        return self._finish(source, [mask], [])
+
+    def state_of(self, mask: int) -> State:
+        """The state a bitmask (bit i = condition i) stands for."""
+        return self._state(mask)
+
+    def shown_states(self) -> dict[str, State]:
+        """For each action, the first labelled state in which it is to be done."""
+        shown: dict[str, State] = {}
+        for situation in self._situations.values():
+            if situation.answer is not None:
+                shown.setdefault(situation.answer, situation.state)
+        return shown
+
+    def goal_holds(self, state: State) -> bool:
+        """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
+        return self.goal.holds(self._mask(state))
+
+    def answer_in(self, state: State) -> Answer | bool:
+        """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
+        return self._output(self._mask(state))
+
+    def why(self, uid: int) -> Explanation:
+        """Why the node ``uid`` of the current tree exists, as data."""
+        if self._tree is None:
+            self._tree = self._assemble()
+        if uid == self._root_uid:
+            return Explanation(uid, "root", "the root: situations that need an exception are checked first, "
+                               "then the plan from the learned goal and action model")
+        for exception in self._exceptions:
+            if uid in _uids(exception.node):
+                what = "the task is done" if exception.answer is None else f"do {exception.answer}"
+                return Explanation(uid, "exception", f"an exception: {what} where "
+                                   f"{self._words(self._literals(exception.mask, exception.value))} holds, because the "
+                                   f"plan did something else at {exception.source}", exception.answer,
+                                   None, (exception.source,))
+        role = self._roles.get(uid)
+        if role is None:
+            if self._plan is None and not self._exceptions:
+                return Explanation(uid, "nothing", "nothing learned yet: the tree fails in every state")
+            raise LearnError(f"no node {uid} in the learned tree")
+        return self._explain_role(uid, role)
+
+    def explain(self, uid: int) -> str:
+        return self.why(uid).text
+
+    # --- labels -------------------------------------------------------------------------------
+
+    def _label(self, mask: int, state: State, answer: Answer, source: str) -> bool:
+        """Record a label; True if it starts (or extends) a conflict."""
+        situation = self._situations.get(mask)
+        if situation is None:
+            self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
+            self._columns.add(mask, frozenset({answer}))
+            self._feed_goal(mask, frozenset({answer}), source)
+            return False
+        situation.sources.append(source)
+        if answer in situation.allowed:
+            if answer is None:
+                self.goal.add_goal_state(mask, source)
+            return False
+        history = self._conflicts.setdefault(mask, [(situation.answer, situation.sources[0])])
+        history.append((answer, source))
+        self._relabel(mask, situation, frozenset({answer}), answer)
+        return True
+
+    def _relabel(self, mask: int, situation: Situation, allowed: frozenset[Answer], answer: Answer) -> None:
+        old = situation.allowed
+        if old == frozenset({None}):
+            self.goal.remove_goal_state(mask)
+        elif None not in old:
+            self.goal.remove_acting_state(mask)
+        self._columns.relabel(mask, old, allowed)
+        situation.allowed, situation.answer = allowed, answer
+        self._feed_goal(mask, allowed, situation.sources[-1])
+
+    def _feed_goal(self, mask: int, allowed: frozenset[Answer], source: str) -> None:
+        if allowed == frozenset({None}):
+            self.goal.add_goal_state(mask, source)
+        elif None not in allowed:
+            self.goal.add_acting_state(mask, source)
+
+    # --- planning and repair ------------------------------------------------------------------
+
+    def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
+        before = self._tree if self._tree is not None else self._assemble()
+        view = self._view
+        if self._current_view() != view:
+            self._replan()
+        # after a replan every situation the plan gets wrong, else the new ones the tree gets wrong
+        if self._view != view:
+            wrong = [m for m, s in self._situations.items() if self._plan_output(m) not in s.allowed]
+        else:
+            wrong = [m for m in dict.fromkeys(touched) if self._output(m) not in self._situations[m].allowed]
+        if wrong:
+            self._repair_model(wrong)
+        if self._view != view:
+            self._rebuild_exceptions()
+        else:
+            self._fix(touched)
+        self._tree = None
+        after = self.tree
+        changed = after != before
+        conflicts = tuple(Conflict(self._state(m), tuple(self._conflicts[m])) for m in dict.fromkeys(new_conflicts)
+                          if m in self._conflicts)
+        parts = [f"{source}: " + ("the tree changed" if changed else "the tree already does this")]
+        if conflicts:
+            parts.append(f"{len(conflicts)} state(s) now labelled two ways (the latest label is used until "
+                         f"the teacher decides)")
+        return Update(source, changed, conflicts, "; ".join(parts))
+
+    def _current_view(self) -> PlanView:
+        rank = self._rank
+        goal = tuple(sorted(self.goal.cover, key=rank))
+        preconditions = []
+        achievers: dict[Lit, list[str]] = {}
+        for name, knowledge in self.model.actions.items():
+            made_true, made_false = knowledge.effects
+            if not made_true | made_false:
+                continue
+            preconditions.append((name, tuple(sorted(literals_of(*knowledge.assumed, self._n), key=rank))))
+        for index in range(self._n):
+            for value in (True, False):
+                found = self.model.achievers((index, value))
+                if found:
+                    achievers[(index, value)] = found
+        return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
+                        self._weak)
+
+    def _rank(self, literal: Lit) -> tuple[int, int]:
+        """Literals the demonstrations establish early come first (-1: never established); the
+        mean step is rounded, so the plan is not rebuilt for every small change of it."""
+        count = self._rank_count.get(literal, 0)
+        return (round(self._rank_sum[literal] / count) if count else -1), literal[0]
+
+    def _replan(self) -> None:
+        self._view = self._current_view()
+        self._plan, self._roles = plan(self._view, self.names)
+        self._compiled = compile_tree(self._plan, self.names) if self._plan is not None else None
+        self._tree = None
+
+    def _plan_output(self, mask: int) -> Answer | str:
+        if self._compiled is None:
+            return _FAILED
+        status, action = self._compiled(self._state(mask))
+        if status is Status.RUNNING:
+            return action
+        return None if status is Status.SUCCESS else _FAILED
+
+    def _output(self, mask: int) -> Answer | bool:
+        for exception in self._exceptions:
+            if mask & exception.mask == exception.value:
+                return exception.answer
+        result = self._plan_output(mask)
+        return False if result == _FAILED else result
+
+    def _plan_errors(self) -> int:
+        return sum(self._plan_output(m) not in s.allowed for m, s in self._situations.items())
+
+    def _repair_model(self, wrong: list[int]) -> None:
+        """Add back possible preconditions the prior left out where that reproduces more
+        situations: for a newly learned situation where the plan runs the wrong action, each
+        possible precondition of that action false there is tried, and the one that leaves
+        the fewest situations wrong is kept (ties: the one established latest, nearest the
+        action). At most ``REPAIR_TRIALS`` replans per update."""
+        trials = 0
+        errors = self._plan_errors()
+        for mask in wrong:
+            situation = self._situations[mask]
+            running = self._plan_output(mask)
+            if trials >= REPAIR_TRIALS or not errors:
+                return
+            if running in situation.allowed or running is None or running == _FAILED:
+                continue
+            knowledge = self.model[running]  # type: ignore[index]
+            pos, neg = knowledge.possible
+            have_pos, have_neg = knowledge.assumed
+            kept = (self._view, self._plan, self._roles, self._compiled)
+            best: tuple[int, tuple[int, ...], Lit] | None = None
+            for literal in literals_of(pos & ~have_pos, neg & ~have_neg, self._n):
+                if bool(mask >> literal[0] & 1) == literal[1] or trials >= REPAIR_TRIALS:
+                    continue
+                trials += 1
+                knowledge.confirmed[literal] = situation.sources[-1]
+                self._replan()
+                score = (self._plan_errors(), tuple(-x for x in self._rank(literal)), literal)
+                del knowledge.confirmed[literal]
+                if score[0] < errors and (best is None or score < best):
+                    best = score
+            if best is None:
+                self._view, self._plan, self._roles, self._compiled = kept
+                continue
+            errors = best[0]
+            knowledge.confirmed[best[2]] = situation.sources[-1]
+            self._replan()
+
+    def _rebuild_exceptions(self) -> None:
+        """Exceptions for a new plan: one for each situation the plan gets wrong and no
+        exception built so far covers (an exception is right wherever it fires on a situation,
+        so covered situations need no check)."""
+        self._exceptions = []
+        self._tree = None
+        covered = 0
+        position = self._columns.position
+        for mask, situation in self._situations.items():
+            if covered >> position[mask] & 1 or self._plan_output(mask) in situation.allowed:
+                continue
+            exception = self._exception(mask, situation)
+            self._exceptions.insert(0, exception)
+            covered |= self._columns.firing(exception.mask, exception.value)
+
+    def _fix(self, masks: Seq[int]) -> None:
+        """Add an exception for every given situation the tree gets wrong."""
+        for mask in dict.fromkeys(masks):
+            situation = self._situations[mask]
+            if self._output(mask) in situation.allowed:
+                continue
+            self._exceptions.insert(0, self._exception(mask, situation))
+            self._tree = None
+
+    def _exception(self, mask: int, situation: Situation) -> _Exception:
+        answer = situation.answer
+        chosen = 0
+        if answer is None:
+            for index, _value in self.goal.cover:
+                chosen |= 1 << index
+        else:
+            violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
+            if violated is not None:
+                chosen |= 1 << violated[0]
+        chosen = self._columns.separate(mask, answer, chosen)
+        value = mask & chosen
+        leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
+        if answer is not None:
+            leaves.append(Action(answer))
+        node = leaves[0] if len(leaves) == 1 else Sequence(tuple(leaves))
+        return _Exception(chosen, value, answer, situation.sources[-1], node)
+
+    def _assemble(self) -> Node:
+        kids = [e.node for e in self._exceptions]
+        if self._plan is not None:
+            kids.append(self._plan)
+        if not kids:
+            first = Condition(self.names[0])
+            root: Node = Sequence((first, Inverter(Condition(self.names[0]))))
+        elif len(kids) == 1:
+            root = kids[0]
+        else:
+            root = Fallback(tuple(kids))
+        self._root_uid = root.uid if len(kids) > 1 else -1
+        return root
+
+    # --- explanations -------------------------------------------------------------------------
+
+    def _explain_role(self, uid: int, role: Role) -> Explanation:
+        literal = None if role.literal is None else self._literal(role.literal)
+        if role.kind == "goal-sequence":
+            return Explanation(uid, role.kind, "the goal: every goal literal in turn, each achieved if it does "
+                               "not hold yet")
+        assert role.literal is not None and literal is not None
+        if role.kind == "goal":
+            holding = [src for e in self.goal.goal_states.values() for src in e.sources][:5]
+            acting = self.goal.violations(role.literal)
+            return Explanation(uid, "goal", f"goal literal {literal}: it held in all {len(self.goal.goal_states)} "
+                               f"goal state(s) ({', '.join(holding)}) and was still missing in {acting} state(s) "
+                               f"where the teacher kept acting", None, literal, tuple(holding))
+        if role.kind == "achieve":
+            return Explanation(uid, role.kind, f"achieve {literal}: done if it holds, otherwise an action that "
+                               f"makes it hold", None, literal)
+        assert role.action is not None
+        knowledge = self.model[role.action]
+        if role.kind == "precondition":
+            applied = knowledge.applied
+            return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "
+                               f"state(s) where {role.action} was done ({', '.join(applied.sources)}), and "
+                               f"{knowledge.reason(role.literal)}", role.action, literal, tuple(applied.sources))
+        if role.literal in knowledge.made:
+            evidence = knowledge.made[role.literal]
+            sources = tuple(evidence.sources)
+            text = (f"{role.action} makes {literal} hold: seen {evidence.count} time(s) "
+                    f"({', '.join(sources)}) and never contradicted")
+        else:
+            sources = (knowledge.guessed[role.literal],)
+            text = (f"{role.action} makes {literal} hold: guessed from the answer at {sources[0]} "
+                    f"({role.action} was never demonstrated)")
+        if role.kind == "last-resort":
+            text = f"last resort for {literal}: {role.action} even when its preconditions do not hold; " + text
+        return Explanation(uid, role.kind, text, role.action, literal, sources)
+
+    # --- helpers ------------------------------------------------------------------------------
+
+    def _literal(self, literal: Lit) -> Literal:
+        return Literal(self.names[literal[0]], literal[1])
+
+    def _words(self, literals: list[Lit]) -> str:
+        return " and ".join(str(self._literal(lit)) for lit in literals) or "anything"
+
+    def _literals(self, mask: int, value: int) -> list[Lit]:
+        return [(i, bool(value >> i & 1)) for i in range(self._n) if mask >> i & 1]
+
+    def _checked_mask(self, state: Seq[bool], source: str) -> int:
+        if len(state) != self._n:
+            raise LearnError(f"a state needs {self._n} truth values, got {len(state)}", source)
+        return self._mask(state)
+
+    def _mask(self, state: Seq[bool]) -> int:
+        mask = 0
+        for index, value in enumerate(state):
+            if value:
+                mask |= 1 << index
+        return mask
+
+    def _state(self, mask: int) -> State:
+        return tuple(bool(mask >> i & 1) for i in range(self._n))
+
+
+def _uids(node: Node) -> set[int]:
+    return {n.uid for n in walk(node)}
+
+
+class _Columns:
+    """The labelled situations by column, for building exceptions fast: per condition, a big
+    int whose bit j says whether it holds in situation j; per answer, which situations allow
+    it. Separating a state from every situation that does not allow its answer is then a few
+    popcounts per literal instead of a pass over all situations."""
+
+    def __init__(self, width: int):
+        self.width = width
+        self.position: dict[int, int] = {}
+        self.holds = [0] * width
+        self.allows: dict[Answer, int] = {}
+        self.everything = 0
+
+    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
+        bit = 1 << len(self.position)
+        self.position[mask] = len(self.position)
+        self.everything |= bit
+        for index in range(self.width):
+            if mask >> index & 1:
+                self.holds[index] |= bit
+        for answer in allowed:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
+        bit = 1 << self.position[mask]
+        for answer in old:
+            self.allows[answer] &= ~bit
+        for answer in new:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def firing(self, mask: int, value: int) -> int:
+        """The situations in which the conditions of ``mask`` have the values of ``value``."""
+        result = self.everything
+        for index in range(self.width):
+            if mask >> index & 1:
+                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
+        return result & self.everything
+
+    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
+        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
+        which ``mask`` differs from every situation that does not allow ``answer``."""
+        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
+                   for i in range(self.width)]
+        left = self.everything & ~self.allows.get(answer, 0)
+        for index in range(self.width):
+            if chosen >> index & 1:
+                left &= ~differs[index]
+        while left:
+            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
+            chosen |= 1 << best
+            left &= ~differs[best]
+        return chosen
+
+
+def learn_online(domain: Domain, demos: Seq[Demonstration]) -> Learner:
+    """A learner after every demonstration in turn."""
+    learner = Learner(domain)
+    for demo in demos:
+        learner.update(demo)
+    return learner
+
+
+def learn(domain: Domain, demos: Seq[Demonstration]) -> Node:
+    """The batch helper for ``teach learn`` and the benchmarks: the tree after all demonstrations."""
+    return learn_online(domain, demos).tree

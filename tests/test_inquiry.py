@@ -1,0 +1,89 @@
+"""Situation questions for the model-based learner: never about a known state, never twice."""
+
+from __future__ import annotations
+
+import itertools
+from pathlib import Path
+
+from teach.bt.xml import tree_to_xml
+from teach.demos import Demonstration, Step, read_demo_set
+from teach.domain import ActionDef, ConditionDef, Domain
+from teach.learn.inquiry import KINDS, next_question
+from teach.learn.learner import Learner, learn_online
+
+BALL = Path(__file__).resolve().parent.parent / "demos" / "ball"
+
+
+def ball_learner() -> Learner:
+    domain, demos = read_demo_set(BALL / "delta4")
+    return learn_online(domain, demos)
+
+
+def test_questions_are_new_unlabelled_states_and_never_repeat() -> None:
+    learner = ball_learner()
+    asked: list[tuple[bool, ...]] = []
+    for _ in range(10):
+        question = next_question(learner, asked)
+        assert question is not None and question.kind in KINDS
+        assert question.state not in asked
+        assert question.state not in learner.situations
+        asked.append(question.state)
+
+
+def test_every_answer_but_what_the_tree_does_changes_the_tree() -> None:
+    learner = ball_learner()
+    question = next_question(learner)
+    assert question is not None
+    before = tree_to_xml(learner.tree)
+    other = next(a for a in learner.domain.action_names if a != question.tree_does)
+    learner.teach_step(question.state, other, "question 1")
+    assert tree_to_xml(learner.tree) != before
+    assert learner.answer_in(question.state) == other
+
+
+def test_the_first_question_fixes_the_accidental_precondition_of_delta4() -> None:
+    # Δ4 never shows GraspBall without a found ball, so the learner drops BallFound as accidental
+    learner = ball_learner()
+    question = next_question(learner)
+    assert question is not None and question.kind == "possible-precondition"
+    assert question.action is not None and question.condition is not None
+
+
+def test_a_conflict_is_asked_first() -> None:
+    domain = Domain("two", (ConditionDef("A"), ConditionDef("B")), (ActionDef(1, "X"), ActionDef(2, "Y")))
+    learner = Learner(domain)
+    learner.update(Demonstration("one", (Step((False, False), 1, 1), Step((True, False), 0, 2))))
+    learner.update(Demonstration("two", (Step((False, False), 2, 1), Step((False, True), 0, 2))))
+    question = next_question(learner)
+    assert question is not None and question.kind == "conflict" and question.state == (False, False)
+    assert next_question(learner, [question.state]) != question
+
+
+def test_nothing_left_to_ask_when_every_state_is_known() -> None:
+    domain = Domain("one", (ConditionDef("A"),), (ActionDef(1, "X"),))
+    learner = Learner(domain)
+    learner.update(Demonstration("d", (Step((False,), 1, 1), Step((True,), 0, 2))))
+    assert next_question(learner) is None
+    assert all(state in learner.situations for state in itertools.product((False, True), repeat=1))
+
+
+def test_questions_answered_by_the_table_6_1_tree_reproduce_all_of_delta5() -> None:
+    from teach.bt.nodes import Status
+    from teach.bt.tick import compile_tree
+    from teach.bt.xml import read_tree
+    from teach.replay import replay
+
+    domain, delta5 = read_demo_set(BALL / "delta5")
+    oracle = compile_tree(read_tree(BALL / "reference" / "table61.xml"), domain.condition_names)
+    for name, budget in (("delta4", 5), ("delta3", 2)):
+        _domain, train = read_demo_set(BALL / name, domain)
+        learner = learn_online(domain, train)
+        asked: list[tuple[bool, ...]] = []
+        for number in range(budget):
+            question = next_question(learner, asked)
+            assert question is not None
+            asked.append(question.state)
+            status, action = oracle(question.state)
+            assert status is not Status.FAILURE
+            learner.teach_step(question.state, action if status is Status.RUNNING else None, f"q{number}")
+        assert replay(learner.tree, domain, delta5).reproduced == len(delta5), name
