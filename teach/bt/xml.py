@@ -18,16 +18,20 @@ from pathlib import Path
 
 from lxml import etree
 
+from teach import limits
 from teach.bt.builtins import BTCPP_BUILTINS
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, children, renumber
 from teach.errors import FormatError
-from teach.fsutil import atomic_write_text
+from teach.fsutil import atomic_write_text, decode_text, read_bytes
 
-MAX_BYTES = 5 * 1024 * 1024
+MAX_BYTES = limits.MAX_TREE_BYTES
 """Larger tree files are refused before parsing (learned trees are a few kilobytes)."""
 
-MAX_DEPTH = 200
+MAX_DEPTH = limits.MAX_TREE_DEPTH
 """Deepest tree accepted; deeper ones would exhaust recursion in the tick and the learners."""
+
+MAX_NODES = limits.MAX_TREE_NODES
+"""Most elements a tree file may hold; counted before any node is built, so memory stays small."""
 
 MAIN_TREE = "MainTree"
 
@@ -98,16 +102,7 @@ def write_tree(path: str | Path, root: Node) -> None:
 def read_tree(path: str | Path) -> Node:
     """Read a tree file; uids are the canonical pre-order numbering."""
     path = Path(path)
-    try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            raise FormatError(f"tree file is {size} bytes, more than the {MAX_BYTES} accepted", path)
-        data = path.read_bytes()
-    except IsADirectoryError:
-        raise FormatError("is a folder, not a tree file", path) from None
-    except OSError as exc:
-        raise FormatError(f"cannot read tree file: {exc.strerror}", path) from None
-    return tree_from_xml(data, path)
+    return tree_from_xml(read_bytes(path, "tree file", MAX_BYTES), path)
 
 
 def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
@@ -115,15 +110,9 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
     data = text.encode("utf-8") if isinstance(text, str) else text
     if len(data) > MAX_BYTES:
         raise FormatError(f"tree file is {len(data)} bytes, more than the {MAX_BYTES} accepted", path)
-    if not data.strip():
+    decoded = decode_text(data, "tree file", path)
+    if not decoded.strip():
         raise FormatError("empty tree file", path)
-    try:
-        decoded = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line = data[:exc.start].count(b"\n") + 1
-        raise FormatError("not a UTF-8 text file (binary data?)", path, line) from None
-    if "\x00" in decoded:
-        raise FormatError("not a text file: it contains NUL bytes", path, decoded[:decoded.index("\x00")].count("\n") + 1)
     for marker in ("<!DOCTYPE", "<!ENTITY"):
         at = decoded.find(marker)
         if at >= 0:
@@ -141,6 +130,10 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
     tree = document.getroottree()
     if tree.docinfo.doctype or tree.docinfo.internalDTD is not None:
         raise FormatError("DOCTYPE declarations are not allowed in tree files", path, 1)
+    for count, element in enumerate(document.iter(), start=1):
+        if count > MAX_NODES:
+            raise FormatError(f"more than {MAX_NODES} elements: a tree file may hold at most that many",
+                              path, element.sourceline)
     return renumber(_Reader(path).document(document))
 
 
