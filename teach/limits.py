@@ -15,8 +15,10 @@ MAX_NESTING = 32
 """Deepest nesting of arrays, tables or objects in a TOML or JSON file (a domain needs 3)."""
 
 MAX_DOMAIN_BYTES = 1 * MIB
-MAX_CONDITIONS = 256
-MAX_ACTIONS = 256
+MAX_CONDITIONS = 64
+"""Conditions in a domain: a state is one bit each, and a plan over a chain of 64 actions is
+still well inside the tree depth limit."""
+MAX_ACTIONS = 64
 MAX_PHRASES = 64
 """Phrases per action and language."""
 MAX_LABEL_CHARS = 500

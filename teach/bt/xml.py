@@ -13,6 +13,7 @@ network, a size and a depth limit, and every problem is a ``FormatError`` naming
 
 from __future__ import annotations
 
+import io
 import re
 from pathlib import Path
 
@@ -118,10 +119,8 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
         if at >= 0:
             raise FormatError(f"{marker[2:]} declarations are not allowed in tree files (entities are never expanded)",
                               path, decoded[:at].count("\n") + 1)
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
-                             huge_tree=False, remove_comments=True, remove_pis=True)
     try:
-        document = etree.fromstring(data, parser)
+        document = _parse_bounded(data, path)
     except etree.XMLSyntaxError as exc:
         message = re.sub(r",? line \d+, column \d+\s*$", "", exc.msg or "").strip() or "malformed XML"
         if message.startswith("Excessive depth"):
@@ -130,11 +129,25 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
     tree = document.getroottree()
     if tree.docinfo.doctype or tree.docinfo.internalDTD is not None:
         raise FormatError("DOCTYPE declarations are not allowed in tree files", path, 1)
-    for count, element in enumerate(document.iter(), start=1):
+    return renumber(_Reader(path).document(document))
+
+
+def _parse_bounded(data: bytes, path: str | Path) -> etree._Element:
+    """Parse incrementally and stop at the ``MAX_NODES``-th element, so a huge file of tiny
+    elements costs no more memory than a tree at the limit (no DTD, entities or network)."""
+    events = etree.iterparse(io.BytesIO(data), events=("start",), resolve_entities=False, no_network=True,
+                             load_dtd=False, dtd_validation=False, huge_tree=False, remove_comments=True,
+                             remove_pis=True)
+    root = None
+    for count, (_, element) in enumerate(events, start=1):
         if count > MAX_NODES:
             raise FormatError(f"more than {MAX_NODES} elements: a tree file may hold at most that many",
                               path, element.sourceline)
-    return renumber(_Reader(path).document(document))
+        if root is None:
+            root = element
+    if root is None:
+        raise FormatError("no XML element in the tree file", path)
+    return root
 
 
 class _Reader:
