@@ -177,6 +177,10 @@ def load_domain(path: str | Path) -> Domain:
     """Read and validate a ``domain.toml``; every error names the file and line."""
     path = Path(path)
     text = read_text(path, "domain file", limits.MAX_DOMAIN_BYTES)
+    for header, most in (("[[condition]]", limits.MAX_CONDITIONS), ("[[action]]", limits.MAX_ACTIONS)):
+        lines = _table_lines(text, header)
+        if len(lines) > most:  # before parsing: a huge domain costs no parsing time
+            raise FormatError(f"{len(lines)} {header} tables: a domain may have at most {most}", path, lines[most])
     check_nesting(text, path, "toml")
     try:
         data = tomllib.loads(text)

@@ -75,5 +75,5 @@ def _set_folder(root: Path, name: str) -> Path:
 
     parts = Path(name).parts
     if not parts or any(p in ("..", ".") for p in parts) or Path(name).is_absolute():
-        raise TeachError(f"--set {name!r} must name a folder under {root} (like ball/sim)")
+        raise TeachError(f"--set must name a folder under {root} (like ball/sim)", name or "''")
     return root / name
