@@ -77,7 +77,7 @@ def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str |
     shared: dict[State, State] = {} if states is None else states
     steps: list[Step] = []
     for number, raw in enumerate(lines, start=1):
-        line = raw.strip()
+        line = raw.rstrip()  # trailing blanks and CR are let be; anything else is part of a field
         if not line:
             raise FormatError("empty line inside a demonstration", path, number)
         if steps and steps[-1].action == GOAL_ACTION:
