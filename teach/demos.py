@@ -153,9 +153,10 @@ def format_demonstration(demo: Demonstration) -> str:
     return "".join(";".join("1" if v else "0" for v in step.state) + f";{step.action}\n" for step in demo.steps)
 
 
-def write_demonstration(path: str | Path, demo: Demonstration) -> None:
-    """Write one demonstration atomically, so a crash never leaves half a file."""
-    atomic_write_text(path, format_demonstration(demo))
+def write_demonstration(path: str | Path, demo: Demonstration, root: str | Path | None = None) -> None:
+    """Write one demonstration atomically, so a crash never leaves half a file; no folder between
+    ``root`` (default: the working folder) and it may be a symbolic link (teach.fsutil)."""
+    atomic_write_text(path, format_demonstration(demo), root)
 
 
 def next_demo_path(folder: str | Path, prefix: str = "demo") -> Path:

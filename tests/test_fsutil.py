@@ -260,3 +260,20 @@ def test_a_full_disk_leaves_the_old_file_and_no_temporary_one(tmp_path: Path) ->
         assert done.returncode == 2
         assert done.stderr == f"teach: {disk / 'tree.dot'}: cannot write: No space left on device\n"
         assert sorted(p.name for p in disk.iterdir()) == ["filler", "journal.json"]
+
+
+def test_the_writers_of_demonstrations_and_trees_take_the_project_root(tmp_path: Path, ball) -> None:  # type: ignore[no-untyped-def]
+    from conftest import colledanchise_tree
+
+    from teach.bt.xml import write_tree
+    from teach.demos import parse_demonstration, write_demonstration
+
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (tmp_path / "demos").symlink_to(outside, target_is_directory=True)
+    demo = parse_demonstration("0;0;0;0;0;1\n1;0;0;0;0;0\n", ball, "d.csv")
+    with pytest.raises(TeachError, match="symbolic link"):
+        write_demonstration(tmp_path / "demos" / "s" / "demo-001.csv", demo, root=tmp_path)
+    with pytest.raises(TeachError, match="symbolic link"):
+        write_tree(tmp_path / "demos" / "gen-01.xml", colledanchise_tree(), tmp_path)
+    assert list(outside.iterdir()) == []

@@ -93,9 +93,10 @@ def _write_node(node: Node, level: int, lines: list[str], kinds: dict[str, str])
     lines.append(pad + close_tag)
 
 
-def write_tree(path: str | Path, root: Node) -> None:
-    """Write a tree file atomically (the text is built completely before anything is written)."""
-    atomic_write_text(path, tree_to_xml(root))
+def write_tree(path: str | Path, root: Node, project: str | Path | None = None) -> None:
+    """Write a tree file atomically (the text is built completely before anything is written); no
+    folder between ``project`` (default: the working folder) and it may be a symbolic link."""
+    atomic_write_text(path, tree_to_xml(root), project)
 
 
 # --- reading ------------------------------------------------------------------------------------
