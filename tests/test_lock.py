@@ -126,3 +126,19 @@ def test_learn_writes_nothing_when_its_second_output_is_unusable(tmp_path: Path)
                      cwd=tmp_path)
     assert done.returncode == 2 and done.stderr == "teach: gens/sub: gens is not a folder\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["gens"]
+
+
+def test_two_learns_racing_for_one_output_leave_one_whole_tree(tmp_path: Path) -> None:
+    command = [sys.executable, "-m", "teach.cli", "learn", str(ROOT / "demos/ball/delta1"), "-o", "out.xml"]
+    racers = [subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}) for _ in range(2)]
+    results = [(racer.wait(), racer.communicate()[1]) for racer in racers]
+    # whichever order the scheduler picks: each one wrote the tree or was refused by the other's lock
+    for status, stderr in results:
+        assert (status, stderr) == (0, "") or (status == 2 and "is being written by process" in stderr), stderr
+    solo = tmp_path / "solo"
+    solo.mkdir()
+    subprocess.run([*command[:-1], "solo.xml"], cwd=solo, check=True, capture_output=True,
+                   env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert (tmp_path / "out.xml").read_bytes() == (solo / "solo.xml").read_bytes()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.xml", "solo"]
