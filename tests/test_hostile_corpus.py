@@ -39,7 +39,9 @@ READERS = {
                ("prune", "{TREE}", "--domain", "{P}", "-o", "out.xml"),
                ("bench-teach", "{SET}", "{SET}", "--oracle-model", "{P}", "--questions", "1"),
                ("replay", "{DIALOGUE}", "--domain", "{P}", "--no-record"),
-               ("session", "--domain", "{P}", "--world", "offline", "--no-record")],
+               ("session", "--domain", "{P}", "--world", "offline", "--no-record"),
+               ("table", "--demos", "{PDIR}", "--json"),
+               ("table", "--demos", "{BALL}", "--study", "{PSTUDY}", "--json")],
     "csv": [("test", "{TREE}", "{P}"), ("learn", "{P}", "-o", "out.xml"),
             ("learn", "{P}", "--approach", "detect", "-o", "out.xml"),
             ("bench-teach", "{P}", "{SET}", "--oracle", "{TREE}", "--questions", "1"),
@@ -85,7 +87,8 @@ def build(tmp_path: Path) -> list[Run]:
     (good / "set" / "d1.csv").write_bytes(GOOD_DEMO)
     (good / "tree.xml").write_bytes(GOOD_TREE)
     (good / "good.dialogue").write_bytes(GOOD_DIALOGUE)
-    fill = {"SET": str(good / "set"), "TREE": str(good / "tree.xml"), "DIALOGUE": str(good / "good.dialogue")}
+    fill = {"SET": str(good / "set"), "TREE": str(good / "tree.xml"), "DIALOGUE": str(good / "good.dialogue"),
+            "BALL": str(ROOT / "demos" / "ball")}
     runs: list[Run] = []
 
     def folder() -> Path:
@@ -95,11 +98,19 @@ def build(tmp_path: Path) -> list[Run]:
 
     for entry in corpus():
         path = str(inputs / materialise(entry, inputs))
+        places = {"P": path}
+        if entry.kind == "domain":  # `teach table` finds domains by name: DIR/domain.toml, STUDY/participantN.toml
+            for key, file in (("PDIR", "domain.toml"), ("PSTUDY", "participant1.toml")):
+                where = inputs / f"as-{file}" / entry.name
+                where.mkdir(parents=True)
+                (where / file).symlink_to(os.path.abspath(path))
+                places[key] = str(where)
         for command in READERS[entry.kind]:
             if entry.kind == "set" and "domain" in entry.special and command[2] == "{P}":
                 continue  # a test set is read with the training set's domain, never its own
-            argv = tuple(part.format(P=path, **fill) for part in command)
-            runs.append(Run(f"{entry.kind}/{entry.name}: {command[0]}", argv, folder(), path,
+            argv = tuple(part.format(**places, **fill) for part in command)
+            expect = next((places[key] for key in ("PDIR", "PSTUDY") if "{" + key + "}" in command), path)
+            runs.append(Run(f"{entry.kind}/{entry.name}: {command[0]}", argv, folder(), expect,
                             bool(entry.special)))
     for case in outputs(fill["TREE"], fill["SET"]):
         cwd = folder()
