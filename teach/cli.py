@@ -36,7 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
         command = sub.add_parser(module.NAME, help=module.HELP, description=module.__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
         module.add_arguments(command)
-        command.set_defaults(run=module.run)
+        command.set_defaults(run=module.run, outputs=getattr(module, "outputs", None))
     return parser
 
 
@@ -46,8 +46,11 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "command", None):
         parser.print_help()
         return 0
+    from teach.lock import claim_outputs
+
     try:
-        return int(args.run(args) or 0)
+        with claim_outputs(args.outputs(args) if args.outputs else ()):
+            return int(args.run(args) or 0)
     except TeachError as error:
         print(f"teach: {error}", file=sys.stderr)
         return 2

@@ -6,12 +6,17 @@ ID order, then the action observed in that state (0: goal state, -1: external ac
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from teach import limits
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import FormatError
 from teach.fsutil import atomic_write_text, read_text
+
+_ACTION_ID = re.compile(r"-?[0-9]{1,7}", re.ASCII)
+"""An action ID as the format writes it: ASCII digits, '-' only for -1 (no '+', '_', spaces inside)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,29 +53,36 @@ class Demonstration:
     def transitions(self) -> list[Transition]:
         """Every (s, a, s') with a known successor state, external actions included."""
         return [Transition(a.state, a.action, b.state)
-                for a, b in zip(self.steps, self.steps[1:]) if a.action != GOAL_ACTION]
+                for a, b in zip(self.steps, self.steps[1:], strict=False) if a.action != GOAL_ACTION]
 
     @property
     def goal_state(self) -> State | None:
         return self.steps[-1].state if self.reached_goal else None
 
 
-def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str | None = None) -> Demonstration:
-    """Parse one CSV demonstration, validating every line against the domain."""
+def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str | None = None,
+                        states: dict[State, State] | None = None) -> Demonstration:
+    """Parse one CSV demonstration, validating every line against the domain. Equal states share
+    one tuple (``states`` may carry them across the files of a set), so memory grows with the
+    number of lines, not with lines times conditions."""
     width = len(domain.conditions)
     lines = text.splitlines()
     while lines and not lines[-1].strip():
         lines.pop()
     if not lines:
         raise FormatError("empty demonstration file", path)
+    if len(lines) > limits.MAX_DEMO_LINES:
+        raise FormatError(f"more than {limits.MAX_DEMO_LINES} lines in one demonstration", path,
+                          limits.MAX_DEMO_LINES + 1)
+    shared: dict[State, State] = {} if states is None else states
     steps: list[Step] = []
     for number, raw in enumerate(lines, start=1):
-        line = raw.strip()
+        line = raw.rstrip()  # trailing blanks and CR are let be; anything else is part of a field
         if not line:
             raise FormatError("empty line inside a demonstration", path, number)
         if steps and steps[-1].action == GOAL_ACTION:
             raise FormatError("a line after the goal line (action 0 must be the last line)", path, number)
-        fields = [f.strip() for f in line.split(";")]
+        fields = line.split(";")
         if len(fields) != width + 1:
             raise FormatError(f"expected {width + 1} fields ({width} conditions and an action ID) "
                               f"separated by ';', found {len(fields)}", path, number)
@@ -78,46 +90,73 @@ def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str |
         for index, value in enumerate(fields[:-1]):
             if value not in ("0", "1"):
                 cname = domain.conditions[index].name
-                raise FormatError(f"condition {index + 1} ({cname}) must be 0 or 1, found {value!r}", path, number)
+                raise FormatError(f"condition {index + 1} ({cname}) must be 0 or 1, found {_shown(value)}",
+                                  path, number)
             state.append(value == "1")
-        try:
-            action = int(fields[-1])
-        except ValueError:
-            raise FormatError(f"action ID must be an integer, found {fields[-1]!r}", path, number) from None
+        text_id = fields[-1]
+        if not _ACTION_ID.fullmatch(text_id) or (text_id.startswith("-") and text_id != "-1"):
+            raise FormatError(f"action ID must be an integer written in digits (0 = goal, -1 = external), "
+                              f"found {_shown(text_id)}", path, number)
+        action = int(text_id)
         if action not in (GOAL_ACTION, EXTERNAL_ACTION) and not domain.has_action(action):
-            known = ", ".join(str(a.id) for a in domain.actions)
-            raise FormatError(f"unknown action ID {action} (this domain has {known}; 0 = goal, -1 = external)",
-                              path, number)
-        steps.append(Step(tuple(state), action, number))
+            raise FormatError(f"unknown action ID {action} (this domain has {_known_ids(domain)}; 0 = goal, "
+                              "-1 = external)", path, number)
+        key = tuple(state)
+        steps.append(Step(shared.setdefault(key, key), action, number))
     if steps[-1].action == EXTERNAL_ACTION:
         raise FormatError("an external action (-1) on the last line has no following state", path, len(lines))
     return Demonstration(name or Path(path).stem, tuple(steps), Path(path))
 
 
-def read_demonstration(path: str | Path, domain: Domain) -> Demonstration:
-    return parse_demonstration(read_text(path, "demonstration"), domain, path)
+def _shown(value: str) -> str:
+    return repr(value) if len(value) <= 40 else repr(value[:37]) + "..."
+
+
+def _known_ids(domain: Domain) -> str:
+    ids = [str(a.id) for a in domain.actions]
+    return ", ".join(ids) if len(ids) <= 12 else ", ".join(ids[:12]) + f", ... ({len(ids)} actions)"
+
+
+def read_demonstration(path: str | Path, domain: Domain, states: dict[State, State] | None = None) -> Demonstration:
+    return parse_demonstration(read_text(path, "demonstration", limits.MAX_DEMO_BYTES), domain, path, states=states)
 
 
 def read_demo_set(folder: str | Path, domain: Domain | None = None) -> tuple[Domain, list[Demonstration]]:
-    """All ``*.csv`` demonstrations of a folder in sorted name order, with their domain."""
+    """All ``*.csv`` demonstrations of a folder in sorted name order, with their domain; a set
+    holds at most ``MAX_DEMOS`` files and ``MAX_SET_LINES`` lines (teach.limits)."""
     folder = Path(folder)
     if not folder.is_dir():
         raise FormatError("not a folder of demonstrations", folder)
     if domain is None:
         domain = load_domain(find_domain_file(folder))
-    files = sorted(p for p in folder.iterdir() if p.suffix == ".csv" and p.is_file())
+    try:
+        files = sorted(p for p in folder.iterdir() if p.suffix == ".csv" and not p.is_dir())
+    except OSError as exc:
+        raise FormatError(f"cannot list the demonstrations: {exc.strerror}", folder) from None
     if not files:
         raise FormatError("no demonstrations (*.csv) in this folder", folder)
-    return domain, [read_demonstration(p, domain) for p in files]
+    if len(files) > limits.MAX_DEMOS:
+        raise FormatError(f"{len(files)} demonstrations: a set may hold at most {limits.MAX_DEMOS}", folder)
+    states: dict[State, State] = {}
+    demos, lines = [], 0
+    for path in files:
+        demo = read_demonstration(path, domain, states)
+        lines += len(demo.steps)
+        if lines > limits.MAX_SET_LINES:
+            raise FormatError(f"the set has more than {limits.MAX_SET_LINES} lines in all; this file goes past that",
+                              path)
+        demos.append(demo)
+    return domain, demos
 
 
 def format_demonstration(demo: Demonstration) -> str:
     return "".join(";".join("1" if v else "0" for v in step.state) + f";{step.action}\n" for step in demo.steps)
 
 
-def write_demonstration(path: str | Path, demo: Demonstration) -> None:
-    """Write one demonstration atomically, so a crash never leaves half a file."""
-    atomic_write_text(path, format_demonstration(demo))
+def write_demonstration(path: str | Path, demo: Demonstration, root: str | Path | None = None) -> None:
+    """Write one demonstration atomically, so a crash never leaves half a file; no folder between
+    ``root`` (default: the working folder) and it may be a symbolic link (teach.fsutil)."""
+    atomic_write_text(path, format_demonstration(demo), root)
 
 
 def next_demo_path(folder: str | Path, prefix: str = "demo") -> Path:

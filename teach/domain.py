@@ -9,15 +9,19 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import NoReturn
 
+from teach import limits
 from teach.bt.builtins import BTCPP_BUILTINS
 from teach.errors import DomainError, FormatError
-from teach.fsutil import read_text
+from teach.fsutil import check_nesting, read_text
 
 State = tuple[bool, ...]
 
 GOAL_ACTION = 0
 EXTERNAL_ACTION = -1
+MAX_ACTION_ID = 999_999
+"""Largest action ID: IDs are written in every CSV line, so they stay short."""
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _RESERVED_NAMES = BTCPP_BUILTINS | {"Condition", "Action", "root", "BehaviorTree", "TreeNodesModel"}
 
@@ -30,13 +34,13 @@ class Literal:
     value: bool = True
 
     @classmethod
-    def parse(cls, text: str) -> "Literal":
+    def parse(cls, text: str) -> Literal:
         text = text.strip()
         if text.startswith("!"):
             return cls(text[1:].strip(), False)
         return cls(text, True)
 
-    def negated(self) -> "Literal":
+    def negated(self) -> Literal:
         return Literal(self.name, not self.value)
 
     def __str__(self) -> str:
@@ -129,21 +133,21 @@ class Domain:
     def holds(self, literal: Literal, state: State) -> bool:
         return state[self.index(literal.name)] == literal.value
 
-    def state(self, true_conditions: "list[str] | tuple[str, ...] | set[str]" = ()) -> State:
+    def state(self, true_conditions: list[str] | tuple[str, ...] | set[str] = ()) -> State:
         """A state in which exactly the named conditions are true."""
         for name in true_conditions:
             self.index(name)
         return tuple(c.name in true_conditions for c in self.conditions)
 
     def describe(self, state: State) -> str:
-        return " ".join(f"{c.name}={int(v)}" for c, v in zip(self.conditions, state))
+        return " ".join(f"{c.name}={int(v)}" for c, v in zip(self.conditions, state, strict=False))
 
     @property
     def has_model(self) -> bool:
         return any(a.pre or a.ram for a in self.actions)
 
 
-def check_tree_fits(domain: Domain, conditions: "set[str]", actions: "set[str]", path: str | Path | None) -> None:
+def check_tree_fits(domain: Domain, conditions: set[str], actions: set[str], path: str | Path | None) -> None:
     """A tree (given by its condition and action names) may only use the domain's names."""
     for name in sorted(conditions - set(domain.condition_names)):
         raise DomainError(f"the tree tests condition {name!r}, which {domain.path} does not define", path)
@@ -159,6 +163,12 @@ def _line_of(text: str, needle: str, after_line: int = 1) -> int | None:
     return None
 
 
+def _shown(value: object) -> str:
+    """A value for an error message, cut short so a huge one still gives one short line."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def _table_lines(text: str, header: str) -> list[int]:
     return [n for n, line in enumerate(text.splitlines(), 1) if line.strip().startswith(header)]
 
@@ -166,7 +176,12 @@ def _table_lines(text: str, header: str) -> list[int]:
 def load_domain(path: str | Path) -> Domain:
     """Read and validate a ``domain.toml``; every error names the file and line."""
     path = Path(path)
-    text = read_text(path, "domain file")
+    text = read_text(path, "domain file", limits.MAX_DOMAIN_BYTES)
+    for header, most in (("[[condition]]", limits.MAX_CONDITIONS), ("[[action]]", limits.MAX_ACTIONS)):
+        lines = _table_lines(text, header)
+        if len(lines) > most:  # before parsing: a huge domain costs no parsing time
+            raise FormatError(f"{len(lines)} {header} tables: a domain may have at most {most}", path, lines[most])
+    check_nesting(text, path, "toml")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -178,7 +193,7 @@ def load_domain(path: str | Path) -> Domain:
 
 
 def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
-    def fail(message: str, line: int | None = None) -> None:
+    def fail(message: str, line: int | None = None) -> NoReturn:
         raise FormatError(message, path, line)
 
     name = data.get("name", path.parent.name)
@@ -192,38 +207,48 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         fail("no [[action]] tables: a domain needs at least one action")
     cond_lines = _table_lines(text, "[[condition]]")
     action_lines = _table_lines(text, "[[action]]")
+    for what, items, most, lines in (("conditions", raw_conditions, limits.MAX_CONDITIONS, cond_lines),
+                                     ("actions", raw_actions, limits.MAX_ACTIONS, action_lines)):
+        if len(items) > most:
+            fail(f"{len(items)} {what}: a domain may have at most {most}", lines[most] if len(lines) > most else None)
 
     conditions: list[ConditionDef] = []
+    cond_names: set[str] = set()
     for i, raw in enumerate(raw_conditions):
         line = cond_lines[i] if i < len(cond_lines) else None
         cname = raw.get("name") if isinstance(raw, dict) else None
         if not isinstance(cname, str) or not _NAME.match(cname) or cname in _RESERVED_NAMES:
             fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
-                 f"BehaviorTree.CPP node type, got {cname!r}", line)
-        if any(c.name == cname for c in conditions):
+                 f"BehaviorTree.CPP node type, got {_shown(cname)}", line)
+        if cname in cond_names:
             fail(f"duplicate condition name {cname!r}", line)
         labels = [raw.get(key, "") for key in ("en", "de", "en_false", "de_false")]
         if not all(isinstance(label, str) for label in labels):
             fail(f"condition {cname}: 'en', 'de', 'en_false' and 'de_false' must be strings", line)
+        if any(len(label) > limits.MAX_LABEL_CHARS for label in labels):
+            fail(f"condition {cname}: a label is longer than {limits.MAX_LABEL_CHARS} characters", line)
         conditions.append(ConditionDef(cname, *labels))
-    cond_names = {c.name for c in conditions}
+        cond_names.add(cname)
 
     def literals(raw: object, what: str, line: int | None) -> tuple[Literal, ...]:
         if not isinstance(raw, list) or not all(isinstance(x, str) for x in raw):
             fail(f"{what} must be a list of strings like \"BallFound\" or \"!BallFound\"", line)
-        result = []
+        if len(raw) > limits.MAX_MODEL_LITERALS:  # type: ignore[arg-type]
+            fail(f"{what} has {len(raw)} literals, more than the {limits.MAX_MODEL_LITERALS} accepted", line)  # type: ignore[arg-type]
+        result: dict[Literal, None] = {}
         for item in raw:  # type: ignore[union-attr]
             literal = Literal.parse(item)
             if literal.name not in cond_names:
                 where = _line_of(text, f'"{item}"', line or 1) or line
-                fail(f"{what} names unknown condition {literal.name!r}", where)
+                fail(f"{what} names unknown condition {_shown(literal.name)}", where)
             if literal.negated() in result:
                 fail(f"{what} asks for both {literal.name} and !{literal.name}", line)
-            if literal not in result:
-                result.append(literal)
+            result[literal] = None
         return tuple(result)
 
     actions: list[ActionDef] = []
+    action_names: set[str] = set()
+    action_ids: set[int] = set()
     for i, raw in enumerate(raw_actions):
         line = action_lines[i] if i < len(action_lines) else None
         if not isinstance(raw, dict):
@@ -231,14 +256,15 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         aid, aname = raw.get("id"), raw.get("name")
         if not isinstance(aname, str) or not _NAME.match(aname) or aname in _RESERVED_NAMES:
             fail(f"action {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
-                 f"BehaviorTree.CPP node type, got {aname!r}", line)
-        if isinstance(aid, bool) or not isinstance(aid, int) or aid < 1:
-            fail(f"action {aname}: 'id' must be an integer >= 1 (0 and -1 are reserved), got {aid!r}", line)
+                 f"BehaviorTree.CPP node type, got {_shown(aname)}", line)
+        if isinstance(aid, bool) or not isinstance(aid, int) or not 1 <= aid <= MAX_ACTION_ID:
+            fail(f"action {aname}: 'id' must be an integer >= 1 and <= {MAX_ACTION_ID} (0 and -1 are reserved), "
+                 f"got {_shown(aid)}", line)
         if aname in cond_names:
             fail(f"action {aname} has the same name as a condition", line)
-        if any(a.name == aname for a in actions):
+        if aname in action_names:
             fail(f"duplicate action name {aname!r}", line)
-        if any(a.id == aid for a in actions):
+        if aid in action_ids:
             fail(f"duplicate action id {aid}", line)
         phrases = {}
         for lang in ("en", "de"):
@@ -247,10 +273,17 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
                 value = [value]
             if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
                 fail(f"action {aname}: '{lang}' must be a list of phrases", line)
+            if len(value) > limits.MAX_PHRASES:
+                fail(f"action {aname}: {len(value)} '{lang}' phrases, more than the {limits.MAX_PHRASES} accepted",
+                     line)
+            if any(len(p) > limits.MAX_LABEL_CHARS for p in value):
+                fail(f"action {aname}: a '{lang}' phrase is longer than {limits.MAX_LABEL_CHARS} characters", line)
             phrases[lang] = tuple(value)
         pre = literals(raw.get("pre", []), f"action {aname}: 'pre'", line)
         ram = literals(raw.get("ram", []), f"action {aname}: 'ram'", line)
         actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram))  # type: ignore[arg-type]
+        action_names.add(aname)  # type: ignore[arg-type]
+        action_ids.add(aid)  # type: ignore[arg-type]
 
     goal = literals(data.get("goal", []), "'goal'", _line_of(text, "goal"))
     return Domain(name, tuple(conditions), tuple(actions), goal, path)

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
-
 from conftest import BALL_DOMAIN, ROOT, colledanchise_tree
+
 from teach.bt.xml import MAX_BYTES, tree_to_xml
 
 GOOD_DEMO = "0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n1;1;1;1;0;5\n1;1;1;1;1;0\n"
@@ -122,7 +122,7 @@ CASES = [
     Case("external action on the last line", demo_set("0;0;0;0;0;1\n1;0;0;0;0;-1\n"), TEST, CSV, 2,
          "external action"),
     Case("empty demonstration", demo_set(""), TEST, CSV, None, "empty demonstration file"),
-    Case("binary demonstration", demo_set(b"\xff\xfe\x00\x01"), TEST, CSV, None, "not UTF-8"),
+    Case("binary demonstration", demo_set(b"\xff\xfe\x00\x01"), TEST, CSV, 1, "not a UTF-8 text file"),
     # --- TOML ------------------------------------------------------------------------------------
     Case("toml syntax error", demo_set(domain="name = \"x\"\n[[condition]\nname = \"A\"\n"), TEST, TOML, 2,
          "invalid TOML"),

@@ -13,21 +13,26 @@ network, a size and a depth limit, and every problem is a ``FormatError`` naming
 
 from __future__ import annotations
 
+import io
 import re
 from pathlib import Path
 
 from lxml import etree
 
+from teach import limits
 from teach.bt.builtins import BTCPP_BUILTINS
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, children, renumber
 from teach.errors import FormatError
-from teach.fsutil import atomic_write_text
+from teach.fsutil import atomic_write_text, decode_text, read_bytes
 
-MAX_BYTES = 5 * 1024 * 1024
+MAX_BYTES = limits.MAX_TREE_BYTES
 """Larger tree files are refused before parsing (learned trees are a few kilobytes)."""
 
-MAX_DEPTH = 200
+MAX_DEPTH = limits.MAX_TREE_DEPTH
 """Deepest tree accepted; deeper ones would exhaust recursion in the tick and the learners."""
+
+MAX_NODES = limits.MAX_TREE_NODES
+"""Most elements a tree file may hold; counted before any node is built, so memory stays small."""
 
 MAIN_TREE = "MainTree"
 
@@ -88,9 +93,10 @@ def _write_node(node: Node, level: int, lines: list[str], kinds: dict[str, str])
     lines.append(pad + close_tag)
 
 
-def write_tree(path: str | Path, root: Node) -> None:
-    """Write a tree file atomically (the text is built completely before anything is written)."""
-    atomic_write_text(path, tree_to_xml(root))
+def write_tree(path: str | Path, root: Node, project: str | Path | None = None) -> None:
+    """Write a tree file atomically (the text is built completely before anything is written); no
+    folder between ``project`` (default: the working folder) and it may be a symbolic link."""
+    atomic_write_text(path, tree_to_xml(root), project)
 
 
 # --- reading ------------------------------------------------------------------------------------
@@ -98,16 +104,7 @@ def write_tree(path: str | Path, root: Node) -> None:
 def read_tree(path: str | Path) -> Node:
     """Read a tree file; uids are the canonical pre-order numbering."""
     path = Path(path)
-    try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            raise FormatError(f"tree file is {size} bytes, more than the {MAX_BYTES} accepted", path)
-        data = path.read_bytes()
-    except IsADirectoryError:
-        raise FormatError("is a folder, not a tree file", path) from None
-    except OSError as exc:
-        raise FormatError(f"cannot read tree file: {exc.strerror}", path) from None
-    return tree_from_xml(data, path)
+    return tree_from_xml(read_bytes(path, "tree file", MAX_BYTES), path)
 
 
 def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
@@ -115,24 +112,16 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
     data = text.encode("utf-8") if isinstance(text, str) else text
     if len(data) > MAX_BYTES:
         raise FormatError(f"tree file is {len(data)} bytes, more than the {MAX_BYTES} accepted", path)
-    if not data.strip():
+    decoded = decode_text(data, "tree file", path)
+    if not decoded.strip():
         raise FormatError("empty tree file", path)
-    try:
-        decoded = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line = data[:exc.start].count(b"\n") + 1
-        raise FormatError("not a UTF-8 text file (binary data?)", path, line) from None
-    if "\x00" in decoded:
-        raise FormatError("not a text file: it contains NUL bytes", path, decoded[:decoded.index("\x00")].count("\n") + 1)
     for marker in ("<!DOCTYPE", "<!ENTITY"):
         at = decoded.find(marker)
         if at >= 0:
             raise FormatError(f"{marker[2:]} declarations are not allowed in tree files (entities are never expanded)",
                               path, decoded[:at].count("\n") + 1)
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
-                             huge_tree=False, remove_comments=True, remove_pis=True)
     try:
-        document = etree.fromstring(data, parser)
+        document = _parse_bounded(data, path)
     except etree.XMLSyntaxError as exc:
         message = re.sub(r",? line \d+, column \d+\s*$", "", exc.msg or "").strip() or "malformed XML"
         if message.startswith("Excessive depth"):
@@ -142,6 +131,24 @@ def tree_from_xml(text: str | bytes, path: str | Path = "<string>") -> Node:
     if tree.docinfo.doctype or tree.docinfo.internalDTD is not None:
         raise FormatError("DOCTYPE declarations are not allowed in tree files", path, 1)
     return renumber(_Reader(path).document(document))
+
+
+def _parse_bounded(data: bytes, path: str | Path) -> etree._Element:
+    """Parse incrementally and stop at the ``MAX_NODES``-th element, so a huge file of tiny
+    elements costs no more memory than a tree at the limit (no DTD, entities or network)."""
+    events = etree.iterparse(io.BytesIO(data), events=("start",), resolve_entities=False, no_network=True,
+                             load_dtd=False, dtd_validation=False, huge_tree=False, remove_comments=True,
+                             remove_pis=True)
+    root = None
+    for count, (_, element) in enumerate(events, start=1):
+        if count > MAX_NODES:
+            raise FormatError(f"more than {MAX_NODES} elements: a tree file may hold at most that many",
+                              path, element.sourceline)
+        if root is None:
+            root = element
+    if root is None:
+        raise FormatError("no XML element in the tree file", path)
+    return root
 
 
 class _Reader:

@@ -19,6 +19,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", type=Path, help="DOT file to write (default: standard output)")
 
 
+def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command writes, checked and locked before it runs (teach.lock.claim_outputs)."""
+    return [("file", args.output)] if args.output else []
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.render import to_dot
     from teach.bt.xml import read_tree

@@ -39,6 +39,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--generations", type=Path, metavar="DIR", help="write every generation as gen-NN.xml")
 
 
+def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command writes, checked and locked before it runs (teach.lock.claim_outputs)."""
+    return [("file", args.output)] + ([("folder", args.generations)] if args.generations else [])
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.nodes import size
     from teach.bt.xml import write_tree
@@ -64,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
         tree = prune(tree, ramifications)
         generations = [*generations, tree]
         parts.append(f"{size(tree)} after pruning")
-    write_tree(args.output, tree)  # the result first: a bad -o path leaves nothing behind
+    write_tree(args.output, tree)  # both outputs were checked before learning (see outputs)
     if args.generations:
         write_generations(args.generations, generations)
         parts.append(f"{len(generations)} generations in {args.generations}")

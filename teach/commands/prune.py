@@ -27,6 +27,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--verbose", "-v", action="store_true", help="list every removed node")
 
 
+def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command writes, checked and locked before it runs (teach.lock.claim_outputs)."""
+    return [("file", args.output)]
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.nodes import action_names, condition_names, size
     from teach.bt.xml import read_tree, write_tree

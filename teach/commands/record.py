@@ -32,6 +32,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--viewer", action="store_true", help="show the MuJoCo viewer (needs a display)")
 
 
+def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """The set recorded into, checked and locked before the simulation starts (teach.lock.claim_outputs)."""
+    return [("set", _set_folder(args.root, args.demo_set))]
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.demos import format_demonstration
     from teach.errors import TeachError
@@ -70,5 +75,5 @@ def _set_folder(root: Path, name: str) -> Path:
 
     parts = Path(name).parts
     if not parts or any(p in ("..", ".") for p in parts) or Path(name).is_absolute():
-        raise TeachError(f"--set {name!r} must name a folder under {root} (like ball/sim)")
+        raise TeachError(f"--set must name a folder under {root} (like ball/sim)", name or "''")
     return root / name

@@ -17,13 +17,18 @@ in which case script lines are never taken as answers.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from teach import limits
 from teach.errors import FormatError
 from teach.fsutil import read_text
 
 SETTINGS = {"lang": str, "questions": int, "seed": int, "world": str, "domain": str}
+CHOICES = {"lang": ("en", "de"), "world": ("mujoco", "symbolic", "offline")}
+_WHOLE_NUMBER = re.compile(r"[0-9]{1,9}", re.ASCII)
+"""How @questions and @seed are written: ASCII digits only (no sign, '_', or other scripts' digits)."""
 
 
 @dataclass
@@ -34,10 +39,15 @@ class Script:
 
 
 def read_script(path: str | Path) -> Script:
+    """Read and check a dialogue: every setting's value is checked here, so a bad one names its line."""
     path = Path(path)
-    text = read_text(path, "dialogue")
+    text = read_text(path, "dialogue", limits.MAX_DIALOGUE_BYTES)
+    lines = text.splitlines()
+    if len(lines) > limits.MAX_DIALOGUE_LINES:
+        raise FormatError(f"more than {limits.MAX_DIALOGUE_LINES} lines in one dialogue", path,
+                          limits.MAX_DIALOGUE_LINES + 1)
     script = Script(path)
-    for number, raw in enumerate(text.splitlines(), start=1):
+    for number, raw in enumerate(lines, start=1):
         line = raw.split(" #", 1)[0].strip() if not raw.lstrip().startswith("#") else ""
         if not line:
             continue
@@ -48,12 +58,26 @@ def read_script(path: str | Path) -> Script:
             if key not in SETTINGS:
                 raise FormatError(f"unknown setting @{key} (known: {', '.join('@' + k for k in SETTINGS)})",
                                   path, number)
-            try:
-                script.settings[key] = SETTINGS[key](value.strip())
-            except ValueError:
-                raise FormatError(f"@{key} needs a {SETTINGS[key].__name__}, got {value.strip()!r}", path, number) from None
+            if key in script.settings:
+                raise FormatError(f"@{key} is set twice", path, number)
+            script.settings[key] = _setting(key, value.strip(), path, number)
             continue
         script.lines.append((number, line))
     if not script.lines:
         raise FormatError("the dialogue has no input lines", path)
     return script
+
+
+def _setting(key: str, value: str, path: Path, line: int) -> object:
+    """One setting's value, checked as strictly as the command-line option it stands for."""
+    shown = repr(value) if len(value) <= 40 else repr(value[:37]) + "..."
+    if SETTINGS[key] is int:
+        if not _WHOLE_NUMBER.fullmatch(value):
+            what = "0 or more" if value.startswith("-") else "written in digits"
+            raise FormatError(f"@{key} needs a int {what}, got {shown}", path, line)
+        return int(value)
+    if key in CHOICES and value not in CHOICES[key]:
+        raise FormatError(f"@{key} must be one of {', '.join(CHOICES[key])}, got {shown}", path, line)
+    if not value:
+        raise FormatError(f"@{key} needs a value", path, line)
+    return value

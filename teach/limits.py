@@ -1,0 +1,47 @@
+"""Every limit on input size in one place, so readers share them and the README can state them.
+
+The limits are generous for real teaching (a learned tree has tens to a few hundred nodes, a
+domain a handful of conditions, a session tens of demonstrations) and keep reading linear in
+the input with small constants: anything beyond them is refused in one line before it costs
+memory or time.
+"""
+
+from __future__ import annotations
+
+KIB = 1024
+MIB = 1024 * KIB
+
+MAX_NESTING = 32
+"""Deepest nesting of arrays, tables or objects in a TOML or JSON file (a domain needs 3)."""
+
+MAX_DOMAIN_BYTES = 1 * MIB
+MAX_CONDITIONS = 64
+"""Conditions in a domain: a state is one bit each, and a plan over a chain of 64 actions is
+still well inside the tree depth limit."""
+MAX_ACTIONS = 64
+MAX_PHRASES = 64
+"""Phrases per action and language."""
+MAX_LABEL_CHARS = 500
+"""Longest condition label or action phrase."""
+MAX_GOAL_LITERALS = MAX_CONDITIONS
+MAX_MODEL_LITERALS = MAX_CONDITIONS
+"""Literals in one action's ``pre`` or ``ram`` list (duplicates included)."""
+
+MAX_DEMO_BYTES = 4 * MIB
+"""Largest demonstration (CSV) file."""
+MAX_DEMO_LINES = 10_000
+"""Lines in one demonstration."""
+MAX_DEMOS = 10_000
+"""Demonstrations (CSV files) in one set."""
+MAX_SET_LINES = 500_000
+"""Lines in all demonstrations of one set together."""
+
+MAX_TREE_BYTES = 5 * MIB
+MAX_TREE_NODES = 20_000
+MAX_TREE_DEPTH = 200
+
+MAX_DIALOGUE_BYTES = 1 * MIB
+MAX_DIALOGUE_LINES = 20_000
+
+MAX_JSON_BYTES = 64 * MIB
+"""Largest journal or other JSON file read."""

@@ -1,0 +1,573 @@
+"""A corpus of hostile and malformed inputs and output paths, for every kind of file teach reads.
+
+    python tests/hostile_corpus.py OUT_DIR     # writes the corpus there and prints the counts
+
+Every entry must be refused by every command that reads its kind with one line
+``teach: FILE[:LINE]: what is wrong`` and exit status 2 (tests/test_hostile_corpus.py runs them).
+Kinds: ``tree``, ``domain``, ``csv`` (one bad file in an otherwise good set), ``set`` (a whole
+demonstration folder), ``dialogue``; ``output`` cases are paths a command must refuse to write.
+Special files (FIFOs, sockets, devices, symlinks, folders, missing files) are made by
+``materialise``; nothing here knows the ball task beyond using its files as the good inputs.
+"""
+
+from __future__ import annotations
+
+import os
+import random
+import socket
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+GOOD_DOMAIN = (ROOT / "demos" / "ball" / "domain.toml").read_bytes()
+GOOD_TREE = (ROOT / "demos" / "ball" / "reference" / "colledanchise.xml").read_bytes()
+GOOD_DEMO = b"0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n1;1;1;1;0;5\n1;1;1;1;1;0\n"
+GOOD_DIALOGUE = b"@world offline\nask\nquit\n"
+
+MIB = 1024 * 1024
+
+
+@dataclass(frozen=True)
+class Hostile:
+    """One bad input: its bytes, or a special file ``special`` names, or a fixed ``path``."""
+
+    kind: str
+    name: str
+    content: bytes | None = None
+    special: str = ""
+    path: str = ""
+
+
+@dataclass(frozen=True)
+class OutputCase:
+    """A command whose output path must be refused: ``setup`` builds the hostile target in the
+    run folder, ``expect`` is the path the error must name."""
+
+    name: str
+    args: tuple[str, ...]
+    expect: str
+    setup: Callable[[Path], None] = field(default=lambda folder: None)
+
+
+# --- trees --------------------------------------------------------------------------------------
+
+def tree_file(body: str, model: str = "") -> bytes:
+    return (f'<root BTCPP_format="4" main_tree_to_execute="MainTree">\n<BehaviorTree ID="MainTree">\n{body}\n'
+            f"</BehaviorTree>\n<TreeNodesModel>{model}</TreeNodesModel>\n</root>\n").encode()
+
+
+def _balanced(depth: int) -> str:
+    if depth == 0:
+        return "<A/>"
+    inner = _balanced(depth - 1)
+    return f"<ReactiveSequence>{inner}{inner}</ReactiveSequence>"
+
+
+def trees() -> list[Hostile]:
+    good = GOOD_TREE.decode()
+    rng = random.Random(14)
+    cases: dict[str, bytes] = {
+        "xxe": b'<?xml version="1.0"?>\n<!DOCTYPE root [\n<!ENTITY xxe SYSTEM "file:///etc/passwd">\n]>\n'
+               b'<root BTCPP_format="4"><BehaviorTree ID="M"><Action ID="&xxe;"/></BehaviorTree></root>\n',
+        "billion-laughs": ('<?xml version="1.0"?>\n<!DOCTYPE lolz [\n <!ENTITY lol "lol">\n'
+                           + "".join(f' <!ENTITY lol{i} "{("&lol" + str(i - 1) + ";") * 10}">\n'
+                                     for i in range(2, 10))
+                           + "]>\n<root>&lol9;</root>\n").encode(),
+        "external-dtd": b'<?xml version="1.0"?>\n<!DOCTYPE root SYSTEM "http://127.0.0.1:9/evil.dtd">\n<root/>\n',
+        "parameter-entity": b'<!DOCTYPE r [<!ENTITY % p SYSTEM "http://127.0.0.1:9/p.dtd"> %p;]>\n<root/>\n',
+        "entity-in-body": b'<root>\n<!ENTITY x "y">\n</root>\n',
+        "xinclude": b'<root xmlns:xi="http://www.w3.org/2001/XInclude" BTCPP_format="4">\n'
+                    b'<xi:include href="/etc/passwd" parse="text"/>\n</root>\n',
+        "oversized": b"<root>" + b" " * (5 * MIB) + b"</root>",
+        "deep-5000": tree_file("<Inverter>" * 5000 + "<A/>" + "</Inverter>" * 5000, "<Action ID='A'/>"),
+        "deep-201": tree_file("<Inverter>" * 201 + "<A/>" + "</Inverter>" * 201, "<Action ID='A'/>"),
+        "wide-200k-leaves": tree_file("<ReactiveFallback>\n" + "<A/>\n" * 200_000 + "</ReactiveFallback>",
+                                      "<Action ID='A'/>"),
+        "balanced-depth-16": tree_file(_balanced(16), "<Action ID='A'/>"),
+        "nodes-20001": tree_file("<ReactiveFallback>\n" + "<A/>\n" * 20_001 + "</ReactiveFallback>",
+                                 "<Action ID='A'/>"),
+        "binary-1": bytes(rng.randrange(256) for _ in range(4096)),
+        "binary-2": b"\x89PNG\r\n\x1a\n" + bytes(rng.randrange(256) for _ in range(512)),
+        "binary-3": bytes(range(256)) * 4,
+        "utf16": good.encode("utf-16"),
+        "utf16-le-no-bom": good.encode("utf-16-le"),
+        "utf32": good.encode("utf-32"),
+        "latin1": tree_file("<Äktion/>", "<Action ID='Äktion'/>").decode().encode("latin-1"),
+        "nul-inside": good[:200].encode() + b"\x00" + good[200:].encode(),
+        "empty": b"",
+        "whitespace": b"  \n\t\n",
+        "bom-only": b"\xef\xbb\xbf",
+        "comment-only": b"<!-- nothing -->\n",
+        "text-only": b"hello tree\n",
+        "wrong-root": b"<BehaviorTree ID='M'><Action ID='a'/></BehaviorTree>\n",
+        "no-behaviortree": b"<root BTCPP_format='4'/>\n",
+        "btcpp-format-3": b'<root BTCPP_format="3"><BehaviorTree ID="M"><Action ID="a"/></BehaviorTree></root>\n',
+        "unknown-node": tree_file("<ReactiveSequence>\n<Dance/>\n</ReactiveSequence>"),
+        "unsupported-builtin": tree_file("<ForceFailure><Action ID='a'/></ForceFailure>"),
+        "subtree": tree_file("<SubTree ID='Other'/>"),
+        "include": b"<root><include path='other.xml'/></root>\n",
+        "inverter-two-children": tree_file("<Inverter><Action ID='a'/><Action ID='b'/></Inverter>"),
+        "inverter-no-children": tree_file("<Inverter/>"),
+        "sequence-no-children": tree_file("<ReactiveSequence/>"),
+        "parallel-counts": tree_file("<Parallel success_count='2' failure_count='2'><Action ID='a'/>"
+                                     "<Action ID='b'/></Parallel>"),
+        "parallel-not-int": tree_file("<Parallel success_count='x'><Action ID='a'/></Parallel>"),
+        "parallel-plus": tree_file("<Parallel success_count='+1x'><Action ID='a'/></Parallel>"),
+        "parallel-zero": tree_file("<Parallel success_count='0'><Action ID='a'/></Parallel>"),
+        "parallel-huge": tree_file("<Parallel success_count='99999999999999999999'><Action ID='a'/></Parallel>"),
+        "duplicate-tree-ids": b'<root main_tree_to_execute="A">\n<BehaviorTree ID="A"><Action ID="a"/></BehaviorTree>'
+                              b'\n<BehaviorTree ID="A"><Action ID="b"/></BehaviorTree>\n</root>\n',
+        "missing-main": b'<root main_tree_to_execute="Main"><BehaviorTree ID="Other"><Action ID="a"/>'
+                        b"</BehaviorTree></root>\n",
+        "two-trees-no-main": b"<root><BehaviorTree ID='A'><Action ID='a'/></BehaviorTree>"
+                             b"<BehaviorTree ID='B'><Action ID='a'/></BehaviorTree></root>\n",
+        "tree-without-id": b"<root>\n<BehaviorTree><Action ID='a'/></BehaviorTree></root>\n",
+        "two-roots": tree_file("<Action ID='a'/><Action ID='b'/>"),
+        "no-root-node": tree_file(""),
+        "leaf-with-children": tree_file("<Action ID='a'><Action ID='b'/></Action>"),
+        "action-without-id": tree_file("<Action/>"),
+        "name-with-space": tree_file("<Action ID='a b'/>"),
+        "name-path": tree_file("<Action ID='../../etc/passwd'/>"),
+        "condition-and-action": tree_file("<ReactiveSequence><Condition ID='a'/><Action ID='a'/></ReactiveSequence>"),
+        "declared-twice": tree_file("<A/>", "<Condition ID='A'/>\n<Action ID='A'/>"),
+        "model-unknown-element": tree_file("<A/>", "<Port ID='A'/>"),
+        "model-without-id": tree_file("<A/>", "<Action/>"),
+        "unexpected-under-root": b"<root><Thing/></root>\n",
+        "cdata-only": b"<root><![CDATA[<BehaviorTree/>]]></root>\n",
+        "unclosed-attribute": b"<root BTCPP_format='4><BehaviorTree/></root>\n",
+        "mismatched-tags": b"<root><BehaviorTree ID='M'><Action ID='a'/></Tree></root>\n",
+        "two-documents": GOOD_TREE + GOOD_TREE,
+        "processing-instruction-only": b'<?xml version="1.0"?>\n<?teach run?>\n',
+    }
+    for percent in range(5, 100, 5):  # truncated at 19 places
+        cut = len(good) * percent // 100
+        cases[f"truncated-{percent:02d}"] = good[:cut].encode()
+    lines = good.splitlines(keepends=True)
+    for number in range(1, len(lines) - 1):  # one line of the tree left out (each is an element)
+        if lines[number].strip().startswith(("<BehaviorTree", "</BehaviorTree", "<Reactive", "</Reactive",
+                                             "<root", "</root", "<Inverter", "</Inverter")):
+            cases[f"line-{number + 1}-dropped"] = "".join(lines[:number] + lines[number + 1:]).encode()
+    for number, tag in enumerate(("Frobnicate", "Sequence ID='x'", "Parallel success_count='9'", "Inverter")):
+        cases[f"replaced-root-node-{number}"] = good.replace("<ReactiveSequence>", f"<{tag}>", 1).encode()
+    entries = [Hostile("tree", name, content) for name, content in cases.items()]
+    return entries + _special("tree")
+
+
+# --- domains ------------------------------------------------------------------------------------
+
+TINY = """\
+name = "tiny"
+goal = ["Done"]
+
+[[condition]]
+name = "Ready"
+
+[[condition]]
+name = "Done"
+
+[[action]]
+id = 1
+name = "Work"
+pre = ["Ready"]
+ram = ["Done"]
+"""
+
+
+def _conditions(count: int) -> str:
+    return "".join(f'[[condition]]\nname = "C{i}"\n\n' for i in range(count))
+
+
+def _actions(count: int) -> str:
+    return "".join(f'[[action]]\nid = {i + 1}\nname = "A{i}"\n\n' for i in range(count))
+
+
+def domains() -> list[Hostile]:
+    good = GOOD_DOMAIN.decode()
+    swap: dict[str, tuple[str, str]] = {
+        "name-not-string": ('name = "tiny"', "name = 5"),
+        "condition-name-int": ('name = "Ready"', "name = 5"),
+        "condition-name-empty": ('name = "Ready"', 'name = ""'),
+        "condition-name-space": ('name = "Ready"', 'name = "Re ady"'),
+        "condition-name-digit-first": ('name = "Ready"', 'name = "3Ready"'),
+        "condition-name-umlaut": ('name = "Ready"', 'name = "Bäll"'),
+        "condition-name-path": ('name = "Ready"', 'name = "../../etc/passwd"'),
+        "condition-reserved": ('name = "Ready"', 'name = "Sequence"'),
+        "condition-reserved-root": ('name = "Ready"', 'name = "root"'),
+        "condition-duplicate": ('name = "Done"', 'name = "Ready"'),
+        "condition-label-int": ('name = "Ready"', 'name = "Ready"\nen = 5'),
+        "condition-label-list": ('name = "Ready"', 'name = "Ready"\nde = ["x"]'),
+        "condition-label-long": ('name = "Ready"', 'name = "Ready"\nen = "' + "x" * 501 + '"'),
+        "action-id-string": ("id = 1", 'id = "1"'),
+        "action-id-float": ("id = 1", "id = 1.0"),
+        "action-id-bool": ("id = 1", "id = true"),
+        "action-id-zero": ("id = 1", "id = 0"),
+        "action-id-minus-one": ("id = 1", "id = -1"),
+        "action-id-huge": ("id = 1", "id = 10000000"),
+        "action-id-nan": ("id = 1", "id = nan"),
+        "action-id-inf": ("id = 1", "id = inf"),
+        "action-id-date": ("id = 1", "id = 1979-05-27"),
+        "action-id-missing": ("id = 1\n", ""),
+        "action-name-missing": ('name = "Work"\n', ""),
+        "action-name-reserved": ('name = "Work"', 'name = "Fallback"'),
+        "action-same-as-condition": ('name = "Work"', 'name = "Ready"'),
+        "phrases-int": ('name = "Work"', 'name = "Work"\nen = 5'),
+        "phrases-mixed": ('name = "Work"', 'name = "Work"\nde = ["ok", 1]'),
+        "phrases-many": ('name = "Work"', 'name = "Work"\nen = [' + ", ".join(f'"p{i}"' for i in range(65)) + "]"),
+        "phrase-long": ('name = "Work"', 'name = "Work"\nen = ["' + "y" * 501 + '"]'),
+        "pre-string": ('pre = ["Ready"]', 'pre = "Ready"'),
+        "pre-int": ('pre = ["Ready"]', "pre = [1]"),
+        "pre-unknown": ('pre = ["Ready"]', 'pre = ["Set"]'),
+        "pre-contradiction": ('pre = ["Ready"]', 'pre = ["Ready", "!Ready"]'),
+        "pre-table": ('pre = ["Ready"]', "pre = {a = 1}"),
+        "pre-too-many": ('pre = ["Ready"]', "pre = [" + ", ".join(['"Ready"'] * 65) + "]"),
+        "ram-unknown": ('ram = ["Done"]', 'ram = ["!Nothing"]'),
+        "goal-unknown": ('goal = ["Done"]', 'goal = ["Finished"]'),
+        "goal-string": ('goal = ["Done"]', 'goal = "Done"'),
+        "goal-nested": ('goal = ["Done"]', 'goal = [["Done"]]'),
+        "goal-nan": ('goal = ["Done"]', "goal = nan"),
+        "condition-single-table": ("[[condition]]\nname = \"Ready\"", "[condition]\nname = \"Ready\""),
+        "condition-is-int": ('goal = ["Done"]', 'goal = ["Done"]\ncondition = 5'),
+        "action-is-string": ('goal = ["Done"]', 'goal = ["Done"]\naction = "Work"'),
+        "syntax-error": ("[[condition]]\n", "[[condition]\n"),
+        "duplicate-key": ('name = "Ready"', 'name = "Ready"\nname = "Again"'),
+        "unterminated-array": ('pre = ["Ready"]', 'pre = ["Ready"'),
+        "unterminated-string": ('name = "Work"', 'name = "Work'),
+        "unterminated-multiline": ('name = "Work"', 'name = """Work'),
+        "bad-escape": ('name = "Work"', 'name = "W\\qork"'),
+    }
+    cases: dict[str, bytes] = {}
+    for name, (old, new) in swap.items():
+        assert old in TINY, name
+        cases[name] = TINY.replace(old, new, 1).encode()
+    cases.update({
+        "nested-arrays-500": ("x = " + "[" * 500 + "]" * 500 + "\n" + TINY).encode(),
+        "nested-inline-tables-500": ("x = " + "{a = " * 500 + "1" + "}" * 500 + "\n" + TINY).encode(),
+        "nested-goal-1200": TINY.replace('goal = ["Done"]', "goal = " + "[" * 1200 + "]" * 1200).encode(),
+        "dotted-key-500": ("a" + ".a" * 500 + " = 1\n" + TINY).encode(),
+        "dotted-header-500": (TINY + "\n[" + "t." * 500 + "t]\n").encode(),
+        "nested-unbalanced": ("x = " + "[" * 5000).encode(),
+        "conditions-65": (_conditions(65) + _actions(1)).encode(),
+        "actions-65": (_conditions(1) + _actions(65)).encode(),
+        "conditions-10000": (_conditions(10_000) + _actions(1)).encode(),
+        "oversized": (TINY + "# " + "x" * MIB + "\n").encode(),
+        "no-conditions": _actions(2).encode(),
+        "no-actions": _conditions(2).encode(),
+        "empty": b"",
+        "comment-only": b"# a domain\n",
+        "duplicate-action-name": (TINY + '\n[[action]]\nid = 2\nname = "Work"\n').encode(),
+        "duplicate-action-id": (TINY + '\n[[action]]\nid = 1\nname = "Rest"\n').encode(),
+        "utf16": good.encode("utf-16"),
+        "utf16-le-no-bom": TINY.encode("utf-16-le"),
+        "latin1": TINY.replace('name = "tiny"', 'name = "tiny"\n# Größe').encode("latin-1")
+                  .replace(b'name = "Ready"', 'name = "Rädy"'.encode("latin-1")),
+        "nul-inside": TINY.encode().replace(b"Work", b"Wo\x00rk", 1),
+        "binary": bytes(random.Random(5).randrange(256) for _ in range(2048)),
+        "bom-then-utf16": b"\xef\xbb\xbf" + TINY.encode("utf-16"),
+        "xml-instead": GOOD_TREE,
+        "csv-instead": GOOD_DEMO,
+        "json-instead": b'{"name": "tiny", "condition": []}\n',
+    })
+    for number, at in enumerate(_opening_quotes(good)[:12]):  # truncated inside a string: never valid TOML
+        cases[f"truncated-in-string-{number:02d}"] = good[:at + 1].encode()
+    entries = [Hostile("domain", name, content) for name, content in cases.items()]
+    return entries + _special("domain")
+
+
+def _opening_quotes(text: str) -> list[int]:
+    """Offsets of the opening quote of each one-line string value (``= "``)."""
+    return [i + 2 for i in range(len(text) - 2) if text[i:i + 3] == '= "']
+
+
+# --- demonstrations -----------------------------------------------------------------------------
+
+def csvs() -> list[Hostile]:
+    cases: dict[str, bytes] = {
+        "fields-too-few": b"0;0;0;0;0;1\n1;0;0;0;2\n",
+        "fields-too-many": b"0;0;0;0;0;0;1\n",
+        "fields-1000": (";".join(["0"] * 1000) + ";1\n").encode(),
+        "value-2": b"0;0;0;0;0;1\n1;0;2;0;0;2\n",
+        "value-true": b"true;0;0;0;0;1\n",
+        "value-space": b" 1;0;0;0;0;1\n",
+        "value-fullwidth": "１;0;0;0;0;1\n".encode(),
+        "value-empty": b";0;0;0;0;1\n",
+        "action-unknown": b"0;0;0;0;0;1\n1;0;0;0;0;9\n",
+        "action-name": b"0;0;0;0;0;FindBall\n",
+        "action-plus": b"0;0;0;0;0;+3\n",
+        "action-underscore": b"0;0;0;0;0;0_3\n",
+        "action-fullwidth": "0;0;0;0;0;３\n".encode(),
+        "action-arabic-indic": "0;0;0;0;0;٣\n".encode(),
+        "action-leading-space": b"0;0;0;0;0; 3\n",
+        "action-trailing-space-inside": b"0;0;0;0;0;3 ;\n",
+        "action-float": b"0;0;0;0;0;3.0\n",
+        "action-exponent": b"0;0;0;0;0;3e0\n",
+        "action-hex": b"0;0;0;0;0;0x3\n",
+        "action-minus-two": b"0;0;0;0;0;-2\n",
+        "action-double-minus": b"0;0;0;0;0;--1\n",
+        "action-minus-zero": b"0;0;0;0;0;-0\n",
+        "action-huge": b"0;0;0;0;0;99999999999999999999\n",
+        "action-empty": b"0;0;0;0;0;\n",
+        "goal-not-last": b"0;0;0;0;0;1\n1;0;0;0;0;0\n1;1;0;0;0;2\n",
+        "external-last": b"0;0;0;0;0;1\n1;0;0;0;0;-1\n",
+        "empty": b"",
+        "blank-lines": b"\n\n\n",
+        "empty-line-inside": b"0;0;0;0;0;1\n\n1;0;0;0;0;0\n",
+        "comma-separated": b"0,0,0,0,0,1\n",
+        "tab-separated": b"0\t0\t0\t0\t0\t1\n",
+        "only-separators": b";;;;;\n",
+        "truncated-mid-line": GOOD_DEMO[:20],
+        "binary": b"\xff\xfe\x00\x01",
+        "utf16": GOOD_DEMO.decode().encode("utf-16"),
+        "latin1": "0;0;0;0;0;1 # Größe\n".encode("latin-1"),
+        "nul-inside": b"0;0;0;0;0;1\n1;0;0\x00;0;0;2\n",
+        "lines-10001": b"0;0;0;0;0;1\n" * 10_001,
+        "oversized": b"0;0;0;0;0;1\n" * (4 * MIB // 12 + 1),
+        "xml-instead": GOOD_TREE,
+        "toml-instead": GOOD_DOMAIN,
+    }
+    entries = [Hostile("csv", name, content) for name, content in cases.items()]
+    return entries + _special("csv")
+
+
+def sets() -> list[Hostile]:
+    """Whole demonstration folders that are unusable; ``special`` says how to build each."""
+    return [Hostile("set", name, special=name) for name in (
+        "set-missing", "set-is-a-file", "set-is-a-fifo", "set-without-csv", "set-without-domain",
+        "set-domain-is-fifo", "set-domain-is-folder", "set-domain-deep", "set-csv-is-fifo", "set-csv-is-socket",
+        "set-csv-symlink-loop", "set-csv-to-dev-zero", "set-csv-dangling-link", "set-csv-is-device")]
+
+
+# --- dialogues ----------------------------------------------------------------------------------
+
+def dialogues() -> list[Hostile]:
+    cases: dict[str, bytes] = {
+        "lang-fr": b"@lang fr\nhelp\n",
+        "world-mars": b"@world mars\nhelp\n",
+        "questions-negative": b"@questions -1\nhelp\n",
+        "questions-plus": b"@questions +3\nhelp\n",
+        "questions-fullwidth": "@questions ３\nhelp\n".encode(),
+        "questions-underscore": b"@questions 1_0\nhelp\n",
+        "questions-word": b"@questions many\nhelp\n",
+        "questions-empty": b"@questions\nhelp\n",
+        "questions-huge": b"@questions 99999999999\nhelp\n",
+        "seed-word": b"@seed x\nhelp\n",
+        "seed-negative": b"@seed -1\nhelp\n",
+        "seed-float": b"@seed 1.5\nhelp\n",
+        "domain-empty": b"@domain\nhelp\n",
+        "lang-twice": b"@lang en\n@lang de\nhelp\n",
+        "unknown-setting": b"@colour red\nhelp\n",
+        "setting-after-input": b"help\n@lang de\n",
+        "no-input-lines": b"# only a comment\n@lang en\n",
+        "empty": b"",
+        "blank": b"\n   \n",
+        "binary": bytes(random.Random(9).randrange(256) for _ in range(1024)),
+        "utf16": "@lang en\nhelp\n".encode("utf-16"),
+        "latin1": "@lang en\nBall größer\n".encode("latin-1"),
+        "nul-inside": b"@lang en\nhe\x00lp\n",
+        "oversized": b"help\n" * (MIB // 5 + 1),
+        "lines-20001": b"help\n" * 20_001,
+    }
+    entries = [Hostile("dialogue", name, content) for name, content in cases.items()]
+    return entries + _special("dialogue")
+
+
+# --- special files, the same for every kind -----------------------------------------------------
+
+SPECIALS = ("fifo", "folder", "socket", "missing", "symlink-loop", "symlink-to-fifo", "dangling-symlink",
+            "dev-zero", "dev-null", "dev-urandom", "dotdot-missing")
+
+
+def _special(kind: str) -> list[Hostile]:
+    return [Hostile(kind, f"special-{special}", special=special) for special in SPECIALS]
+
+
+def materialise(entry: Hostile, folder: Path) -> str:
+    """Create ``entry`` under ``folder`` (in ``<kind>s/``) and return the path to pass, relative to
+    ``folder``; csv entries become a set ``csvs/<name>/`` with the good domain beside the bad file."""
+    sub = folder / f"{entry.kind}s"
+    sub.mkdir(exist_ok=True)
+    if entry.kind == "set":
+        return _make_set(entry.special, sub / entry.name, folder)
+    if entry.kind == "csv":
+        target = sub / entry.name
+        target.mkdir()
+        (target / "domain.toml").write_bytes(GOOD_DOMAIN)
+        (target / "a-good.csv").write_bytes(GOOD_DEMO)
+        path = target / "b-bad.csv"
+    else:
+        path = sub / f"{entry.name}.{_SUFFIX[entry.kind]}"
+    if entry.special:
+        return _make_special(entry.special, path, folder)
+    assert entry.content is not None
+    path.write_bytes(entry.content)
+    return str(path.relative_to(folder))
+
+
+_SUFFIX = {"tree": "xml", "domain": "toml", "csv": "csv", "dialogue": "dialogue"}
+
+
+def _make_special(special: str, path: Path, folder: Path) -> str:
+    if special == "fifo":
+        os.mkfifo(path)
+    elif special == "folder":
+        path.mkdir()
+    elif special == "socket":
+        with socket.socket(socket.AF_UNIX) as server:  # the file stays; nobody listens on it
+            server.bind(str(path))
+    elif special == "symlink-loop":
+        path.symlink_to(path.name)
+    elif special == "symlink-to-fifo":
+        os.mkfifo(path.with_name(path.name + ".fifo"))
+        path.symlink_to(path.name + ".fifo")
+    elif special == "dangling-symlink":
+        path.symlink_to("nowhere/at/all")
+    elif special.startswith("dev-"):
+        path.symlink_to(f"/dev/{special[4:]}")
+    elif special == "dotdot-missing":
+        return str(path.relative_to(folder).parent / ".." / ".." / "outside" / path.name)
+    elif special != "missing":
+        raise ValueError(special)
+    return str(path.relative_to(folder))
+
+
+def _make_set(special: str, target: Path, folder: Path) -> str:
+    relative = str(target.relative_to(folder))
+    if special == "set-missing":
+        return relative
+    if special == "set-is-a-file":
+        target.write_bytes(GOOD_DEMO)
+        return relative
+    if special == "set-is-a-fifo":
+        os.mkfifo(target)
+        return relative
+    target.mkdir()
+    if special != "set-without-domain":
+        if special == "set-domain-is-fifo":
+            os.mkfifo(target / "domain.toml")
+        elif special == "set-domain-is-folder":
+            (target / "domain.toml").mkdir()
+        elif special == "set-domain-deep":
+            (target / "domain.toml").write_bytes(("x = " + "[" * 500 + "]" * 500 + "\n").encode() + GOOD_DOMAIN)
+        else:
+            (target / "domain.toml").write_bytes(GOOD_DOMAIN)
+    if special != "set-without-csv":
+        (target / "a-good.csv").write_bytes(GOOD_DEMO)
+    bad = target / "b-bad.csv"
+    if special == "set-csv-is-fifo":
+        os.mkfifo(bad)
+    elif special == "set-csv-is-socket":
+        with socket.socket(socket.AF_UNIX) as server:
+            server.bind(str(bad))
+    elif special == "set-csv-symlink-loop":
+        bad.symlink_to(bad.name)
+    elif special == "set-csv-to-dev-zero":
+        bad.symlink_to("/dev/zero")
+    elif special == "set-csv-dangling-link":
+        bad.symlink_to("missing.csv")
+    elif special == "set-csv-is-device":
+        bad.symlink_to("/dev/null")
+    return relative
+
+
+# --- output paths -------------------------------------------------------------------------------
+
+def _symlink(name: str, to: str) -> Callable[[Path], None]:
+    return lambda folder: (folder / name).symlink_to(to)
+
+
+def _fifo(name: str) -> Callable[[Path], None]:
+    return lambda folder: os.mkfifo(folder / name)
+
+
+def _file(name: str, content: bytes = b"keep me") -> Callable[[Path], None]:
+    def make(folder: Path) -> None:
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_bytes(content)
+    return make
+
+
+def _socket(name: str) -> Callable[[Path], None]:
+    def make(folder: Path) -> None:
+        _make_special("socket", folder / name, folder)
+    return make
+
+
+def _both(*steps: Callable[[Path], None]) -> Callable[[Path], None]:
+    def make(folder: Path) -> None:
+        for step in steps:
+            step(folder)
+    return make
+
+
+def _folder(name: str) -> Callable[[Path], None]:
+    return lambda folder: (folder / name).mkdir(parents=True)
+
+
+def outputs(tree: str, demo_set: str) -> list[OutputCase]:
+    """Output paths every writing command must refuse before writing anything; ``tree`` and
+    ``demo_set`` are good inputs (absolute paths)."""
+    writers: list[tuple[str, tuple[str, ...]]] = [
+        ("learn", ("learn", demo_set, "-o")), ("prune", ("prune", tree, "-o")), ("dot", ("dot", tree, "-o"))]
+    targets: list[tuple[str, str, str, Callable[[Path], None]]] = [
+        ("symlink-to-file", "out.xml", "out.xml", _both(_file("real.xml"), _symlink("out.xml", "real.xml"))),
+        ("dangling-symlink", "out.xml", "out.xml", _symlink("out.xml", "elsewhere.xml")),
+        ("symlink-out-of-project", "out.xml", "out.xml", _symlink("out.xml", "/tmp/teach-hostile-never.xml")),
+        ("fifo", "out.xml", "out.xml", _fifo("out.xml")),
+        ("dev-null", "/dev/null", "/dev/null", lambda folder: None),
+        ("dev-stdout", "/dev/stdout", "/dev/stdout", lambda folder: None),
+        ("dev-zero", "/dev/zero", "/dev/zero", lambda folder: None),
+        ("folder", "out", "out", _folder("out")),
+        ("symlinked-folder", "link/out.xml", "link/out.xml", _both(_folder("real"), _symlink("link", "real"))),
+        ("symlinked-folder-deep", "link/a/b/out.xml", "link/a/b/out.xml",
+         _both(_folder("real"), _symlink("link", "real"))),
+        ("under-a-file", "file.xml/out.xml", "file.xml/out.xml", _file("file.xml")),
+        ("under-proc", "/proc/teach/out.xml", "/proc/teach/out.xml", lambda folder: None),
+        ("socket", "out.xml", "out.xml", _socket("out.xml")),
+    ]
+    cases = [OutputCase(f"{writer}-{target}", (*command, path), expect, setup)
+             for writer, command in writers for target, path, expect, setup in targets]
+    generations = [
+        ("generations-a-file", ("--generations", "gens"), "gens", _file("gens")),
+        ("generations-symlink", ("--generations", "gens"), "gens", _both(_folder("real"), _symlink("gens", "real"))),
+        ("generations-under-file", ("--generations", "file/gens"), "file/gens", _file("file")),
+        ("generations-under-proc", ("--generations", "/proc/teach-gens"), "/proc/teach-gens", lambda folder: None),
+        ("generations-same-as-output", ("--generations", "out/l.xml"), "out/l.xml", lambda folder: None),
+    ]
+    cases += [OutputCase(name, ("learn", demo_set, "-o", "out/l.xml", *extra), expect, setup)
+              for name, extra, expect, setup in generations]
+    for name, set_name in (("dotdot", "../x"), ("dotdot-inside", "ball/../../x"), ("absolute", "/tmp/x"),
+                           ("dot", "."), ("empty", "")):
+        cases.append(OutputCase(f"record-set-{name}", ("record", "--set", set_name, "FindBall"), set_name or "''"))
+    cases += [
+        OutputCase("record-set-symlinked", ("record", "--set", "ball/sim", "FindBall"), "demos/ball/sim",
+                   _both(_folder("elsewhere"), _folder("demos/ball"), _symlink("demos/ball/sim", "../../elsewhere"))),
+        OutputCase("record-root-symlinked", ("record", "--set", "sim", "--root", "data", "FindBall"), "data/sim",
+                   _both(_folder("elsewhere"), _symlink("data", "elsewhere"))),
+        OutputCase("record-set-is-a-file", ("record", "--set", "sim", "FindBall"), "demos/sim",
+                   _file("demos/sim")),
+    ]
+    return cases
+
+
+def corpus() -> list[Hostile]:
+    return trees() + domains() + csvs() + sets() + dialogues()
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 1:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    folder = Path(argv[0])
+    folder.mkdir(parents=True, exist_ok=False)
+    entries = corpus()
+    for entry in entries:
+        materialise(entry, folder)
+    kinds = sorted({entry.kind for entry in entries})
+    print(", ".join(f"{sum(e.kind == kind for e in entries)} {kind}" for kind in kinds)
+          + f", {len(outputs('TREE', 'SET'))} output paths")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
