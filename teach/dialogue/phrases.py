@@ -45,7 +45,7 @@ _SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|\band\b|
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
 _TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close
 _SUGGEST_CUTOFF = 0.45  # similarity from which a phrase is offered as "Did you mean"
-_EVENT_SUGGEST_CUTOFF = 0.85  # outside "perturb" an event is offered only for a near-exact typo
+_EVENT_SUGGEST_CUTOFF = _TYPO_CUTOFF  # outside "perturb" an event is offered only for a typo of it
 _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 
 # words a teacher adds around a command ("ok done", "i'm done", "help me", "ich bin fertig")
@@ -252,6 +252,7 @@ class PhraseBook:
                                           if any(e.kind == kind for e in entries) for w in key} | _PRONOUNS)
                             for kind in ("action", "event")}
         self._longest = max((len(key) for key in self._entries), default=1)
+        self._ranking: tuple[str | None, list[tuple[float, _Entry]]] = (None, [])
 
     def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...]) -> None:
         spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", name)  # FindBall → "Find Ball"
@@ -376,11 +377,12 @@ class PhraseBook:
         return _Piece(words, tuple(options)) if options else None
 
     def _exact(self, words: tuple[str, ...], perturb: bool, typed: bool) -> _Entry | None:
-        """An action's phrase before an event's: an event needs its own exact words, or "perturb"."""
+        """An action's phrase before an event's: an event needs the teacher's own words of one of
+        its phrases (its internal name only after "perturb"), or "perturb"."""
         entries = self._entries.get(words, [])
         for kind in ("event",) if perturb else ("action", "event") if typed else ("action",):
             for entry in entries:
-                if entry.kind == kind:
+                if entry.kind == kind and (entry.lang or kind == "action" or perturb):
                     return entry
         return None
 
@@ -445,14 +447,23 @@ class PhraseBook:
 
     def _best(self, said: str, kind: str, other_than: str | None = None) -> tuple[float, _Entry | None]:
         """The phrase of ``kind`` most similar to ``said`` (skipping the name ``other_than``)."""
-        best: tuple[float, _Entry | None] = (0.0, None)
-        for key, entries in self._entries.items():
-            for entry in entries:
-                if entry.kind == kind and entry.name != other_than:
-                    ratio = _ratio(said, " ".join(key))
-                    if ratio > best[0]:
-                        best = (ratio, entry)
-        return best
+        for ratio, entry in self._ranked(said):
+            if entry.kind == kind and entry.name != other_than:
+                return ratio, entry
+        return 0.0, None
+
+    def _ranked(self, said: str) -> list[tuple[float, _Entry]]:
+        """Every phrase by similarity to ``said``, most similar first; the last chunk's ranking is
+        kept, since reading one chunk asks for it several times."""
+        if self._ranking[0] != said:
+            matcher = difflib.SequenceMatcher(None, "", said)  # said is the side the matcher indexes
+            scored = []
+            for key, entries in self._entries.items():
+                matcher.set_seq1(" ".join(key))
+                ratio = matcher.ratio()
+                scored += [(ratio, entry) for entry in entries if entry.lang or entry.kind == "action"]
+            self._ranking = (said, sorted(scored, key=lambda pair: -pair[0]))
+        return self._ranking[1]
 
     def _clear_typo(self, chunk: str, words: tuple[str, ...], lang: str, perturb: bool) -> Token | None:
         """The phrase a chunk is a clear typo of: close, and nothing else (another phrase of its
