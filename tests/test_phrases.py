@@ -306,6 +306,8 @@ def test_pronouns_come_from_the_phrases_not_from_the_code(tmp_path):
     ("?", "de", "hilfe"),
     ("help me", "en", "help"),
     ("please show full", "en", "show full"),
+    ("show all", "en", "show all"),
+    ("run 3 please", "en", "run 3"),
 ])
 def test_command_hint(line, lang, command):
     assert command_hint(line, lang, COMMAND_WORDS) == command

@@ -48,10 +48,11 @@ _SUGGEST_CUTOFF = 0.45  # similarity from which a phrase is offered as "Did you 
 _EVENT_SUGGEST_CUTOFF = _TYPO_CUTOFF  # outside "perturb" an event is offered only for a typo of it
 _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 
-# words a teacher adds around a command ("ok done", "i'm done", "help me", "ich bin fertig")
-_CHAT = {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "me", "us", "now", "please",
-         "just", "then", "ich", "bin", "wir", "sind", "mir", "uns", "also", "na", "gut", "jetzt", "bitte", "mal",
-         "dann", "und", "and"}
+# words a teacher adds before a command ("ok done", "i'm done", "ich bin fertig") and after it ("help me");
+# after it only words no command takes as its argument ("show all" keeps its "all")
+_CHAT_BEFORE = {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now", "please", "just",
+                "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut", "jetzt", "bitte", "mal", "dann", "und"}
+_CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
 _HELP_MARKS = re.compile(r"^[?¿]+$")
 
 _YES = {
@@ -204,14 +205,14 @@ def command_hint(line: str, lang: str, commands: Iterable[str]) -> str | None:
         return None
     words = line.split()
 
-    def chat(word: str) -> bool:
-        return all(w in _CHAT for w in _words(word))
+    def chat(word: str, around: set[str]) -> bool:
+        return all(w in around for w in _words(word))
 
-    while words and chat(words[0]):
+    while words and chat(words[0], _CHAT_BEFORE):
         words.pop(0)
     if not words or normalize(words[0]) not in names:
         return None
-    while len(words) > 1 and chat(words[-1]):
+    while len(words) > 1 and chat(words[-1], _CHAT_AFTER):
         words.pop()
     head = normalize(words[0])
     return " ".join([head, *words[1:]])
