@@ -428,3 +428,20 @@ def test_no_event_is_ever_guessed(ball, seed, lang):
             exact = [normalize(p).split() for p in (*EVENTS[token.name][0], *EVENTS[token.name][1])]
             assert any(_contains(line_words, phrase) for phrase in exact), (line, token)
 
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.text(max_size=80), st.sampled_from(["en", "de"]), st.booleans())
+def test_any_text_gives_tokens_or_one_short_line(ball, text, lang, perturb):
+    book = PhraseBook(ball, EVENTS)
+    try:
+        first = book.parse(text, lang, perturb=perturb)
+    except UnknownPhrase as unknown:
+        assert all(c.isprintable() for c in unknown.message) and len(unknown.message) < 200
+        with pytest.raises(UnknownPhrase) as again:
+            book.parse(text, lang, perturb=perturb)
+        assert again.value.message == unknown.message  # the same words, the same answer
+    else:
+        assert book.parse(text, lang, perturb=perturb) == first
+    hint = command_hint(text, lang, COMMAND_WORDS)
+    assert hint is None or hint.split()[0] in {normalize(word) for word in COMMAND_WORDS}

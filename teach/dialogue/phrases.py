@@ -139,6 +139,8 @@ def check_length(line: str, lang: str = "en") -> None:
 
 
 def _shorten(text: str) -> str:
+    """The teacher's words as quoted back: one line, no control characters, at most ``_SHOWN_CHARS``."""
+    text = " ".join("".join(c if c.isprintable() else " " for c in text).split())
     return text if len(text) <= _SHOWN_CHARS else text[:_SHOWN_CHARS - 1].rstrip() + "…"
 
 
