@@ -207,6 +207,44 @@ def test_german_suggestion_question(book):
     assert info.value.suggestion.question() == "Meintest du „geh zum Ball“?"
 
 
+
+def converse(book, lines, lang="en"):
+    """The protocol a session follows: a command in disguise first, then the steps; a doubt is
+    asked about and the next line answers it (yes: the whole line goes on, no: nothing happens)."""
+    done, said, pending = [], [], None
+    for line in lines:
+        if pending is not None:
+            if is_yes(line, lang):
+                done += book.confirm(pending)
+                pending = None
+                continue
+            pending = None
+            if is_no(line, lang):
+                said.append("declined")
+                continue
+        hint = command_hint(line, lang, COMMAND_WORDS)
+        if hint is not None:
+            said.append(hint)
+            continue
+        try:
+            done += book.parse(line, lang)
+        except UnknownPhrase as unknown:
+            pending = unknown.suggestion
+            said.append(pending.question() if pending else unknown.message)
+    return names(done), said
+
+
+def test_the_confirmation_protocol_a_session_follows(book):
+    steps, said = converse(book, ["find the ball, go to the b", "no", "go to the b", "", "knock the bal away",
+                                  "yes", "ok done"])
+    assert steps == ["ApproachBin", "knock_ball"]
+    assert said == ["Did you mean “go to the bin”?", "declined", "Did you mean “go to the bin”?",
+                    "Did you mean “knock the ball away”?", "done"]
+    # "ihm" after "den Ball" in the same line is the ball; alone in a line it could be the bin too
+    steps, said = converse(book, ["such den Ball, fahr zu ihm", "fahr zu ihm", "ja", "?", "fertig!"], "de")
+    assert steps == ["FindBall", "ApproachBall", "ApproachBall"]
+    assert said == ["Meintest du „fahr zum Ball“?", "hilfe", "fertig"]
+
 @pytest.mark.parametrize("reply", ["yes", "Yes!", "y", "ok", "OK.", "", "  ", "yes please", "sure"])
 def test_yes_in_english(reply):
     assert is_yes(reply, "en") and not is_no(reply, "en")
