@@ -331,6 +331,19 @@ def test_pronouns_come_from_the_phrases_not_from_the_code(tmp_path):
     assert names(cups.parse("nimm sie und spül sie", "de")) == ["TakeCup", "WashCup"]
 
 
+
+def test_a_pronoun_for_an_event_prefers_the_topic_and_is_still_only_offered(tmp_path):
+    (tmp_path / "domain.toml").write_text(
+        'name = "jugs"\n[[condition]]\nname = "Held"\n'
+        '[[action]]\nid = 1\nname = "TakeJug"\nen = ["take the jug"]\n')
+    events = {"tip_cup": (("tip the cup over",), ()), "tip_jug": (("tip the jug over",), ())}
+    jugs = PhraseBook(load_domain(tmp_path / "domain.toml"), events)
+    for topic, expected in ((None, "tip_jug"), ("cup", "tip_cup")):  # the jug is named first
+        with pytest.raises(UnknownPhrase) as info:
+            jugs.parse("tip it over", topic=topic)
+        assert info.value.suggestion is not None and info.value.suggestion.candidate.name == expected
+    assert names(jugs.parse("tip it over", perturb=True, topic="cup")) == ["tip_cup"]
+
 # --- item 9: commands in disguise ----------------------------------------------------------------------
 
 

@@ -122,7 +122,6 @@ class LineTooLong(TeachError):
     """A line longer than ``MAX_LINE_CHARS``: refused in one short sentence, never echoed."""
 
     def __init__(self, length: int, lang: str = "en"):
-        self.length = length
         if lang == "de":
             message = (f"Die Zeile ist zu lang ({length} Zeichen, höchstens {MAX_LINE_CHARS}). "
                        "Bitte schreib einen Schritt nach dem anderen.")
@@ -485,12 +484,13 @@ class PhraseBook:
                  tokens: list[Token], later: str) -> UnknownPhrase:
         """The error for a chunk read neither exactly nor as a clear typo, with the closest phrase
         as a confirmable suggestion. Outside "perturb" an event is offered only for a pronoun
-        ("hide it") or a near-exact typo, and it runs only once the teacher says yes; after
-        "perturb" no event is offered for words closer to an action."""
+        ("hide it") or a typo of one of its phrases, and it runs only once the teacher says yes;
+        after "perturb" no event is offered for words closer to an action."""
         said = " ".join(words)
         ratio, entry = self._best(said, "event" if perturb else "action")
         if not perturb:
             events = self._resolved(words, perturb=True)
+            events = [option for option in events if option[1] == topic] or events
             event_ratio, event = (1.0, events[0][0]) if events else self._best(said, "event")
             if event_ratio >= _EVENT_SUGGEST_CUTOFF and event_ratio > ratio:
                 ratio, entry = event_ratio, event
