@@ -27,3 +27,16 @@ def test_everyday_lines_teach_the_whole_task(ball, tmp_path, lang, lines):
         assert all(r.kind != "error" for r in replies), (line, [r.text for r in replies])
     _, [demo] = read_demo_set(tmp_path / "demos" / "careless")
     assert [step.action for step in demo.steps] == [1, 2, 3, 4, 5, 0]
+
+
+def test_in_mujoco_only_the_exact_phrase_perturbs(ball, tmp_path):
+    from teach.dialogue.mujoco_world import MujocoWorld
+
+    config = SessionConfig("mujoco", ball, "en", 0, base=tmp_path, world="mujoco")
+    manager = SessionManager(config, MujocoWorld(ball, seed=3))
+    replies = manager.handle("take the ball to the bin")  # carrying nothing, the robot just drives there
+    assert not any(r.text.startswith("Event") for r in replies)
+    replies = manager.handle("move the bin")
+    assert [r.text for r in replies if r.text.startswith("Event")] == ["Event: move the bin."]
+    assert manager.open is not None and [s.action for s in manager.open.steps] == [4, -1]
+    manager.close()
