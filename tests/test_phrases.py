@@ -166,7 +166,8 @@ def test_move_the_bin_is_the_event_and_move_to_the_bin_the_action(book):
     assert [(t.kind, t.name) for t in book.parse("move to the bin")] == [("action", "ApproachBin")]
 
 
-@pytest.mark.parametrize("phrase", ["knock the ball away", "move the bin", "push the robot", "take the ball away"])
+@pytest.mark.parametrize("phrase", ["knock the ball away", "move the bin", "move the bin away", "push the robot",
+                                    "take the ball away"])
 def test_every_readme_event_phrase_works_plain_and_after_perturb(book, phrase):
     assert kinds(book.parse(phrase)) == ["event"]
     assert kinds(book.parse(phrase, perturb=True)) == ["event"]
