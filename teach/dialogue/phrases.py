@@ -1,9 +1,17 @@
 """Everyday teacher language → actions, events and commands, in English or German.
 
 "Ball finden, zum Ball gehen, Ball greifen" is three actions. Phrases come from the domain's
-labels and the world's perturbations; matching ignores case, accents, punctuation and
-filler words, splits on commas and "and/then/und/dann", and can segment a run of phrases
-without separators. Unknown words raise ``UnknownPhrase`` carrying suggestions.
+phrase lists and the world's perturbations; matching ignores case, accents, punctuation,
+articles, fillers and politeness, splits on commas and "and/then/und/dann", and segments a
+run of phrases without separators. Pronouns ("grab it", "leg ihn in den Eimer") are tried
+with every object the phrases name, preferring the one named last.
+
+Safety first: an event (a perturbation of the world) is produced only by its exact phrase,
+by ``parse(..., perturb=True)`` (the teacher said "perturb", so events may be matched
+loosely there), or by confirming a ``Suggestion``. Typos are tolerated for actions: a clear
+one is accepted and its token marked ``guessed``; an unclear one, or a pronoun that could
+mean two things, raises ``UnknownPhrase`` carrying a ``Suggestion`` the session can ask
+about ("Did you mean …?") and ``confirm``.
 """
 
 from __future__ import annotations
@@ -12,119 +20,509 @@ import difflib
 import re
 import unicodedata
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from itertools import pairwise
 
 from teach.domain import Domain
 from teach.errors import TeachError
 
+MAX_LINE_CHARS = 500  # longer lines are refused: nobody types that much at once
+_SHOWN_CHARS = 60  # an unknown part is quoted at most this long
+
+# normalize() drops these (other modules compare command and answer words with it)
 _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "die", "das", "dem", "der",
             "des", "ein", "eine", "einen", "to", "zu"}
-_SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bthen\b|\band\b|\bund dann\b|\bdann\b|\bund\b)\s*")
-_TYPO_CUTOFF = 0.75
-_TYPO_MARGIN = 0.1
+# phrase matching drops these; "to" and "zu" stay, so "move the bin" and "move to the bin" differ
+_IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
+                                        "einem", "einer", "einfach", "doch", "kannst", "konntest", "du"}
+_PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+# the word after one of these in a phrase names an object a pronoun may stand for
+_ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
+             "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
+_SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|\band\b|\bund dann\b|\bdann\b"
+                    r"|\bdanach\b|\bund\b)\s*", re.IGNORECASE)
+
+_TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
+_TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close
+_SUGGEST_CUTOFF = 0.45  # similarity from which a phrase is offered as "Did you mean"
+_EVENT_SUGGEST_CUTOFF = _TYPO_CUTOFF  # outside "perturb" an event is offered only for a typo of it
+_WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
+
+# words a teacher adds before a command ("ok done", "i'm done", "ich bin fertig") and after it ("help me");
+# after it only words no command takes as its argument ("show all" keeps its "all")
+_CHAT_BEFORE = {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now", "please", "just",
+                "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut", "jetzt", "bitte", "mal", "dann", "und"}
+_CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
+_HELP_MARKS = re.compile(r"^[?¿]+$")
+
+_YES = {
+    "en": {"yes", "y", "yeah", "yep", "yup", "ok", "okay", "sure", "right", "correct", "exactly", "indeed",
+           "of course", "that s right", "thats right", "that s it", "thats it", "yes please", "do it"},
+    "de": {"ja", "j", "jawohl", "genau", "richtig", "stimmt", "klar", "na klar", "ok", "okay", "gern", "gerne",
+           "ja genau", "das stimmt", "mach das", "mach es"},
+}
+_NO = {
+    "en": {"no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you"},
+    "de": {"nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke"},  # "nö" reads "no"
+}
 
 
 @dataclass(frozen=True, slots=True)
 class Token:
-    """One recognised unit of teacher input."""
+    """One recognised unit of teacher input: an action or an event, with the phrase it matched.
+
+    ``said`` is what the teacher typed for it; ``guessed`` is true when it was read through a
+    typo (the session may show "I read … as …" or ask before acting on it)."""
 
     kind: str  # "action" | "event"
     name: str
     text: str
+    said: str = ""
+    guessed: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Suggestion:
+    """A part of a line I could only guess: the session asks ``question()`` and, on yes, calls
+    ``PhraseBook.confirm`` to get the whole line's tokens."""
+
+    said: str  # the teacher's words I am unsure about
+    candidate: Token  # what I guess they meant
+    before: tuple[Token, ...]  # what the line said before them, understood
+    rest: str  # what follows them, not read yet
+    lang: str
+    perturb: bool = False
+    topic: str | None = None  # the object named last before them
+
+    def question(self) -> str:
+        if self.lang == "de":
+            return f"Meintest du „{self.candidate.text}“?"
+        return f"Did you mean “{self.candidate.text}”?"
 
 
 class UnknownPhrase(TeachError):
-    """A part of the input matched nothing; ``suggestions`` are the closest known phrases."""
+    """A part of the input matched nothing for sure; ``suggestions`` are the closest known phrases,
+    ``suggestion`` (when there is one) the structured first of them, ready to be confirmed."""
 
-    def __init__(self, text: str, suggestions: list[str], lang: str = "en"):
+    def __init__(self, text: str, suggestions: list[str], lang: str = "en", suggestion: Suggestion | None = None):
         self.text = text
-        self.suggestions = suggestions
+        self.suggestion = suggestion
+        self.suggestions = [suggestion.candidate.text] + suggestions if suggestion is not None else suggestions
+        shown = _shorten(text)
         if lang == "de":
-            hint = f" Meintest du „{suggestions[0]}“?" if suggestions else ""
-            message = f"Das kenne ich nicht: „{text}“.{hint}"
+            hint = f" Meintest du „{self.suggestions[0]}“?" if self.suggestions else ""
+            message = f"Das kenne ich nicht: „{shown}“.{hint}"
         else:
-            hint = f" Did you mean “{suggestions[0]}”?" if suggestions else ""
-            message = f"I don't know “{text}”.{hint}"
+            hint = f" Did you mean “{self.suggestions[0]}”?" if self.suggestions else ""
+            message = f"I don't know “{shown}”.{hint}"
         super().__init__(message)
+
+
+class LineTooLong(TeachError):
+    """A line longer than ``MAX_LINE_CHARS``: refused in one short sentence, never echoed."""
+
+    def __init__(self, length: int, lang: str = "en"):
+        if lang == "de":
+            message = (f"Die Zeile ist zu lang ({length} Zeichen, höchstens {MAX_LINE_CHARS}). "
+                       "Bitte schreib einen Schritt nach dem anderen.")
+        else:
+            message = (f"That line is too long ({length} characters, at most {MAX_LINE_CHARS}). "
+                       "Please type one step at a time.")
+        super().__init__(message)
+
+
+def check_length(line: str, lang: str = "en") -> None:
+    """Raise ``LineTooLong`` for a line nobody could have meant as one instruction."""
+    if len(line) > MAX_LINE_CHARS:
+        raise LineTooLong(len(line), lang)
+
+
+def _shorten(text: str) -> str:
+    """The teacher's words as quoted back: one line, no control characters, at most ``_SHOWN_CHARS``."""
+    text = " ".join("".join(c if c.isprintable() else " " for c in text).split())
+    return text if len(text) <= _SHOWN_CHARS else text[:_SHOWN_CHARS - 1].rstrip() + "…"
+
+
+def _words(text: str) -> list[str]:
+    """Lower case, no accents (ä → a, ß → ss), no punctuation."""
+    text = text.lower().replace("ß", "ss")
+    text = "".join(c for c in unicodedata.normalize("NFKD", text) if not unicodedata.combining(c))
+    return re.findall(r"[a-z0-9]+", text)
 
 
 def normalize(text: str) -> str:
     """Lower case, no accents (ä → a, ß → ss), no punctuation, no filler words."""
-    text = text.lower().replace("ß", "ss")
-    text = "".join(c for c in unicodedata.normalize("NFKD", text) if not unicodedata.combining(c))
-    words = re.findall(r"[a-z0-9]+", text)
-    return " ".join(w for w in words if w not in _FILLERS)
+    return " ".join(w for w in _words(text) if w not in _FILLERS)
+
+
+def _key(text: str) -> tuple[str, ...]:
+    """The words of a phrase that matter for matching."""
+    return tuple(w for w in _words(text) if w not in _IGNORED)
+
+
+def _ratio(a: str, b: str) -> float:
+    return difflib.SequenceMatcher(None, a, b).ratio()
+
+
+# --- yes, no and commands in disguise -------------------------------------------------------------
+
+
+def _says(text: str, words: set[str]) -> bool:
+    """Whether a reply is one of ``words`` (or made only of them: "ok ok", "ja genau"), fillers aside."""
+    key = normalize(text)
+    return key in words or (key != "" and all(w in words for w in key.split()))
+
+
+def _answer_sets(table: dict[str, set[str]], lang: str) -> set[str]:
+    """The session language's words, and English ones in any language (many people say "ok", "no")."""
+    return table.get(lang, set()) | table["en"]
+
+
+def is_yes(text: str, lang: str = "en") -> bool:
+    """Whether a reply to "Did you mean …?" says yes; an empty reply (Enter) does."""
+    if not text.strip():
+        return True
+    return _says(text, _answer_sets(_YES, lang))
+
+
+def is_no(text: str, lang: str = "en") -> bool:
+    """Whether a reply to "Did you mean …?" says no."""
+    return _says(text, _answer_sets(_NO, lang))
+
+
+def command_hint(line: str, lang: str, commands: Iterable[str]) -> str | None:
+    """The command a conversational line amounts to, as the line to handle instead, or None.
+
+    ``commands`` are the session's command words (compared after ``normalize``). "ok done",
+    "i'm done" and "fertig!" give "done"/"fertig"; "help me" gives "help"; a lone "?" gives
+    the help word of ``lang``. Words around the command ("ok", "i'm", "me", "bitte") are dropped,
+    the command's own arguments kept: "please show full" gives "show full"."""
+    check_length(line, lang)
+    names = {normalize(c) for c in commands}
+    if _HELP_MARKS.match(line.strip()):
+        for word in (("hilfe", "help") if lang == "de" else ("help", "hilfe")):
+            if word in names:
+                return word
+        return None
+    words = line.split()
+
+    def chat(word: str, around: set[str]) -> bool:
+        return all(w in around for w in _words(word))
+
+    while words and chat(words[0], _CHAT_BEFORE):
+        words.pop(0)
+    if not words or normalize(words[0]) not in names:
+        return None
+    while len(words) > 1 and chat(words[-1], _CHAT_AFTER):
+        words.pop()
+    head = normalize(words[0])
+    return " ".join([head, *words[1:]])
+
+
+# --- the phrase book ---------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class _Entry:
+    kind: str
+    name: str
+    phrase: str
+    lang: str  # "" for an internal name
+
+
+@dataclass(frozen=True, slots=True)
+class _Piece:
+    """A run of the teacher's words read as one phrase; several options when a pronoun is ambiguous."""
+
+    words: tuple[str, ...]
+    options: tuple[tuple[_Entry, str | None], ...]  # (entry, the noun a pronoun stood for)
 
 
 class PhraseBook:
     """All phrases a teacher may type for the domain's actions and the world's events."""
 
     def __init__(self, domain: Domain, events: Mapping[str, tuple[Iterable[str], Iterable[str]]] = {}):
-        self._phrases: dict[str, Token] = {}
+        self._entries: dict[tuple[str, ...], list[_Entry]] = {}
         self._display: dict[str, dict[str, str]] = {"en": {}, "de": {}}
+        self._labels: dict[tuple[str, str], str] = {}
+        self._nouns: list[str] = []
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
         for name, (english, german) in sorted(events.items()):
             self._add("event", name, tuple(english), tuple(german))
+        self._vocabulary = {kind: sorted({w for key, entries in self._entries.items()
+                                          if any(e.kind == kind for e in entries) for w in key} | _PRONOUNS)
+                            for kind in ("action", "event")}
+        self._longest = max((len(key) for key in self._entries), default=1)
+        self._ranking: tuple[str | None, list[tuple[float, _Entry]]] = (None, [])
 
     def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...]) -> None:
         spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", name)  # FindBall → "Find Ball"
         for lang, phrases in (("en", english), ("de", german)):
-            for phrase in (*phrases, name, spelled):
-                key = normalize(phrase)
-                if key and key not in self._phrases:
-                    self._phrases[key] = Token(kind, name, phrase)
-                    if phrase not in (name, spelled):
-                        self._display[lang].setdefault(phrase, name)
+            if phrases:
+                self._labels.setdefault((name, lang), phrases[0])
+            for phrase in phrases:
+                self._enter(_Entry(kind, name, phrase, lang))
+                self._note_nouns(phrase)
+                self._display[lang].setdefault(phrase, name)
+        for internal in (name, spelled):
+            self._enter(_Entry(kind, name, internal, ""))
+
+    def _enter(self, entry: _Entry) -> None:
+        """The first phrase of each kind keeps a key: an action and an event may share one."""
+        key = _key(entry.phrase)
+        if key:
+            entries = self._entries.setdefault(key, [])
+            if all(e.kind != entry.kind for e in entries):
+                entries.append(entry)
+
+    def _note_nouns(self, phrase: str) -> None:
+        """Objects the phrases name (the word after an article), in order of first mention."""
+        for article, noun in pairwise(_words(phrase)):
+            if article in _ARTICLES and noun not in _IGNORED | _ARTICLES | _PRONOUNS and noun not in self._nouns:
+                self._nouns.append(noun)
 
     def phrases(self, lang: str = "en") -> list[str]:
         """Phrases shown for completion, in the given language."""
         return sorted(self._display[lang])
 
-    def parse(self, line: str, lang: str = "en") -> list[Token]:
-        """All actions and events in a line, in order; raises UnknownPhrase for the first unknown part."""
-        tokens: list[Token] = []
-        for chunk in _SPLIT.split(line):
-            if chunk.strip():
-                tokens.extend(self._parse_chunk(chunk, lang))
+    def topic(self, tokens: Iterable[Token]) -> str | None:
+        """The object named last in ``tokens``: what "it" means in the next line."""
+        topic = None
+        for token in tokens:
+            topic = self._last_noun(_key(token.text)) or topic
+        return topic
+
+    # --- parsing ------------------------------------------------------------------------------------
+
+    def parse(self, line: str, lang: str = "en", *, perturb: bool = False, topic: str | None = None) -> list[Token]:
+        """All actions and events in a line, in order.
+
+        ``perturb``: the teacher said "perturb": every part names an event, typos tolerated.
+        ``topic``: the object a pronoun means when the line itself names none (see ``topic``).
+        Raises ``UnknownPhrase`` for the first part that is unknown or only a guess, or for a
+        line of only fillers or marks ("ok", "?": nothing to do, so nothing may start), and
+        ``LineTooLong`` for a line over ``MAX_LINE_CHARS``."""
+        check_length(line, lang)
+        chunks = [c.strip() for c in _SPLIT.split(line) if c and c.strip()]
+        tokens = self._read(chunks, lang, perturb, topic, [])
+        if not tokens and line.strip():
+            raise UnknownPhrase(line.strip(), [], lang)
         return tokens
 
-    def _parse_chunk(self, chunk: str, lang: str) -> list[Token]:
-        key = normalize(chunk)
-        if not key:
-            return []
-        if key in self._phrases:
-            return [self._phrases[key]]
-        segmented = self._segment(key.split())
-        if segmented is not None:
-            return segmented
-        close = difflib.get_close_matches(key, self._phrases, n=3, cutoff=0.45)
-        if close and self._clear_typo(key, close):
-            return [self._phrases[close[0]]]
-        raise UnknownPhrase(chunk.strip(), [self._pretty(c, lang) for c in close], lang)
+    def confirm(self, suggestion: Suggestion) -> list[Token]:
+        """The teacher said yes to ``suggestion``: the whole line's tokens (may raise again for a
+        later part of the line)."""
+        candidate = replace(suggestion.candidate, guessed=False)
+        tokens = [*suggestion.before, candidate]
+        topic = self._last_noun(_key(candidate.text)) or suggestion.topic
+        chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
+        return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
-    def _clear_typo(self, key: str, close: list[str]) -> bool:
-        """Accept the best match silently only when it is close and clearly better than any other action."""
-        ratios = [difflib.SequenceMatcher(None, key, c).ratio() for c in close]
-        rivals = [r for c, r in zip(close[1:], ratios[1:]) if self._phrases[c].name != self._phrases[close[0]].name]
-        return ratios[0] >= _TYPO_CUTOFF and all(r <= ratios[0] - _TYPO_MARGIN for r in rivals)
+    def _read(self, chunks: list[str], lang: str, perturb: bool, topic: str | None,
+              tokens: list[Token]) -> list[Token]:
+        for index, chunk in enumerate(chunks):
+            words = _key(chunk)
+            if not words:
+                continue
+            later = ", ".join(chunks[index + 1:])
+            pieces = self._segment(words, perturb)
+            guessed = False
+            if pieces is None:
+                pieces = self._corrected(words, perturb)
+                guessed = True
+            if pieces is None:
+                typo = self._clear_typo(chunk, words, lang, perturb)
+                if typo is None:
+                    raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
+                tokens.append(typo)
+                topic = self._last_noun(_key(typo.text)) or topic
+                continue
+            for number, piece in enumerate(pieces):
+                said = chunk if len(pieces) == 1 else " ".join(piece.words)
+                entry, noun = self._choose(piece, topic)
+                if entry is None:
+                    rest = ", ".join(filter(None, [" ".join(w for p in pieces[number + 1:] for w in p.words), later]))
+                    first, alternatives = self._candidates(piece, lang)
+                    suggestion = Suggestion(said, replace(first, said=said, guessed=True), tuple(tokens), rest, lang,
+                                            perturb, topic)
+                    raise UnknownPhrase(said, alternatives, lang, suggestion)
+                tokens.append(Token(entry.kind, entry.name, self._text(entry, lang), said, guessed))
+                topic = noun or self._last_noun(piece.words) or topic
+        return tokens
 
-    def _segment(self, words: list[str]) -> list[Token] | None:
-        """Split a run of words into known phrases (fewest pieces), or None."""
-        best: list[list[Token] | None] = [[]] + [None] * len(words)
+    def _segment(self, words: tuple[str, ...], perturb: bool, typed: bool = True) -> list[_Piece] | None:
+        """Split a run of words into known phrases: fewest pieces, then fewest pronouns; None if impossible.
+        ``typed``: the words are the teacher's own, not corrected ones (only those reach an event exactly)."""
+        best: list[tuple[tuple[int, int], list[_Piece]] | None] = [((0, 0), [])] + [None] * len(words)
         for end in range(1, len(words) + 1):
-            for start in range(end):
-                prefix = best[start]
-                token = self._phrases.get(" ".join(words[start:end]))
-                if prefix is not None and token is not None:
-                    candidate = prefix + [token]
-                    if best[end] is None or len(candidate) < len(best[end]):  # type: ignore[arg-type]
-                        best[end] = candidate
-        return best[-1]
+            for start in range(max(0, end - self._longest), end):
+                reached = best[start]
+                if reached is None:
+                    continue
+                piece = self._piece(words[start:end], perturb, typed)
+                if piece is None:
+                    continue
+                pronoun = 1 if piece.options[0][1] is not None else 0
+                cost = (reached[0][0] + 1, reached[0][1] + pronoun)
+                current = best[end]
+                if current is None or cost < current[0]:
+                    best[end] = (cost, reached[1] + [piece])
+        found = best[-1]
+        return None if found is None else found[1]
 
-    def _pretty(self, key: str, lang: str) -> str:
-        token = self._phrases[key]
-        for phrase, name in self._display[lang].items():
-            if name == token.name:
-                return phrase
-        return token.text
+    def _piece(self, words: tuple[str, ...], perturb: bool, typed: bool) -> _Piece | None:
+        exact = self._exact(words, perturb, typed)
+        if exact is not None:
+            return _Piece(words, ((exact, None),))
+        options = self._resolved(words, perturb)
+        return _Piece(words, tuple(options)) if options else None
+
+    def _exact(self, words: tuple[str, ...], perturb: bool, typed: bool) -> _Entry | None:
+        """An action's phrase before an event's: an event needs the teacher's own words of one of
+        its phrases (its internal name only after "perturb"), or "perturb"."""
+        entries = self._entries.get(words, [])
+        for kind in ("event",) if perturb else ("action", "event") if typed else ("action",):
+            for entry in entries:
+                if entry.kind == kind and (entry.lang or kind == "action" or perturb):
+                    return entry
+        return None
+
+    def _resolved(self, words: tuple[str, ...], perturb: bool) -> list[tuple[_Entry, str]]:
+        """Each object a pronoun in ``words`` may stand for, with the phrase it makes (never an event
+        outside "perturb": a pronoun is a guess)."""
+        if not any(w in _PRONOUNS for w in words):
+            return []
+        kind = "event" if perturb else "action"
+        options = []
+        for noun in self._nouns:
+            for variant in _substituted(words, noun):
+                entry = next((e for e in self._entries.get(variant, []) if e.kind == kind), None)
+                if entry is not None:
+                    options.append((entry, noun))
+                    break
+        return options
+
+    def _choose(self, piece: _Piece, topic: str | None) -> tuple[_Entry | None, str | None]:
+        """The one meaning of a piece: unique, or the one about the topic; (None, None) if ambiguous."""
+        names = {entry.name for entry, _ in piece.options}
+        if len(names) == 1:
+            return piece.options[0]
+        about_topic = [(entry, noun) for entry, noun in piece.options if noun == topic]
+        if about_topic and len({entry.name for entry, _ in about_topic}) == 1:
+            return about_topic[0]
+        return None, None
+
+    def _candidates(self, piece: _Piece, lang: str) -> tuple[Token, list[str]]:
+        """An ambiguous piece's readings: the first as a token, the others' texts."""
+        seen: dict[str, Token] = {}
+        for entry, _ in piece.options:
+            seen.setdefault(entry.name, Token(entry.kind, entry.name, self._text(entry, lang)))
+        first, *others = seen.values()
+        return first, [t.text for t in others]
+
+    def _corrected(self, words: tuple[str, ...], perturb: bool) -> list[_Piece] | None:
+        """Misspelt words corrected to known ones, when every correction is clear and (outside
+        "perturb") the line is not closer to an event than to the corrected reading."""
+        kind = "event" if perturb else "action"
+        vocabulary = self._vocabulary[kind]
+        fixed = []
+        for word in words:
+            if word in vocabulary:
+                fixed.append(word)
+                continue
+            close = difflib.get_close_matches(word, vocabulary, n=2, cutoff=_WORD_CUTOFF)
+            ratios = [_ratio(word, c) for c in close]
+            if not close or (len(close) > 1 and ratios[1] > ratios[0] - _TYPO_MARGIN):
+                return None
+            fixed.append(close[0])
+        corrected = tuple(fixed)
+        if corrected == words:
+            return None
+        pieces = self._segment(corrected, perturb, typed=False)
+        if pieces is None:
+            return None
+        other = "action" if perturb else "event"
+        if self._best(" ".join(words), other)[0] >= _ratio(" ".join(words), " ".join(corrected)):
+            return None
+        return pieces
+
+    def _best(self, said: str, kind: str, other_than: str | None = None) -> tuple[float, _Entry | None]:
+        """The phrase of ``kind`` most similar to ``said`` (skipping the name ``other_than``)."""
+        for ratio, entry in self._ranked(said):
+            if entry.kind == kind and entry.name != other_than:
+                return ratio, entry
+        return 0.0, None
+
+    def _ranked(self, said: str) -> list[tuple[float, _Entry]]:
+        """Every phrase by similarity to ``said``, most similar first; the last chunk's ranking is
+        kept, since reading one chunk asks for it several times."""
+        if self._ranking[0] != said:
+            matcher = difflib.SequenceMatcher(None, "", said)  # said is the side the matcher indexes
+            scored = []
+            for key, entries in self._entries.items():
+                matcher.set_seq1(" ".join(key))
+                ratio = matcher.ratio()
+                scored += [(ratio, entry) for entry in entries if entry.lang or entry.kind == "action"]
+            self._ranking = (said, sorted(scored, key=lambda pair: -pair[0]))
+        return self._ranking[1]
+
+    def _clear_typo(self, chunk: str, words: tuple[str, ...], lang: str, perturb: bool) -> Token | None:
+        """The phrase a chunk is a clear typo of: close, and nothing else (another phrase of its
+        kind, or any phrase of the other kind: events outside "perturb", actions in it) comes near."""
+        said = " ".join(words)
+        kind, other = ("event", "action") if perturb else ("action", "event")
+        ratio, entry = self._best(said, kind)
+        if entry is None or ratio < _TYPO_CUTOFF:
+            return None
+        rival = max(self._best(said, kind, other_than=entry.name)[0], self._best(said, other)[0])
+        if rival > ratio - _TYPO_MARGIN:
+            return None
+        return Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
+
+    def _unknown(self, chunk: str, words: tuple[str, ...], lang: str, perturb: bool, topic: str | None,
+                 tokens: list[Token], later: str) -> UnknownPhrase:
+        """The error for a chunk read neither exactly nor as a clear typo, with the closest phrase
+        as a confirmable suggestion. Outside "perturb" an event is offered only for a pronoun
+        ("hide it") or a typo of one of its phrases, and it runs only once the teacher says yes;
+        after "perturb" no event is offered for words closer to an action."""
+        said = " ".join(words)
+        ratio, entry = self._best(said, "event" if perturb else "action")
+        if not perturb:
+            events = self._resolved(words, perturb=True)
+            events = [option for option in events if option[1] == topic] or events
+            event_ratio, event = (1.0, events[0][0]) if events else self._best(said, "event")
+            if event_ratio >= _EVENT_SUGGEST_CUTOFF and event_ratio > ratio:
+                ratio, entry = event_ratio, event
+        elif self._best(said, "action")[0] >= ratio:
+            entry = None  # an action's words after "perturb": no event to offer
+        if entry is None or ratio < _SUGGEST_CUTOFF:
+            return UnknownPhrase(chunk, [], lang)
+        candidate = Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
+        return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
+
+    def _text(self, entry: _Entry, lang: str) -> str:
+        """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""
+        if entry.lang == lang:
+            return entry.phrase
+        return self._labels.get((entry.name, lang)) or self._labels.get((entry.name, "en")) or entry.phrase
+
+    def _last_noun(self, words: Iterable[str]) -> str | None:
+        found = [w for w in words if w in self._nouns]
+        return found[-1] if found else None
+
+
+def _substituted(words: tuple[str, ...], noun: str) -> list[tuple[str, ...]]:
+    """``words`` with every pronoun replaced by ``noun``; German "zu ihm" also as "zum Ball"/"zur …"."""
+    plain = tuple(noun if w in _PRONOUNS else w for w in words)
+    variants = [plain]
+    for contraction in ("zum", "zur"):
+        merged: list[str] = []
+        for word in words:
+            if word in _PRONOUNS and merged and merged[-1] == "zu":
+                merged[-1:] = [contraction, noun]
+            else:
+                merged.append(noun if word in _PRONOUNS else word)
+        if tuple(merged) != plain:
+            variants.append(tuple(merged))
+    return variants
