@@ -73,7 +73,7 @@ def taught_tree(model: Domain, train: list[Demonstration], reference: Oracle, st
         session.import_demonstrations(train)
         if strategy == "selector":
             while session.budget.left > 0:
-                session.cmd_ask("")
+                session.handle("ask")
                 if session.pending is None:
                     break
                 answer_with_oracle(session, reference, None)

@@ -53,7 +53,7 @@ def latency(demos: int = 30) -> list[float]:
         config = SessionConfig("bench", domain, questions=0, base=Path(scratch), world="symbolic")
         session = SessionManager(config, SymbolicWorld(domain))
         shown: list[float] = []
-        session.emit = lambda reply: shown.append(time.perf_counter()) if reply.kind == "tree" else None
+        session.live = lambda reply: shown.append(time.perf_counter()) if reply.kind == "tree" else None
         for _ in range(demos):
             state = tuple(rng.random() < 0.5 for _ in domain.conditions[:-1]) + (False,)
             session.world.arrange(state)

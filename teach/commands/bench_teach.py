@@ -65,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
         manager = SessionManager(config, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)
         while manager.budget.left > 0:
-            manager.cmd_ask("")
+            manager.handle("ask")
             if manager.pending is None:
                 break
             answer_with_oracle(manager, oracle, None)

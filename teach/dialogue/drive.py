@@ -35,21 +35,20 @@ def answer_with_oracle(manager: SessionManager, oracle: Oracle | None, console: 
             return
         if console is not None:
             console.print(render_teacher(f"{said}   [oracle]", manager.mode, manager.lang))
-        replies = manager.handle(said)
-        if console is not None:
-            show(console, manager, replies)
+        manager.handle(said)  # a driver that shows replies sees them through ``manager.live``
 
 
 def run_script(script: Script, manager: SessionManager, console: Console, oracle: Oracle | None = None,
                model_oracle: ModelOracle | None = None) -> None:
-    manager.emit = lambda reply: show(console, manager, [reply])
-    show(console, manager, manager.greet())
+    """Every reply is printed as the session produces it, like the terminal does."""
+    manager.live = lambda reply: show(console, manager, [reply])
+    manager.greet()
     for _, line in script.lines:
         answer_with_oracle(manager, oracle, console, model_oracle)
         console.print(render_teacher(line, manager.mode, manager.lang))
-        show(console, manager, manager.handle(line))
+        manager.handle(line)
         if manager.finished:
             break
     answer_with_oracle(manager, oracle, console, model_oracle)
     if not manager.finished:
-        show(console, manager, manager.handle("save"))
+        manager.handle("save")

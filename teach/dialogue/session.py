@@ -2,8 +2,10 @@
 
 It interleaves demonstrations in a world, online learning after every demonstration,
 at most ``budget`` clarifying questions, and runs of the learned tree that the teacher can
-interrupt and correct. The terminal and the scripted-dialogue runner are two thin drivers:
-they feed lines to ``handle`` and show the ``Reply`` objects it returns.
+interrupt and correct. Every driver (the terminal, scripted replays, bench-teach) feeds lines
+to ``handle(line, interrupt)``, which returns every reply of that line in order. A driver that
+shows replies while a line is still being handled (steps as they happen, run progress) sets
+``live``: it then sees each of those same replies once, as it is produced.
 
 Modes: ``idle`` (waiting for a command or actions), ``demonstrating`` (a demonstration is
 open), ``asking`` (a question waits for its answer).
@@ -117,7 +119,9 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.finished = False
         self.step = 0
-        self.emit: Callable[[Reply], None] | None = None  # set by a driver that can show replies early
+        self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
+        self._turn: list[Reply] = []
+        self._interrupt: Callable[[], bool] | None = None
         self._turn_questions = 0
         self.last_learn_ms = 0.0
         self.journal = journal or Journal(config.session, str(config.domain.path or ""), config.lang,
@@ -152,14 +156,17 @@ class SessionManager:
             if self.pruned is not None:
                 replies.append(Reply("tree", tree=self.pruned))
         replies.append(self._state_reply())
-        self._say_all(replies)
-        return replies
+        self._turn = []
+        return self._end_turn(replies)
 
-    def handle(self, line: str) -> list[Reply]:
-        """One teacher line in, replies out. Never raises for bad input."""
+    def handle(self, line: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
+        """One teacher line in, every reply to it out, in order. Never raises for bad input.
+        ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
         line = line.strip()
         if not line:
             return []
+        self._turn = []
+        self._interrupt = interrupt
         self._tick_clock()
         self.observer.on_dialogue("teacher", line, self.budget.left)
         try:
@@ -182,10 +189,12 @@ class SessionManager:
             replies = [Reply("error", unknown.message)]
         except TeachError as error:
             replies = [Reply("error", str(error))]
-        self._say_all(replies)
+        finally:
+            self._interrupt = None
+        turn = self._end_turn(replies)
         self.observer.checkpoint()
         self.journal.save(self.config.journal_path)  # the step clock too, so a resume goes on from it
-        return replies
+        return turn
 
     def close(self) -> None:
         self.journal.save(self.config.journal_path)
@@ -263,7 +272,7 @@ class SessionManager:
             return [Reply("error", _t(self.lang, f"Which event? I know: {names}.", f"Welches Ereignis? Ich kenne: {names}."))]
         return self._teach_actions(rest)
 
-    def cmd_run(self, rest: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
+    def cmd_run(self, rest: str) -> list[Reply]:
         # the unpruned tree runs: pruning assumes actions have only the effects seen so far
         tree = self.learner.tree if self.learner.order else self.planned
         if tree is None:
@@ -274,7 +283,7 @@ class SessionManager:
             return [Reply("error", _t(self.lang, "Finish ('done') or cancel the open demonstration first.",
                                       "Beende ('fertig') oder verwirf zuerst die laufende Vorführung."))]
         self.open = None
-        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=interrupt,
+        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
                                 stop_after=stop_after,
                                 on_action=lambda a: self._flush([Reply("info", f"→ {self.domain.action(a).label(self.lang)}")]))
         unmet = self._unmet_goal(self.world.state())
@@ -503,6 +512,7 @@ class SessionManager:
 
     def import_demonstrations(self, demos: list[Demonstration]) -> list[Reply]:
         """Learn demonstrations recorded elsewhere (one generation for all of them)."""
+        self._turn = []
         started = time.perf_counter()
         events = []
         for demo in demos:
@@ -513,7 +523,7 @@ class SessionManager:
             self._remember(demo)
             events.append({"kind": "demo", "file": path.name, "source": source})
             self.observer.on_demonstration(demo.name, demo, self.domain)
-        return self._after_learning(ask=False, started=started, events=events)
+        return self._end_turn(self._after_learning(ask=False, started=started, events=events))
 
     # --- questions --------------------------------------------------------------------------
 
@@ -741,14 +751,21 @@ class SessionManager:
         self.observer.set_time(self.step)
 
     def _flush(self, replies: list[Reply]) -> list[Reply]:
-        """Show replies at once when the driver can (the tree appears before a question is
-        chosen); otherwise hand them back to be returned."""
-        if self.emit is None:
-            return replies
+        """The one way a reply leaves the session: told to the observer, added to the line's
+        replies and shown by a live driver at once (the tree appears before a question is
+        chosen). Returns nothing left to hand back."""
         self._say_all(replies)
-        for reply in replies:
-            self.emit(reply)
+        self._turn.extend(replies)
+        if self.live is not None:
+            for reply in replies:
+                self.live(reply)
         return []
+
+    def _end_turn(self, replies: list[Reply]) -> list[Reply]:
+        """Send the last replies and hand back all of this turn's, in the order they were sent."""
+        self._flush(replies)
+        turn, self._turn = self._turn, []
+        return turn
 
     def _say_all(self, replies: list[Reply]) -> None:
         for reply in replies:

@@ -45,34 +45,32 @@ class Terminal:
         return f" {m.mode} │ true: {holds} │ questions left: {m.budget.left} │ generation {m.generation} │ Ctrl-D: quit"
 
     def run(self) -> None:
-        self.manager.emit = lambda reply: show(self.console, self.manager, [reply])
-        show(self.console, self.manager, self.manager.greet())
+        self.manager.live = lambda reply: show(self.console, self.manager, [reply])
+        self.manager.greet()
         while not self.manager.finished:
             try:
                 line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang))
             except KeyboardInterrupt:
                 continue
             except EOFError:
-                show(self.console, self.manager, self.manager.handle("quit"))
+                self.manager.handle("quit")
                 break
-            show(self.console, self.manager, self._handle(line))
+            self._handle(line)
 
-    def _handle(self, line: str) -> list:
-        command, rest = self.manager.command(line)
-        if command is not None and command.names[0] == "run" and self.manager.mode != "asking":
-            return self._run_robot(rest)
-        return self.manager.handle(line)
-
-    def _run_robot(self, rest: str) -> list:
-        """Run the tree; Ctrl-C sets the interrupt flag instead of ending the program."""
+    def _handle(self, line: str) -> None:
+        """Every line goes through the session; while the robot may run, Ctrl-C sets the
+        interrupt flag instead of ending the program."""
+        command, _ = self.manager.command(line)
+        if command is None or command.names[0] != "run" or self.manager.mode == "asking":
+            self.manager.handle(line)
+            return
         self._interrupt.clear()
         self.console.print("[dim]" + ("Roboter läuft, Strg-C hält ihn an ..." if self.manager.lang == "de"
                                       else "robot running, Ctrl-C interrupts ...") + "[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._interrupt.set()) if in_main else None
         try:
-            self.manager.observer.on_dialogue("teacher", f"run {rest}".strip(), self.manager.budget.left)
-            return self.manager.cmd_run(rest, interrupt=self._interrupt.is_set)
+            self.manager.handle(line, interrupt=self._interrupt.is_set)
         finally:
             if in_main:
                 signal.signal(signal.SIGINT, previous)
