@@ -34,9 +34,9 @@ from teach.bt.nodes import Action, Condition, Fallback, Sequence  # noqa: E402
 from teach.bt.tick import tick_state  # noqa: E402
 from teach.bt.xml import tree_to_xml  # noqa: E402
 from teach.domain import load_domain  # noqa: E402
-from teach.log import RerunLogger  # noqa: E402
-from teach.observe import Observer  # noqa: E402
-from teach.scene import SceneShape  # noqa: E402
+from teach.observe.rerun_writer import RerunLogger  # noqa: E402
+from teach.observe.hook import Observer  # noqa: E402
+from teach.observe.scene import SceneShape  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 FRAME_HZ = 10

@@ -22,14 +22,15 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from teach.demos import Demonstration, Step  # noqa: E402
-from teach.dialogue.drive import answer_with_oracle  # noqa: E402
+from teach.dialogue.oracle import answer_open_questions  # noqa: E402
 from teach.dialogue.oracle import SKIP, Oracle  # noqa: E402
-from teach.dialogue.session import SessionConfig, SessionManager  # noqa: E402
-from teach.dialogue.worlds import OfflineWorld, SymbolicWorld  # noqa: E402
+from teach.session.machine import SessionConfig, SessionManager  # noqa: E402
+from teach.world.offline import OfflineWorld  # noqa: E402
+from teach.world.symbolic import SymbolicWorld  # noqa: E402
 from teach.domain import ActionDef, ConditionDef, Domain, Literal, State  # noqa: E402
 from teach.errors import LearnError  # noqa: E402
 from teach.learn.pabt import expand  # noqa: E402
-from teach.observe import Observer  # noqa: E402
+from teach.observe.hook import Observer  # noqa: E402
 from teach.replay import replay  # noqa: E402
 
 DOMAINS = 40
@@ -76,7 +77,7 @@ def taught_tree(model: Domain, train: list[Demonstration], reference: Oracle, st
                 session.handle("ask")
                 if session.pending is None:
                     break
-                answer_with_oracle(session, reference, None)
+                answer_open_questions(session, reference)
         elif strategy in ("random", "all"):
             unseen = [s for s in all_states(len(model.conditions)) if s not in session.labels]
             chosen = unseen if strategy == "all" else rng.sample(unseen, min(BUDGET, len(unseen)))

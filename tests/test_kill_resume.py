@@ -11,8 +11,8 @@ import sys
 import time
 
 from teach.bt.xml import read_tree
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import SymbolicWorld
+from teach.session.machine import SessionConfig, SessionManager
+from teach.world.symbolic import SymbolicWorld
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
 
@@ -54,7 +54,7 @@ def test_sigkill_then_resume(ball, tmp_path):
 
 
 def test_recording_survives_a_kill_and_a_resume(tmp_path):
-    from teach.log import read_recording
+    from teach.observe.rerun_writer import read_recording
 
     script = tmp_path / "rec.dialogue"
     lines = ["@world symbolic", "@questions 0", SEQUENCE, "done"]

@@ -15,8 +15,8 @@ from teach.bt.xml import tree_to_xml
 from teach.demos import parse_demonstration
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
-from teach.log import RerunLogger, default_recording_path, read_recording
-from teach.scene import SceneShape
+from teach.observe.rerun_writer import RerunLogger, default_recording_path, read_recording
+from teach.observe.scene import SceneShape
 from conftest import colledanchise_tree
 
 RERUN = Path(sys.executable).with_name("rerun")
@@ -273,7 +273,7 @@ def test_scene_geometry_changes_and_vanishing_kinds(tmp_path: Path) -> None:
 
 
 def test_capsule_is_placed_from_its_end() -> None:
-    from teach.log import _SceneLayout
+    from teach.observe.rerun_writer import _SceneLayout
 
     # a capsule centred at (0, 0, 0.5), half length 0.2, turned 90° about x: its axis points along -y,
     # and rerun draws it from the end at +y towards -y

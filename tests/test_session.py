@@ -8,9 +8,9 @@ import json
 import pytest
 
 from teach.demos import read_demo_set
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import SymbolicWorld
-from teach.observe import Observer
+from teach.session.machine import SessionConfig, SessionManager
+from teach.world.symbolic import SymbolicWorld
+from teach.observe.hook import Observer
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
 SECOND = "go to the ball, grasp the ball, go to the bin, put the ball in the bin"
@@ -262,7 +262,7 @@ def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
 
 def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
     from teach.demos import Step, parse_demonstration
-    from teach.dialogue.session import _OpenDemo
+    from teach.session.machine import _OpenDemo
 
     session = new_session(ball, tmp_path, lang="de")
     session.import_demonstrations([parse_demonstration("0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n"

@@ -9,7 +9,7 @@ import pytest
 from teach.bt.nodes import Action, Condition, Fallback, Sequence
 from teach.demos import Demonstration
 from teach.learn.specialize import specialize
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.replay import replay
 from teach.sim.executor import run_tree
 from teach.sim.recorder import Recorder

@@ -10,9 +10,9 @@ from prompt_toolkit.input import create_pipe_input
 from prompt_toolkit.output import DummyOutput
 from rich.console import Console
 
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.terminal import Terminal
-from teach.dialogue.worlds import SymbolicWorld
+from teach.session.machine import SessionConfig, SessionManager
+from teach.terminal.app import Terminal
+from teach.world.symbolic import SymbolicWorld
 
 
 def drive(ball, tmp_path, keys: str, lang: str = "de") -> tuple[str, SessionManager]:
@@ -56,7 +56,7 @@ def test_run_and_unknown_words(ball, tmp_path):
 
 def recorded_drive(ball, tmp_path, keys: str) -> tuple[str, SessionManager, Path]:
     """Like ``drive``, in English, with a real rerun recording written and closed."""
-    from teach.log import RerunLogger
+    from teach.observe.rerun_writer import RerunLogger
 
     rrd = tmp_path / "recordings" / "term.rrd"
     rrd.parent.mkdir(parents=True)
@@ -82,7 +82,7 @@ def test_a_bad_run_argument_is_an_error_reply_and_the_session_goes_on(ball, tmp_
 
 
 def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(ball, tmp_path):
-    from teach.log import read_recording
+    from teach.observe.rerun_writer import read_recording
 
     out, manager, rrd = recorded_drive(ball, tmp_path, TEACH_ONCE + "start\rrun\r\x04")
     assert "Done! The task is finished." in out

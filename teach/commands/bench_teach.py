@@ -35,12 +35,12 @@ def run(args: argparse.Namespace) -> int:
     import tempfile
 
     from teach.demos import read_demo_set
-    from teach.dialogue.drive import answer_with_oracle
+    from teach.dialogue.oracle import answer_open_questions
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
-    from teach.dialogue.session import SessionConfig, SessionManager
-    from teach.dialogue.worlds import OfflineWorld
+    from teach.session.machine import SessionConfig, SessionManager
+    from teach.world.offline import OfflineWorld
     from teach.domain import load_domain
-    from teach.observe import Observer
+    from teach.observe.hook import Observer
     from teach.replay import replay
 
     from teach.errors import TeachError
@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
             manager.handle("ask")
             if manager.pending is None:
                 break
-            answer_with_oracle(manager, oracle, None)
+            answer_open_questions(manager, oracle)
         tree = manager.pruned
     if tree is None:
         raise TeachError("the training demonstrations show no action, so there is nothing to learn", args.train)

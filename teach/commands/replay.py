@@ -39,12 +39,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
-    from teach.dialogue.drive import run_script
+    from teach.terminal.scripted import run_script
     from teach.dialogue.model_repair import ModelOracle
     from teach.domain import load_domain
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
     from teach.dialogue.script import read_script
-    from teach.dialogue.setup import SessionOptions, open_session
+    from teach.session.setup import SessionOptions, open_session
 
     script = read_script(args.dialogue)
     settings = script.settings

@@ -26,7 +26,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
-    from teach.log import open_viewer, read_recording
+    from teach.observe.rerun_writer import open_viewer, read_recording
     from teach.review import summary
 
     contents = read_recording(args.recording)

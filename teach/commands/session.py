@@ -39,8 +39,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from teach.dialogue.setup import SessionOptions, open_session
-    from teach.dialogue.terminal import Terminal
+    from teach.session.setup import SessionOptions, open_session
+    from teach.terminal.app import Terminal
 
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     options = SessionOptions(session=name, domain=args.domain, lang=args.lang, questions=args.questions,

@@ -21,7 +21,7 @@ from teach.bt.tick import tick
 from teach.demos import Demonstration, Step
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import DomainError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, Skill, skill_for
 from teach.sim.world import CONTROL_STEPS, World

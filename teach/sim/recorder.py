@@ -18,7 +18,7 @@ from teach.demos import Demonstration, Step, next_demo_path, write_demonstration
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import DomainError, FormatError
 from teach.fsutil import atomic_write_text
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
 from teach.sim.world import DOMAIN_FILE, World

@@ -26,7 +26,7 @@ import numpy as np
 
 from teach.bt.nodes import Status
 from teach.errors import DomainError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, FINGER_RELEASE, GRASP_OFFSET, LIFT_CARRY,
                              LIFT_PLACE, ROOM, World, _wrap)
 

@@ -41,7 +41,7 @@ import numpy as np
 
 from teach.domain import Domain, State, load_domain
 from teach.errors import DomainError
-from teach.scene import SceneShape
+from teach.observe.scene import SceneShape
 
 ASSETS = Path(str(resources.files("teach.sim") / "assets"))
 SCENE_FILE = ASSETS / "ball_in_bin.xml"

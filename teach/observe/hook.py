@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from teach.bt.tick import TickResult
     from teach.demos import Demonstration
     from teach.domain import Domain
-    from teach.scene import SceneShape
+    from teach.observe.scene import SceneShape
 
 
 class Observer:

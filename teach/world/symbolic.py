@@ -1,93 +1,17 @@
-"""The worlds a session can teach in, behind one small interface.
-
-``SymbolicWorld`` runs any domain with an action model (``pre``/``ram`` in domain.toml):
-an action whose preconditions hold makes its ramifications true. ``teach.sim`` provides the
-MuJoCo ball-in-bin world through ``MujocoWorld`` (teach/dialogue/mujoco_world.py), whose
-conditions come from physics.
-"""
+"""Any domain with an action model (``pre``/``ram`` in domain.toml), simulated symbolically:
+an action whose preconditions hold makes its ramifications true."""
 
 from __future__ import annotations
 
 import random
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
-from typing import Protocol
+from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import tick
-from teach.domain import Domain, State
-from teach.observe import Observer
-
-
-@dataclass(frozen=True)
-class ActResult:
-    ok: bool
-    before: State
-    after: State
-    message: str = ""
-
-
-@dataclass
-class RunResult:
-    """A run of the learned tree: outcome and the (state, action) steps it executed."""
-
-    outcome: str  # "success" | "failure" | "timeout" | "interrupted"
-    steps: list[tuple[State, str]] = field(default_factory=list)
-    final_state: State = ()
-
-
-class TeachingWorld(Protocol):
-    domain: Domain
-    events: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]
-
-    def state(self) -> State: ...
-
-    def arrange(self, state: State) -> None: ...
-
-    def reset(self, seed: int | None = None) -> None: ...
-
-    def act(self, action: str) -> ActResult: ...
-
-    def perturb(self, event: str) -> ActResult: ...
-
-    def run(self, tree: Node, max_actions: int, interrupt: Callable[[], bool] | None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        """Tick ``tree`` until it finishes; ``on_action`` hears of every action as it starts."""
-
-    def close(self) -> None: ...
-
-
-class OfflineWorld:
-    """No world at all, only a state: the session learns from demonstration files and answers.
-    (``SymbolicWorld`` adds actions to it.)"""
-
-    events: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {}
-
-    def __init__(self, domain: Domain):
-        self.domain = domain
-        self._state: State = tuple(False for _ in domain.conditions)
-
-    def state(self) -> State:
-        return self._state
-
-    def arrange(self, state: State) -> None:
-        self._state = tuple(state)
-
-    def reset(self, seed: int | None = None) -> None:
-        self._state = tuple(False for _ in self.domain.conditions)
-
-    def act(self, action: str) -> ActResult:
-        return ActResult(False, self._state, self._state, "this session has no world to act in")
-
-    def perturb(self, event: str) -> ActResult:
-        return ActResult(False, self._state, self._state, "this session has no world to act in")
-
-    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        return RunResult("failure", [], self._state)
-
-    def close(self) -> None:
-        pass
+from teach.domain import Domain
+from teach.observe.hook import Observer
+from teach.world.offline import OfflineWorld
+from teach.world.protocol import ActResult, RunResult
 
 
 class SymbolicWorld(OfflineWorld):

@@ -18,9 +18,8 @@ from prompt_toolkit.output import Output
 from rich.console import Console
 
 from teach.dialogue.completion import TeachCompleter, command_words
-from teach.dialogue.drive import show
-from teach.dialogue.session import COMMANDS, SessionManager
-from teach.dialogue.view import prompt
+from teach.session.machine import COMMANDS, SessionManager
+from teach.terminal.view import prompt, render_reply
 
 
 
@@ -45,7 +44,7 @@ class Terminal:
         return f" {m.mode} │ true: {holds} │ questions left: {m.budget.left} │ generation {m.generation} │ Ctrl-D: quit"
 
     def run(self) -> None:
-        self.manager.live = lambda reply: show(self.console, self.manager, [reply])
+        self.manager.live = lambda reply: self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
         self.manager.greet()
         while not self.manager.finished:
             try:

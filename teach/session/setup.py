@@ -7,12 +7,14 @@ import shutil
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from teach.dialogue.journal import Journal
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import OfflineWorld, SymbolicWorld, TeachingWorld
+from teach.session.journal import Journal
+from teach.session.machine import SessionConfig, SessionManager
+from teach.world.offline import OfflineWorld
+from teach.world.protocol import TeachingWorld
+from teach.world.symbolic import SymbolicWorld
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
-from teach.observe import Observer, Observers
+from teach.observe.hook import Observer, Observers
 
 DEFAULT_DOMAIN = Path("demos/ball/domain.toml")
 WORLDS = ("mujoco", "symbolic", "offline")
@@ -46,7 +48,7 @@ def default_domain() -> Domain:
 def make_world(kind: str, domain: Domain, seed: int, observer: Observer, viewer: bool = False,
                pace: float = 0.0) -> TeachingWorld:
     if kind == "mujoco":
-        from teach.dialogue.mujoco_world import MujocoWorld
+        from teach.world.mujoco_world import MujocoWorld
 
         return MujocoWorld(domain, seed, observer, viewer, pace)
     if viewer:
@@ -89,7 +91,7 @@ def open_session(options: SessionOptions) -> SessionManager:
     observer = Observers()
     world = make_world(options.world, domain, options.seed, observer, options.viewer, options.pace)
     if options.record:
-        from teach.log import RerunLogger
+        from teach.observe.rerun_writer import RerunLogger
 
         rrd.parent.mkdir(parents=True, exist_ok=True)
         observer.observers.append(RerunLogger(rrd, options.session, spawn=options.spawn, resume=options.resume))

@@ -7,7 +7,7 @@ from rich.console import RenderableType
 from rich.panel import Panel
 from rich.text import Text
 
-from teach.dialogue.session import Reply
+from teach.session.machine import Reply
 from teach.domain import Domain
 
 STYLES = {"say": "bold cyan", "info": "white", "error": "bold red", "question": "bold magenta"}

@@ -39,13 +39,13 @@ import rerun.blueprint as rrb
 from teach.bt.nodes import Node, Status, children, walk
 from teach.bt.render import symbol
 from teach.errors import FormatError, TeachError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 
 if TYPE_CHECKING:
     from teach.bt.tick import TickResult
     from teach.demos import Demonstration
     from teach.domain import Domain
-    from teach.scene import SceneShape
+    from teach.observe.scene import SceneShape
 
 APPLICATION_ID = "teach"
 RECORDINGS = Path("recordings")

@@ -22,13 +22,13 @@ from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step, next_demo_path, read_demonstration, write_demonstration
-from teach.dialogue.journal import Journal, parse_state_text, state_text
+from teach.session.journal import Journal, parse_state_text, state_text
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import Answer, Question, QuestionBudget, describe_situation, select_question
-from teach.dialogue.worlds import TeachingWorld
+from teach.world.protocol import TeachingWorld
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
 from teach.errors import FormatError, LearnError, TeachError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion, ModelRepair

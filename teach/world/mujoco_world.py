@@ -13,10 +13,10 @@ from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult
-from teach.dialogue.worlds import ActResult, RunResult
+from teach.world.protocol import ActResult, RunResult
 from teach.domain import Domain, State
 from teach.errors import TeachError
-from teach.observe import Observer, Observers
+from teach.observe.hook import Observer, Observers
 from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
