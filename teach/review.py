@@ -13,7 +13,7 @@ from rich.text import Text
 
 from teach.bt.render import render_tree
 from teach.bt.xml import tree_from_xml
-from teach.observe.rerun_writer import DemoRecord, RecordingContents
+from teach.observe.reader import DemoRecord, RecordingContents
 
 
 def summary(contents: RecordingContents) -> Group:

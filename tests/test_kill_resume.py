@@ -54,7 +54,7 @@ def test_sigkill_then_resume(ball, tmp_path):
 
 
 def test_recording_survives_a_kill_and_a_resume(tmp_path):
-    from teach.observe.rerun_writer import read_recording
+    from teach.observe.reader import read_recording
 
     script = tmp_path / "rec.dialogue"
     lines = ["@world symbolic", "@questions 0", SEQUENCE, "done"]

@@ -15,7 +15,9 @@ from teach.bt.xml import tree_to_xml
 from teach.demos import parse_demonstration
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
-from teach.observe.rerun_writer import RerunLogger, default_recording_path, read_recording
+from teach.observe.layout import default_recording_path
+from teach.observe.reader import read_recording
+from teach.observe.rerun_writer import RerunLogger
 from teach.observe.scene import SceneShape
 from conftest import colledanchise_tree
 
@@ -273,11 +275,11 @@ def test_scene_geometry_changes_and_vanishing_kinds(tmp_path: Path) -> None:
 
 
 def test_capsule_is_placed_from_its_end() -> None:
-    from teach.observe.rerun_writer import _SceneLayout
+    from teach.observe.encode import SceneLayout
 
     # a capsule centred at (0, 0, 0.5), half length 0.2, turned 90° about x: its axis points along -y,
     # and rerun draws it from the end at +y towards -y
-    layout = _SceneLayout.of((("arm", "capsule", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),))
+    layout = SceneLayout.of((("arm", "capsule", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),))
     pos, xyzw = layout.poses("capsule", np.array([[[0.0, 0.0, 0.5]]], dtype=np.float32),
                              np.array([[[0.70710678, 0.70710678, 0.0, 0.0]]], dtype=np.float32))
     assert pos[0, 0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)

@@ -11,7 +11,7 @@ from rich.console import Console
 from conftest import BALL_DOMAIN
 from teach.cli import main
 from teach.domain import load_domain
-from teach.observe.rerun_writer import read_recording
+from teach.observe.reader import read_recording
 from teach.review import summary
 from test_log import record_session
 

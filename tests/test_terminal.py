@@ -82,7 +82,7 @@ def test_a_bad_run_argument_is_an_error_reply_and_the_session_goes_on(ball, tmp_
 
 
 def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(ball, tmp_path):
-    from teach.observe.rerun_writer import read_recording
+    from teach.observe.reader import read_recording
 
     out, manager, rrd = recorded_drive(ball, tmp_path, TEACH_ONCE + "start\rrun\r\x04")
     assert "Done! The task is finished." in out
