@@ -25,7 +25,8 @@ sys.path.insert(0, str(ROOT))
 from teach.bt.tick import compile_tree  # noqa: E402
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.cli import main  # noqa: E402
-from teach.session.machine import SessionConfig, SessionManager  # noqa: E402
+from teach.session.machine import SessionManager  # noqa: E402
+from teach.session.settings import Settings, WorldKind  # noqa: E402
 from teach.world.symbolic import SymbolicWorld  # noqa: E402
 from teach.domain import load_domain  # noqa: E402
 
@@ -50,8 +51,8 @@ def latency(demos: int = 30) -> list[float]:
     rng = random.Random(1)
     times: list[float] = []
     with tempfile.TemporaryDirectory() as scratch:
-        config = SessionConfig("bench", domain, questions=0, base=Path(scratch), world="symbolic")
-        session = SessionManager(config, SymbolicWorld(domain))
+        settings = Settings("bench", questions=0, world=WorldKind.SYMBOLIC, base=Path(scratch), record=False)
+        session = SessionManager(settings, domain, SymbolicWorld(domain))
         shown: list[float] = []
         session.live = lambda reply: shown.append(time.perf_counter()) if reply.kind == "tree" else None
         for _ in range(demos):

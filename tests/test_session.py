@@ -8,7 +8,8 @@ import json
 import pytest
 
 from teach.demos import read_demo_set
-from teach.session.machine import SessionConfig, SessionManager
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings, WorldKind
 from teach.world.symbolic import SymbolicWorld
 from teach.observe.hook import Observer
 
@@ -32,9 +33,12 @@ class Events(Observer):
         self.dialogue.append((speaker, text))
 
 
+def settings(tmp_path, questions=5, lang="en"):
+    return Settings("t", lang=lang, questions=questions, world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+
+
 def new_session(ball, tmp_path, questions=5, lang="en", observer=None):
-    config = SessionConfig("t", ball, lang, questions, base=tmp_path, world="symbolic")
-    return SessionManager(config, SymbolicWorld(ball), observer)
+    return SessionManager(settings(tmp_path, questions, lang), ball, SymbolicWorld(ball), observer)
 
 
 def teach_two_demonstrations(session):
@@ -105,14 +109,14 @@ def test_an_answer_changes_the_tree(ball, tmp_path):
     session = new_session(ball, tmp_path)
     replies = teach_two_demonstrations(session)
     assert session.pending is not None, "two demonstrations leave guards in doubt: the robot asks"
-    before = session.learner.tree
+    before = session.learning.learner.tree
     question = session.pending
     state = question.state
     answer = next(a for a, _ in question.expected if a != "done")
     replies = session.handle(ball.action(answer).label("en"))
-    assert session.learner.tree != before
+    assert session.learning.learner.tree != before
     assert any(r.text.startswith("Thank you.") for r in replies)
-    assert session.labels[state] == answer
+    assert session.learning.labels[state] == answer
 
 
 def test_run_interrupt_and_correction(ball, tmp_path):
@@ -157,11 +161,10 @@ def test_resume_after_a_killed_session(ball, tmp_path):
     teach_two_demonstrations(session)
     if session.pending is not None:
         session.handle("skip")
-    tree, used = session.learner.tree, session.budget.used
+    tree, used = session.learning.learner.tree, session.budget.used
     # no close(), no save: as if the process was killed here
-    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
-    resumed = SessionManager.resume(config, SymbolicWorld(ball))
-    assert resumed.learner.tree == tree and resumed.budget.used == used
+    resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))
+    assert resumed.learning.learner.tree == tree and resumed.budget.used == used
     assert len(resumed.demos) == 2
     assert "Resumed" in resumed.greet()[0].text
 
@@ -220,8 +223,7 @@ def test_generations_are_never_overwritten(ball, tmp_path):
     first = sorted(p.name for p in (tmp_path / "trees" / "t").glob("gen-*.xml"))
     assert first == ["gen-01.xml", "gen-02.xml"]
     saved = (tmp_path / "trees" / "t" / "gen-01.xml").read_bytes()
-    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
-    resumed = SessionManager.resume(config, SymbolicWorld(ball))
+    resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))
     resumed.handle("start BallFound")
     resumed.handle(SECOND)
     resumed.handle("done")

@@ -10,14 +10,15 @@ from prompt_toolkit.input import create_pipe_input
 from prompt_toolkit.output import DummyOutput
 from rich.console import Console
 
-from teach.session.machine import SessionConfig, SessionManager
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings, WorldKind
 from teach.terminal.app import Terminal
 from teach.world.symbolic import SymbolicWorld
 
 
 def drive(ball, tmp_path, keys: str, lang: str = "de") -> tuple[str, SessionManager]:
-    config = SessionConfig("term", ball, lang, 5, base=tmp_path, world="symbolic")
-    manager = SessionManager(config, SymbolicWorld(ball))
+    settings = Settings("term", lang=lang, world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball))
     buffer = io.StringIO()
     console = Console(file=buffer, width=100, color_system=None)
     with create_pipe_input() as pipe:
@@ -60,8 +61,8 @@ def recorded_drive(ball, tmp_path, keys: str) -> tuple[str, SessionManager, Path
 
     rrd = tmp_path / "recordings" / "term.rrd"
     rrd.parent.mkdir(parents=True)
-    config = SessionConfig("term", ball, "en", 5, base=tmp_path, world="symbolic", recording=rrd)
-    manager = SessionManager(config, SymbolicWorld(ball), RerunLogger(rrd, "term"))
+    settings = Settings("term", lang="en", world=WorldKind.SYMBOLIC, base=tmp_path, record=True)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball), RerunLogger(rrd, "term"))
     buffer = io.StringIO()
     console = Console(file=buffer, width=100, color_system=None)
     with create_pipe_input() as pipe:

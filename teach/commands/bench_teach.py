@@ -37,7 +37,8 @@ def run(args: argparse.Namespace) -> int:
     from teach.demos import read_demo_set
     from teach.dialogue.oracle import answer_open_questions
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
-    from teach.session.machine import SessionConfig, SessionManager
+    from teach.session.machine import SessionManager
+    from teach.session.settings import Settings, WorldKind
     from teach.world.offline import OfflineWorld
     from teach.domain import load_domain
     from teach.observe.hook import Observer
@@ -61,8 +62,9 @@ def run(args: argparse.Namespace) -> int:
             asked[-1].update(answer=answer, change=change)
 
     with tempfile.TemporaryDirectory(prefix="teach-bench-") as scratch:
-        config = SessionConfig("bench", domain, args.lang, args.questions, base=Path(scratch), world="offline")
-        manager = SessionManager(config, OfflineWorld(domain), Questions())
+        settings = Settings("bench", lang=args.lang, questions=args.questions, world=WorldKind.OFFLINE, base=Path(scratch),
+                            record=False)
+        manager = SessionManager(settings, domain, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)
         while manager.budget.left > 0:
             manager.handle("ask")

@@ -44,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.bt.xml import write_tree
     from teach.domain import Literal
     from teach.errors import LearnError
-    from teach.learn.pabt import write_generations
+    from teach.generations import write_generations
     from teach.replay import replay
 
     domain, demos = _inputs(args)

@@ -93,6 +93,17 @@ class ModelQuestion:
     literal: Literal | None = None
     other: str = ""
 
+    def to_json(self) -> dict[str, str]:
+        """As the session journal stores it."""
+        return {"kind": self.kind, "action": self.action, "other": self.other,
+                "literal": str(self.literal) if self.literal is not None else ""}
+
+    @classmethod
+    def from_json(cls, data: dict[str, str]) -> ModelQuestion:
+        literal = data.get("literal")
+        return cls(data["kind"], data.get("action", ""), Literal.parse(literal) if literal else None,
+                   data.get("other", ""))
+
     def text(self, domain: Domain, lang: str = "en") -> str:
         """The question in plain words from the domain's labels, with the expected answers."""
         act = _q(domain.action(self.action).label(lang), lang) if self.action else ""

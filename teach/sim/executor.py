@@ -25,6 +25,7 @@ from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, Skill, skill_for
 from teach.sim.world import CONTROL_STEPS, World
+from teach.world.protocol import Outcome
 
 
 @dataclass(frozen=True, slots=True)
@@ -39,7 +40,7 @@ class External:
 class RunTrace:
     """What happened in a run, tick by tick (``states[i]`` is the state ticked at tick i)."""
 
-    outcome: str = "timeout"  # "success" | "failure" | "timeout" | "interrupted"
+    outcome: Outcome = Outcome.TIMEOUT
     states: list[State] = field(default_factory=list)
     actions: list[str | None] = field(default_factory=list)
     statuses: list[Status] = field(default_factory=list)
@@ -63,7 +64,7 @@ class RunTrace:
                 steps.append(Step(state, domain.action(action).id, len(steps) + 1))
         for external in pending:
             steps.append(Step(external.before, EXTERNAL_ACTION, len(steps) + 1))
-        if self.outcome == "success":
+        if self.outcome is Outcome.SUCCESS:
             steps.append(Step(self.states[-1], GOAL_ACTION, len(steps) + 1))
         return Demonstration(name, tuple(steps))
 
@@ -95,7 +96,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
 
     for number in range(max_ticks):
         if interrupt is not None and interrupt():
-            trace.outcome = "interrupted"
+            trace.outcome = Outcome.INTERRUPTED
             break
         if perturbations and number in perturbations:
             if running[0] is not None:
@@ -118,7 +119,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
         if observer is not None:
             observer.on_tick(tree, result)
         if result.status is not Status.RUNNING:
-            trace.outcome = "success" if result.status is Status.SUCCESS else "failure"
+            trace.outcome = Outcome.SUCCESS if result.status is Status.SUCCESS else Outcome.FAILURE
             break
         skill = running[0]
         while world.sim_time < start + period - 1e-9:  # the rest of the tick period

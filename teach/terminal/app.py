@@ -1,5 +1,5 @@
 """The terminal front-end: prompt_toolkit for input (completion, history, toolbar), rich for
-output. A thin driver of the session manager.
+output. A thin driver of the session machine: the loop and Ctrl-C handling only.
 
 Ctrl-C interrupts a robot run (not the program) and clears the line at the prompt;
 Ctrl-D saves and leaves.
@@ -18,9 +18,10 @@ from prompt_toolkit.output import Output
 from rich.console import Console
 
 from teach.dialogue.completion import TeachCompleter, command_words
-from teach.session.machine import COMMANDS, SessionManager
-from teach.terminal.view import prompt, render_reply
-
+from teach.session import messages as m
+from teach.session.commands import COMMANDS, Verb, parse_command
+from teach.session.machine import Mode, SessionManager
+from teach.terminal.view import prompt, render_reply, toolbar
 
 
 class Terminal:
@@ -29,19 +30,11 @@ class Terminal:
         self.manager = manager
         self.console = console or Console(highlight=False)
         words = command_words(c.usage for c in COMMANDS) + [n for c in COMMANDS for n in c.names if n.isalpha()]
-        self.prompt = PromptSession(
+        self.prompt: PromptSession[str] = PromptSession(
             completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
-            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
+            bottom_toolbar=lambda: toolbar(self.manager), input=input, output=output, complete_while_typing=True)
         self._interrupt = threading.Event()
-
-    def _toolbar(self) -> str:
-        m = self.manager
-        holds = ", ".join(n for n, v in zip(m.domain.condition_names, m.world.state()) if v) or "—"
-        if m.lang == "de":
-            mode = {"idle": "bereit", "demonstrating": "Vorführung", "asking": "Frage offen"}[m.mode]
-            return f" {mode} │ wahr: {holds} │ Fragen übrig: {m.budget.left} │ Generation {m.generation} │ Strg-D: Ende"
-        return f" {m.mode} │ true: {holds} │ questions left: {m.budget.left} │ generation {m.generation} │ Ctrl-D: quit"
 
     def run(self) -> None:
         self.manager.live = lambda reply: self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
@@ -59,13 +52,12 @@ class Terminal:
     def _handle(self, line: str) -> None:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
-        command, _ = self.manager.command(line)
-        if command is None or command.names[0] != "run" or self.manager.mode == "asking":
+        command, _ = parse_command(line)
+        if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING:
             self.manager.handle(line)
             return
         self._interrupt.clear()
-        self.console.print("[dim]" + ("Roboter läuft, Strg-C hält ihn an ..." if self.manager.lang == "de"
-                                      else "robot running, Ctrl-C interrupts ...") + "[/dim]")
+        self.console.print(f"[dim]{m.ROBOT_RUNNING(self.manager.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._interrupt.set()) if in_main else None
         try:

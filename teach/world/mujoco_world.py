@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult
-from teach.world.protocol import ActResult, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult
 from teach.domain import Domain, State
 from teach.errors import TeachError
 from teach.observe.hook import Observer, Observers
@@ -122,9 +122,9 @@ class MujocoWorld:
                          max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ), tick_hz=TICK_HZ, interrupt=stop)
         steps = [(state, action) for state, action, fresh in zip(trace.states, trace.actions, trace.started)
                  if fresh and action is not None]
-        if stop_after is not None and trace.outcome == "interrupted":
+        if stop_after is not None and trace.outcome is Outcome.INTERRUPTED:
             steps = steps[:stop_after]
-        if trace.outcome == "interrupted" and steps and steps[-1][0] == self.world.state():
+        if trace.outcome is Outcome.INTERRUPTED and steps and steps[-1][0] == self.world.state():
             steps.pop()  # stopped before it changed anything: the teacher's next step replaces it
         return RunResult(trace.outcome, steps, self.world.state())
 

@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 from teach.bt.nodes import Node
 from teach.domain import Domain, State
-from teach.world.protocol import ActResult, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult
 
 
 class OfflineWorld:
@@ -36,7 +36,7 @@ class OfflineWorld:
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        return RunResult("failure", [], self._state)
+        return RunResult(Outcome.FAILURE, [], self._state)
 
     def close(self) -> None:
         pass

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import Protocol
 
 from teach.bt.nodes import Node
@@ -22,11 +23,20 @@ class ActResult:
     message: str = ""
 
 
+class Outcome(StrEnum):
+    """How a run of the learned tree ended."""
+
+    SUCCESS = "success"
+    FAILURE = "failure"
+    TIMEOUT = "timeout"
+    INTERRUPTED = "interrupted"
+
+
 @dataclass
 class RunResult:
     """A run of the learned tree: outcome and the (state, action) steps it executed."""
 
-    outcome: str  # "success" | "failure" | "timeout" | "interrupted"
+    outcome: Outcome
     steps: list[tuple[State, str]] = field(default_factory=list)
     final_state: State = ()
 

@@ -11,7 +11,7 @@ from teach.bt.tick import tick
 from teach.domain import Domain
 from teach.observe.hook import Observer
 from teach.world.offline import OfflineWorld
-from teach.world.protocol import ActResult, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult
 
 
 class SymbolicWorld(OfflineWorld):
@@ -58,21 +58,21 @@ class SymbolicWorld(OfflineWorld):
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
         names = self.domain.condition_names
-        result = RunResult("timeout")
+        result = RunResult(Outcome.TIMEOUT)
         for _ in range(max_actions):
             ticked = tick(tree, dict(zip(names, self._state)))
             self.observer.on_tick(tree, ticked)
             if ticked.status is not Status.RUNNING or ticked.action is None:
-                result.outcome = "success" if ticked.status is Status.SUCCESS else "failure"
+                result.outcome = Outcome.SUCCESS if ticked.status is Status.SUCCESS else Outcome.FAILURE
                 break
             if interrupt is not None and interrupt() or stop_after is not None and len(result.steps) >= stop_after:
-                result.outcome = "interrupted"
+                result.outcome = Outcome.INTERRUPTED
                 break
             before = self._state
             if on_action is not None:
                 on_action(ticked.action)
             if not self.act(ticked.action).ok:
-                result.outcome = "failure"
+                result.outcome = Outcome.FAILURE
                 break
             result.steps.append((before, ticked.action))
         result.final_state = self._state
