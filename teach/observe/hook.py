@@ -1,8 +1,9 @@
 """One observer hook for everything a session does (ticks, scene, dialogue, learner events).
 
-The session manager, the simulation's executor and the learners report to an ``Observer``;
-``teach.log.RerunLogger`` implements it with rerun, tests can collect events, and the default
-does nothing. Callers set the clock once per step with ``set_time``.
+The session machine, the worlds and the simulation's executor report to an ``Observer``;
+``teach.observe.rerun_writer.RerunLogger`` implements it with rerun, tests can collect events,
+and the default does nothing. Callers set the clock once per step with ``set_time``. An
+observer only observes: pacing, run limits and viewer redraws are the world's own business.
 """
 
 from __future__ import annotations
@@ -56,7 +57,8 @@ class Observer:
         """The teacher's answer and what it changed in the tree."""
 
     def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
-        """A learner event: "specialize", "prune", "order", ...; ``removed`` names removed nodes."""
+        """What a demonstration ("specialize") or an answer ("answer") changed, in words;
+        ``removed`` names the guards it removed."""
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         """Replay of all demonstrations so far against the current tree."""
@@ -72,18 +74,71 @@ class Observer:
 
 
 class Observers(Observer):
-    """Fan one event out to several observers."""
+    """Fan each event out to several observers, in order."""
 
     def __init__(self, *observers: Observer):
         self.observers = [o for o in observers if o is not None]
 
-    def __getattribute__(self, name: str) -> Any:
-        if name.startswith(("on_", "set_time", "checkpoint", "close")):
-            targets = object.__getattribute__(self, "observers")
+    def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        for o in self.observers:
+            o.set_time(step, sim_time)
 
-            def fan_out(*args: Any, **kwargs: Any) -> None:
-                for target in targets:
-                    getattr(target, name)(*args, **kwargs)
+    def on_domain(self, domain: Domain) -> None:
+        for o in self.observers:
+            o.on_domain(domain)
 
-            return fan_out
-        return object.__getattribute__(self, name)
+    def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
+        for o in self.observers:
+            o.on_tree(generation, tree, xml, reason)
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        for o in self.observers:
+            o.on_tick(tree, result)
+
+    def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
+        for o in self.observers:
+            o.on_state(state, action)
+
+    def on_scene(self, shapes: Sequence[SceneShape]) -> None:
+        for o in self.observers:
+            o.on_scene(shapes)
+
+    def on_camera(self, image: Any) -> None:
+        for o in self.observers:
+            o.on_camera(image)
+
+    def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
+        for o in self.observers:
+            o.on_dialogue(speaker, text, budget_left)
+
+    def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
+        for o in self.observers:
+            o.on_demonstration(name, demo, domain)
+
+    def on_question(self, question: str, budget_left: int) -> None:
+        for o in self.observers:
+            o.on_question(question, budget_left)
+
+    def on_answer(self, question: str, answer: str, change: str) -> None:
+        for o in self.observers:
+            o.on_answer(question, answer, change)
+
+    def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
+        for o in self.observers:
+            o.on_learner(event, detail, removed)
+
+    def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
+        for o in self.observers:
+            o.on_replay(reproduced, total, lenient)
+
+    def on_external(self, name: str) -> None:
+        for o in self.observers:
+            o.on_external(name)
+
+    def checkpoint(self) -> None:
+        for o in self.observers:
+            o.checkpoint()
+
+    def close(self) -> None:
+        for o in self.observers:
+            o.close()

@@ -17,7 +17,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from teach.bt.nodes import Node, Status
-from teach.bt.tick import tick
+from teach.bt.tick import TickResult, tick
 from teach.demos import Demonstration, Step
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import DomainError
@@ -71,16 +71,19 @@ class RunTrace:
 
 def run_tree(world: World, tree: Node, observer: Observer | None = None, max_ticks: int = 600,
              tick_hz: float = 10.0, interrupt: Callable[[], bool] | None = None,
-             perturbations: Mapping[int, str] | None = None) -> RunTrace:
+             perturbations: Mapping[int, str] | None = None, after_tick: Callable[[TickResult], None] | None = None,
+             on_frame: Callable[[], None] | None = None) -> RunTrace:
     """Tick ``tree`` in ``world`` until it finishes, ``max_ticks`` pass, or ``interrupt()`` is true.
 
     ``perturbations`` maps a tick number to a perturbation name applied just before that tick.
+    ``after_tick`` hears each tick's result once the observer has (a caller's run limit);
+    ``on_frame`` runs after each scene frame (see ``FrameClock``).
     """
     for name in (perturbations or {}).values():
         if name not in PERTURBATIONS:
             raise DomainError(f"unknown perturbation {name!r} (known: {', '.join(PERTURBATIONS)})")
     period = 1.0 / tick_hz
-    frames = FrameClock(world, observer)
+    frames = FrameClock(world, observer, on_frame)
     trace = RunTrace()
     running: list[Skill | None] = [None]
     fresh = [False]
@@ -118,6 +121,8 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
         frames(result.action, force=True)
         if observer is not None:
             observer.on_tick(tree, result)
+        if after_tick is not None:
+            after_tick(result)
         if result.status is not Status.RUNNING:
             trace.outcome = Outcome.SUCCESS if result.status is Status.SUCCESS else Outcome.FAILURE
             break

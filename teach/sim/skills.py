@@ -310,10 +310,11 @@ def skill_for(name: str) -> type[Skill]:
 
 
 class FrameClock:
-    """Reports scene frames and camera images to an observer at fixed rates of simulated time."""
+    """Reports scene frames and camera images to an observer at fixed rates of simulated time;
+    ``on_frame`` runs after each scene frame (pacing to wall time, a viewer's redraw)."""
 
-    def __init__(self, world: World, observer: Observer | None):
-        self.world, self.observer = world, observer
+    def __init__(self, world: World, observer: Observer | None, on_frame: Callable[[], None] | None = None):
+        self.world, self.observer, self.on_frame = world, observer, on_frame
         self.next_frame = world.sim_time
         self.next_camera = world.sim_time
 
@@ -326,6 +327,8 @@ class FrameClock:
         observer.set_time(None, world.sim_time)
         observer.on_state(world.conditions(), action)
         observer.on_scene(world.shapes())
+        if self.on_frame is not None:
+            self.on_frame()
         if world.sim_time + 1e-9 >= self.next_camera:
             self.next_camera = world.sim_time + 1.0 / CAMERA_HZ
             image = world.camera_image()

@@ -16,7 +16,7 @@ from teach.bt.tick import TickResult
 from teach.world.protocol import ActResult, Outcome, RunResult
 from teach.domain import Domain, State
 from teach.errors import TeachError
-from teach.observe.hook import Observer, Observers
+from teach.observe.hook import Observer
 from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
@@ -26,7 +26,7 @@ TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
 
 
-class _ActionCounter(Observer):
+class _RunLimit:
     """Counts the actions a run starts (so ``run N`` can stop after N) and announces each."""
 
     def __init__(self, on_action: Callable[[str], None] | None, stop_after: int | None) -> None:
@@ -35,25 +35,18 @@ class _ActionCounter(Observer):
         self._on_action = on_action
         self._stop_after = stop_after
 
-    def on_tick(self, tree: Node, result: TickResult) -> None:
+    def after_tick(self, result: TickResult) -> None:
         if result.action is not None and result.action != self._last:
             self.started += 1
             if self._on_action is not None and (self._stop_after is None or self.started <= self._stop_after):
                 self._on_action(result.action)
         self._last = result.action
 
-
-class _ViewerSync(Observer):
-    """Redraws the MuJoCo viewer whenever a scene frame is reported."""
-
-    def __init__(self, viewer: object):
-        self.viewer = viewer
-
-    def on_scene(self, shapes: object) -> None:
-        self.viewer.sync()  # type: ignore[attr-defined]
+    def reached(self) -> bool:
+        return self._stop_after is not None and self.started > self._stop_after
 
 
-class _Pacer(Observer):
+class _Pacer:
     """Holds simulated time to at most ``pace`` times wall time, so a person can watch a run
     (and press Ctrl-C in time); scripted replays run unpaced."""
 
@@ -61,7 +54,7 @@ class _Pacer(Observer):
         self.world, self.pace = world, pace
         self._origin: tuple[float, float] | None = None
 
-    def on_scene(self, shapes: object) -> None:
+    def __call__(self) -> None:
         now, sim = time.monotonic(), self.world.sim_time
         if self._origin is None or now - self._origin[0] > 1.0 + (sim - self._origin[1]) / self.pace:
             self._origin = (now, sim)  # first frame, or after a pause at the prompt: start afresh
@@ -77,14 +70,20 @@ class MujocoWorld:
         self.world = World(seed, domain)
         self.domain = self.world.domain
         self.observer = observer or Observer()
+        self._frame_steps: list[Callable[[], None]] = []  # after each scene frame: pace, redraw
         if pace > 0:
-            self.observer = Observers(self.observer, _Pacer(self.world, pace))
+            self._frame_steps.append(_Pacer(self.world, pace))
         if viewer:
             if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
                 raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
-            self.observer = Observers(self.observer, _ViewerSync(self.world.open_viewer()))
-        self.frames = FrameClock(self.world, self.observer)
+            self._frame_steps.append(self.world.open_viewer().sync)
+        self._on_frame = self._after_frame if self._frame_steps else None
+        self.frames = FrameClock(self.world, self.observer, self._on_frame)
         self.events = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}
+
+    def _after_frame(self) -> None:
+        for step in self._frame_steps:
+            step()
 
     def state(self) -> State:
         return self.world.state()
@@ -113,13 +112,13 @@ class MujocoWorld:
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        counter = _ActionCounter(on_action, stop_after)
+        limit = _RunLimit(on_action, stop_after)
 
         def stop() -> bool:
-            return (interrupt is not None and interrupt()) or (stop_after is not None and counter.started > stop_after)
+            return (interrupt is not None and interrupt()) or limit.reached()
 
-        trace = run_tree(self.world, tree, Observers(self.observer, counter),
-                         max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ), tick_hz=TICK_HZ, interrupt=stop)
+        trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
+                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame)
         steps = [(state, action) for state, action, fresh in zip(trace.states, trace.actions, trace.started)
                  if fresh and action is not None]
         if stop_after is not None and trace.outcome is Outcome.INTERRUPTED:
