@@ -268,27 +268,19 @@ def participant_result(path: Path, number: int) -> ParticipantResult:
 
 
 def run_to_goal(domain: Domain, tree: Node, start: State) -> tuple[bool, str]:
-    """Tick ``tree`` in the symbolic world of ``domain``'s action model until it succeeds,
+    """Run ``tree`` in the symbolic world of ``domain``'s action model until it succeeds,
     fails or repeats a state; says which."""
-    from teach.bt.nodes import Status
-    from teach.bt.tick import compile_tree
+    from teach.symbolic import RunEnd
+    from teach.symbolic import run_to_goal as run
 
-    compiled = compile_tree(tree, domain.condition_names)
-    state, seen, trace = start, {start}, []
-    for _ in range(MAX_RUN_STEPS):
-        status, action = compiled(state)
-        if status is Status.SUCCESS:
-            return True, "usable: reaches the goal from the empty state" + (f" ({' → '.join(trace)})" if trace else "")
-        if status is Status.FAILURE or action is None:
-            return False, f"the tree fails in {_true(domain, state)}"
-        trace.append(action)
-        values = list(state)
-        for literal in domain.action(action).ram:
-            values[domain.index(literal.name)] = literal.value
-        state = tuple(values)
-        if state in seen:
-            return False, f"{action} changes nothing in {_true(domain, state)}: the tree loops"
-        seen.add(state)
+    result = run(domain, tree, start, MAX_RUN_STEPS)
+    if result.end is RunEnd.SUCCESS:
+        trace = f" ({' → '.join(result.actions)})" if result.actions else ""
+        return True, "usable: reaches the goal from the empty state" + trace
+    if result.end is RunEnd.FAILURE:
+        return False, f"the tree fails in {_true(domain, result.state)}"
+    if result.end is RunEnd.LOOP:
+        return False, f"{result.actions[-1]} changes nothing in {_true(domain, result.state)}: the tree loops"
     return False, f"no goal after {MAX_RUN_STEPS} actions"
 
 

@@ -10,11 +10,11 @@ import random
 import pytest
 
 from conftest import BALL_DOMAIN, ROOT
-from teach.dialogue.model_repair import (KINDS, ModelOracle, ModelQuestion, ModelRepair, RepairReport,
-                                         plan_model, repair)
+from teach.dialogue.model_repair import KINDS, ModelOracle, ModelQuestion, ModelRepair, RepairReport, repair
 from teach.dialogue.phrases import UnknownPhrase
 from teach.dialogue.questions import QuestionBudget
 from teach.dialogue.script import read_script
+from teach.learn.model_gaps import plan_model
 from teach.domain import ActionDef, ConditionDef, Domain, Literal, load_domain
 
 STUDY = ROOT / "dialogues" / "study"

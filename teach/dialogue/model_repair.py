@@ -32,11 +32,11 @@ import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 
-from teach.bt.nodes import Action, Node, Sequence as SeqNode, transform
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import ActionDef, Domain, Literal
-from teach.errors import LearnError
+from teach.learn.model_gaps import (PlanOutcome, achievers, depends_on, needed, needs_actions,
+                                    plan_model, reachable, requires)
 
 KINDS = ("timing", "effects", "achiever", "order", "never")
 
@@ -132,20 +132,6 @@ class ModelQuestion:
 
 
 @dataclass(frozen=True)
-class PlanOutcome:
-    """PA-BT on a model: ``usable`` when it builds a tree and the tree, run in that model's
-    symbolic world from the state where nothing holds, reaches the goal. ``true_usable`` says
-    the same for the true model when one is known (None otherwise), with actions that fail
-    whenever the true model's preconditions do not hold."""
-
-    usable: bool
-    tree: Node | None
-    reason: str
-    true_usable: bool | None = None
-    true_reason: str = ""
-
-
-@dataclass(frozen=True)
 class RepairStep:
     question: str
     answer: str
@@ -167,83 +153,6 @@ class RepairReport:
         return len(self.steps)
 
 
-# --- the model's structure ---------------------------------------------------------------------
-
-
-def _holds_at_start(literal: Literal) -> bool:
-    """PA-BT starts from the state where nothing holds: exactly the negative literals are true."""
-    return not literal.value
-
-
-def _achievers(domain: Domain, literal: Literal) -> list[ActionDef]:
-    return [a for a in domain.actions if literal in a.ram]
-
-
-def _reachable(domain: Domain) -> set[Literal]:
-    """Literals some sequence of actions could make true, ignoring that effects may undo each
-    other (the usual relaxed reachability)."""
-    reached = {Literal(name, False) for name in domain.condition_names}
-    changed = True
-    while changed:
-        changed = False
-        for action in domain.actions:
-            if all(p in reached for p in action.pre) and not set(action.ram) <= reached:
-                reached |= set(action.ram)
-                changed = True
-    return reached
-
-
-def _needed(domain: Domain, goal: Sequence[Literal]) -> list[tuple[Literal, str]]:
-    """The literals the goal needs, nearest the goal first, each with the action that needs it
-    ("" for the goal itself); literals that hold at the start need nothing further."""
-    order: list[tuple[Literal, str]] = []
-    seen: set[Literal] = set()
-    queue = [(g, "") for g in goal]
-    while queue:
-        literal, consumer = queue.pop(0)
-        if literal in seen or _holds_at_start(literal):
-            continue
-        seen.add(literal)
-        order.append((literal, consumer))
-        for action in _achievers(domain, literal):
-            queue += [(p, action.name) for p in action.pre]
-    return order
-
-
-def _requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> set[Literal]:
-    """The open literals ``action`` needs, directly or through the achievers of what it needs."""
-    found: set[Literal] = set()
-    stack = [p for p in action.pre if p in open_literals]
-    while stack:
-        literal = stack.pop()
-        if literal in found:
-            continue
-        found.add(literal)
-        for achiever in _achievers(domain, literal):
-            stack += [p for p in achiever.pre if p in open_literals]
-    return found
-
-
-def _needs_actions(domain: Domain, literal: Literal, open_literals: set[Literal]) -> set[str]:
-    """Every action that may have to run before ``literal`` can hold."""
-    names: set[str] = set()
-    stack, seen = [literal], set()
-    while stack:
-        current = stack.pop()
-        if current in seen:
-            continue
-        seen.add(current)
-        for achiever in _achievers(domain, current):
-            names.add(achiever.name)
-            stack += [p for p in achiever.pre if p in open_literals]
-    return names
-
-
-def _depends_on(domain: Domain, first: ActionDef, second: str, open_literals: set[Literal]) -> bool:
-    """Whether ``first`` needs something that only ``second`` (or what follows it) makes true."""
-    return any(second in _needs_actions(domain, p, open_literals) for p in first.pre if p in open_literals)
-
-
 def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) -> list[ModelQuestion]:
     """Every question that could help, most useful first (see the module docstring)."""
     result: list[ModelQuestion] = []
@@ -253,14 +162,14 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
             result.append(ModelQuestion("timing", action.name, both[0]))
         elif both:
             result.append(ModelQuestion("effects", action.name))
-    reached = _reachable(domain)
+    reached = reachable(domain)
     unreached = {Literal(n, v) for n in domain.condition_names for v in (True, False)} - reached
     idle = [a for a in domain.actions if not a.ram]
-    for literal, consumer in _needed(domain, goal):
+    for literal, consumer in needed(domain, goal):
         if literal in reached:
             continue
-        achievers = _achievers(domain, literal)
-        if not achievers:
+        makers = achievers(domain, literal)
+        if not makers:
             if literal in refused:
                 if consumer:
                     result.append(ModelQuestion("never", consumer, literal))
@@ -269,8 +178,8 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
                 result.append(ModelQuestion("effects", idle[0].name))
             result.append(ModelQuestion("achiever", literal=literal))
             continue
-        circular = [a for a in achievers if literal in _requires(domain, a, unreached)]
-        if len(circular) < len(achievers):
+        circular = [a for a in makers if literal in requires(domain, a, unreached)]
+        if len(circular) < len(makers):
             continue  # some achiever is blocked by another gap, which is asked about on its own
         if idle and literal not in refused:
             result.append(ModelQuestion("achiever", literal=literal))
@@ -278,8 +187,8 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
             for pre in achiever.pre:
                 if pre not in unreached:
                     continue
-                for other in _achievers(domain, pre):
-                    if other.name != achiever.name and literal in _requires(domain, other, unreached):
+                for other in achievers(domain, pre):
+                    if other.name != achiever.name and literal in requires(domain, other, unreached):
                         pair = sorted((achiever, other), key=lambda a: a.id)
                         result.append(ModelQuestion("order", pair[0].name, other=pair[1].name))
     if not result:  # PA-BT fails for a reason not seen above (effects undoing each other): ask what each does
@@ -492,12 +401,12 @@ class ModelRepair:
                 raise UnknownPhrase(answer.strip(), [self._act_plain(n) for n in pair], self.lang)
             firsts = [first]
         unreached = {Literal(n, v) for n in self.model.condition_names for v in (True, False)} - \
-            _reachable(self.model)
+            reachable(self.model)
         dropped: list[tuple[str, Literal]] = []
         for first in firsts:
             second = pair[1] if first == pair[0] else pair[0]
             action = self.model.action(first)
-            gone = [p for p in action.pre if p in unreached and second in _needs_actions(self.model, p, unreached)]
+            gone = [p for p in action.pre if p in unreached and second in needs_actions(self.model, p, unreached)]
             if gone:
                 self._set(action, pre=tuple(p for p in action.pre if p not in gone))
                 dropped += [(first, p) for p in gone]
@@ -551,41 +460,6 @@ def _without(literals: tuple[Literal, ...], literal: Literal) -> tuple[Literal, 
     return tuple(x for x in literals if x != literal)
 
 
-def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model: Domain | None = None) -> PlanOutcome:
-    """PA-BT on ``model``, the tree run in ``model``'s symbolic world from the state where nothing
-    holds, and, when ``true_model`` is given, in the true model's world, where an action whose
-    true preconditions do not hold fails (as a skill that cannot start does)."""
-    from teach.evaluate import run_to_goal
-    from teach.learn.pabt import expand
-
-    goal = tuple(model.goal if goal is None else goal)
-    try:
-        tree = expand(model, goal)[-1]
-    except LearnError as error:
-        return PlanOutcome(False, None, error.message, None if true_model is None else False,
-                           "" if true_model is None else "no tree")
-    start = tuple(False for _ in model.conditions)
-    usable, reason = run_to_goal(model, tree, start)
-    if true_model is None:
-        return PlanOutcome(usable, tree, reason)
-    true_usable, true_reason = run_to_goal(true_model, guarded(tree, true_model), start)
-    return PlanOutcome(usable, tree, reason, true_usable, true_reason)
-
-
-def guarded(tree: Node, model: Domain) -> Node:
-    """The tree with every action preceded by its preconditions in ``model``."""
-    from teach.learn.pabt import literal_node
-
-    def guard(node: Node) -> Node:
-        if isinstance(node, Action) and model.has_action(node.name) and model.action(node.name).pre:
-            return SeqNode(tuple(literal_node(p) for p in model.action(node.name).pre) + (node,))
-        return node
-
-    result = transform(tree, guard)
-    assert result is not None
-    return result
-
-
 # --- the oracle teacher and the loop ------------------------------------------------------------
 
 
@@ -610,13 +484,13 @@ class ModelOracle:
             return _t(lang, " and ", " und ").join(_literal_label(true, lit, lang) for lit in ram)
         if question.kind == "achiever":
             assert question.literal is not None
-            achievers = _achievers(true, question.literal)
-            return achievers[0].label(lang) if achievers else _SHOWN["nothing"][1 if lang == "de" else 0]
+            makers = achievers(true, question.literal)
+            return makers[0].label(lang) if makers else _SHOWN["nothing"][1 if lang == "de" else 0]
         if question.kind == "order":
             everything = {Literal(n, True) for n in true.condition_names}  # what the empty start lacks
             first, second = true.action(question.action), true.action(question.other)
-            first_waits = _depends_on(true, first, second.name, everything)
-            second_waits = _depends_on(true, second, first.name, everything)
+            first_waits = depends_on(true, first, second.name, everything)
+            second_waits = depends_on(true, second, first.name, everything)
             if first_waits == second_waits:
                 return _SHOWN["either"][1 if lang == "de" else 0]
             return (second if first_waits else first).label(lang)

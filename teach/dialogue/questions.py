@@ -40,6 +40,7 @@ from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
+from teach.symbolic import assign
 
 if TYPE_CHECKING:
     from teach.learn.specialize import Specializer
@@ -126,10 +127,7 @@ class Effects:
     finishing: set[Lit] = field(default_factory=set)
 
     def apply(self, state: State, action: str) -> State:
-        after = list(state)
-        for index, value in self.made.get(action, ()):
-            after[index] = value
-        return tuple(after)
+        return assign(state, self.made.get(action, ()))
 
 
 def effects_from(domain: Domain, demos: Iterable[Demonstration]) -> Effects:

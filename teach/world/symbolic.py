@@ -10,6 +10,7 @@ from teach.bt.nodes import Node, Status
 from teach.bt.tick import tick
 from teach.domain import Domain
 from teach.observe.hook import Observer
+from teach.symbolic import apply_action, assign, missing_preconditions
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import ActResult, Outcome, RunResult
 
@@ -36,23 +37,17 @@ class SymbolicWorld(OfflineWorld):
 
     def act(self, action: str) -> ActResult:
         before = self._state
-        definition = self.domain.action(action)
-        missing = [lit for lit in definition.pre if not self.domain.holds(lit, before)]
+        missing = missing_preconditions(self.domain, before, action)
         if missing:
             return ActResult(False, before, before, "not possible now: needs " + ", ".join(map(str, missing)))
-        after = list(before)
-        for literal in definition.ram:
-            after[self.domain.index(literal.name)] = literal.value
-        self._state = tuple(after)
+        self._state = apply_action(self.domain, before, action)
         return ActResult(True, before, self._state)
 
     def perturb(self, event: str) -> ActResult:
         """Flip one random condition: something outside the robot changed the world."""
         before = self._state
         index = self._rng.randrange(len(before))
-        after = list(before)
-        after[index] = not after[index]
-        self._state = tuple(after)
+        self._state = assign(before, [(index, not before[index])])
         return ActResult(True, before, self._state, f"{self.domain.conditions[index].name} changed")
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
