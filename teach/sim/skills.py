@@ -8,7 +8,8 @@ period, so a perturbation in the middle is answered by the controller, not by a 
 - FindBall: turns a full circle on the spot; if the ball stays unseen it backs up 0.8 m and
   turns again, then visits room waypoints; a ball held in the gripper is found by touch.
 - ApproachBall: drives until the grasp point is within ``ALIGNED`` of the remembered ball.
-- GraspBall: aligns to within 2 cm, lowers the lift, closes the fingers, lifts to carry height.
+- GraspBall: aligns to within 2 cm, lowers the lift and closes the fingers; SUCCESS as soon as
+  the ball is held (ApproachBin raises it to carry height).
 - ApproachBin: raises the lift and drives until the grasp point is within ``ALIGNED`` of the bin.
 - PlaceBall: aligns over the bin to within 3 cm, lowers the ball into it, opens the fingers
   and lifts the gripper out; SUCCESS once the ball rests in the bin and the gripper is up.
