@@ -22,17 +22,20 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from teach.demos import Demonstration, Step  # noqa: E402
-from teach.dialogue.oracle import answer_open_questions  # noqa: E402
-from teach.dialogue.oracle import SKIP, Oracle  # noqa: E402
-from teach.session.machine import SessionManager  # noqa: E402
-from teach.session.settings import Settings, WorldKind  # noqa: E402
-from teach.world.offline import OfflineWorld  # noqa: E402
-from teach.world.symbolic import SymbolicWorld  # noqa: E402
+from teach.dialogue.oracle import (  # noqa: E402
+    SKIP,
+    Oracle,
+    answer_open_questions,  # noqa: E402
+)
 from teach.domain import ActionDef, ConditionDef, Domain, Literal, State  # noqa: E402
 from teach.errors import LearnError  # noqa: E402
 from teach.learn.pabt import expand  # noqa: E402
 from teach.observe.hook import Observer  # noqa: E402
 from teach.replay import replay  # noqa: E402
+from teach.session.machine import SessionManager  # noqa: E402
+from teach.session.settings import Settings, WorldKind  # noqa: E402
+from teach.world.offline import OfflineWorld  # noqa: E402
+from teach.world.symbolic import SymbolicWorld  # noqa: E402
 
 DOMAINS = 40
 BUDGET = 5

@@ -25,10 +25,10 @@ sys.path.insert(0, str(ROOT))
 from teach.bt.tick import compile_tree  # noqa: E402
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.cli import main  # noqa: E402
+from teach.domain import load_domain  # noqa: E402
 from teach.session.machine import SessionManager  # noqa: E402
 from teach.session.settings import Settings, WorldKind  # noqa: E402
 from teach.world.symbolic import SymbolicWorld  # noqa: E402
-from teach.domain import load_domain  # noqa: E402
 
 BALL = ROOT / "demos" / "ball"
 REFERENCE = BALL / "reference" / "table61.xml"

@@ -8,7 +8,7 @@ with, copied from its Tables 6.2 and 6.3 and the text of §6.1–6.4.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -230,7 +230,7 @@ def _count(approach: str, source: str, learned: Learned | str, reference: Node) 
 
 
 def cross_table(key: str, title: str, domain: Domain, sets: dict[str, list[Demonstration]],
-                learned: dict[str, Learned | str], thesis: dict[str, tuple[int, ...]]) -> CrossTable:
+                learned: dict[str, Learned | str], thesis: Mapping[str, tuple[int, ...]]) -> CrossTable:
     """Each set's pruned tree replayed on every set; a set the learner failed on gives a row
     without figures and its error."""
     from teach.bt.tick import compile_tree
@@ -285,7 +285,7 @@ def run_to_goal(domain: Domain, tree: Node, start: State) -> tuple[bool, str]:
 
 
 def _true(domain: Domain, state: State) -> str:
-    names = [n for n, v in zip(domain.condition_names, state) if v]
+    names = [n for n, v in zip(domain.condition_names, state, strict=True) if v]
     return "{" + ", ".join(names) + "}"
 
 

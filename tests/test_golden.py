@@ -21,10 +21,9 @@ import shutil
 from pathlib import Path
 
 import pytest
+from conftest import ROOT
 
 from teach.cli import main
-
-from conftest import ROOT
 
 GOLDEN = ROOT / "tests" / "golden"
 UPDATE = os.environ.get("TEACH_UPDATE_GOLDEN") == "1"

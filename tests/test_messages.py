@@ -6,11 +6,10 @@ import ast
 from pathlib import Path
 
 import pytest
+from conftest import ROOT
 
 from teach.session import messages
 from teach.session.messages import Text
-
-from conftest import ROOT
 
 CATALOGUE = {name: value for name, value in vars(messages).items() if isinstance(value, Text)}
 # the session and the terminal say nothing that is not in the catalogue

@@ -8,10 +8,10 @@ import json
 import pytest
 
 from teach.demos import read_demo_set
+from teach.observe.hook import Observer
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.world.symbolic import SymbolicWorld
-from teach.observe.hook import Observer
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
 SECOND = "go to the ball, grasp the ball, go to the bin, put the ball in the bin"

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+from conftest import colledanchise_tree
+
 from teach.bt.nodes import Action, Condition, Fallback, Sequence
 from teach.symbolic import RunEnd, apply_action, assign, missing_preconditions, run_to_goal
-
-from conftest import colledanchise_tree
 
 
 def test_an_action_makes_its_ramifications_true(ball):

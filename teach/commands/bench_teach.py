@@ -35,16 +35,14 @@ def run(args: argparse.Namespace) -> int:
     import tempfile
 
     from teach.demos import read_demo_set
-    from teach.dialogue.oracle import answer_open_questions
-    from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
+    from teach.dialogue.oracle import answer_open_questions, oracle_from_model, oracle_from_tree
+    from teach.domain import load_domain
+    from teach.errors import TeachError
+    from teach.observe.hook import Observer
+    from teach.replay import replay
     from teach.session.machine import SessionManager
     from teach.session.settings import Settings, WorldKind
     from teach.world.offline import OfflineWorld
-    from teach.domain import load_domain
-    from teach.observe.hook import Observer
-    from teach.replay import replay
-
-    from teach.errors import TeachError
 
     if args.questions < 0:
         raise TeachError("--questions must be 0 or more")
@@ -62,8 +60,8 @@ def run(args: argparse.Namespace) -> int:
             asked[-1].update(answer=answer, change=change)
 
     with tempfile.TemporaryDirectory(prefix="teach-bench-") as scratch:
-        settings = Settings("bench", lang=args.lang, questions=args.questions, world=WorldKind.OFFLINE, base=Path(scratch),
-                            record=False)
+        settings = Settings("bench", lang=args.lang, questions=args.questions, world=WorldKind.OFFLINE,
+                            base=Path(scratch), record=False)
         manager = SessionManager(settings, domain, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)
         while manager.budget.left > 0:

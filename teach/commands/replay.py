@@ -43,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
     from teach.dialogue.script import read_script
     from teach.domain import load_domain
-    from teach.session.settings import Settings
+    from teach.session.settings import Settings, WorldKind
     from teach.session.setup import open_session
     from teach.terminal.scripted import run_script
 
@@ -55,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
         lang=args.lang or str(chosen.get("lang", "en")),
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
-        world=args.world or str(chosen.get("world", "mujoco")),
+        world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record)
     manager = open_session(settings, fresh=True)
     oracle, model_oracle = None, None

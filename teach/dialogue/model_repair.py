@@ -35,8 +35,16 @@ from dataclasses import dataclass, replace
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import ActionDef, Domain, Literal
-from teach.learn.model_gaps import (PlanOutcome, achievers, depends_on, needed, needs_actions,
-                                    plan_model, reachable, requires)
+from teach.learn.model_gaps import (
+    PlanOutcome,
+    achievers,
+    depends_on,
+    needed,
+    needs_actions,
+    plan_model,
+    reachable,
+    requires,
+)
 
 KINDS = ("timing", "effects", "achiever", "order", "never")
 

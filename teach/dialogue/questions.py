@@ -31,11 +31,11 @@ from __future__ import annotations
 import copy
 import itertools
 import random
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from teach.bt.nodes import Status, transform
+from teach.bt.nodes import Node, Status, transform
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
@@ -43,7 +43,7 @@ from teach.errors import LearnError
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
-    from teach.learn.specialize import Specializer
+    from teach.session.learning import Learner
 
 EXHAUSTIVE_UP_TO = 10
 STATE_SAMPLE = 512
@@ -100,8 +100,8 @@ class Question:
 
 def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     """A state in plain words: what holds, then ``but`` what does not."""
-    true = [c.label(lang) for c, v in zip(domain.conditions, state) if v]
-    false = [c.label(lang, False) for c, v in zip(domain.conditions, state) if not v]
+    true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
+    false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
     joiner, but = (" und ", " aber ") if lang == "de" else (" and ", " but ")
 
     def join(items: list[str]) -> str:
@@ -134,12 +134,13 @@ def effects_from(domain: Domain, demos: Iterable[Demonstration]) -> Effects:
     effects = Effects()
     for demo in demos:
         previous: str | None = None
-        for step, following in zip(demo.steps, demo.steps[1:]):
+        for step, following in zip(demo.steps, demo.steps[1:], strict=False):
             if step.action <= 0:
                 previous = None
                 continue
             name = domain.action(step.action).name
-            changed = frozenset((i, after) for i, (now, after) in enumerate(zip(step.state, following.state))
+            pairs = zip(step.state, following.state, strict=True)
+            changed = frozenset((i, after) for i, (now, after) in enumerate(pairs)
                                 if now != after)
             effects.made[name] = effects.made[name] & changed if name in effects.made else changed
             if previous is not None:
@@ -185,7 +186,7 @@ def all_states(n: int, seed: int = 0) -> list[State]:
     return sorted({tuple(rng.random() < 0.5 for _ in range(n)) for _ in range(STATE_SAMPLE)})
 
 
-def committee(learner: "Specializer", labels: Mapping[State, Answer], effects: Effects,
+def committee(learner: Learner, labels: Mapping[State, Answer], effects: Effects,
               rng: random.Random) -> list[CompiledTree]:
     """Trees the learner's guards could really stand for, each consistent with every label."""
     domain = learner.domain
@@ -203,13 +204,18 @@ def committee(learner: "Specializer", labels: Mapping[State, Answer], effects: E
         if drop in seen:
             continue
         seen.add(drop)
-        relaxed = transform(tree, lambda node: None if node.uid in drop else node)
+        relaxed = transform(tree, _without(drop))
         if relaxed is None:
             continue
         member = compile_tree(relaxed, names)
         if all(_answer(member, s) == label for s, label in labels.items()):
             members.append(member)
     return members
+
+
+def _without(uids: frozenset[int]) -> Callable[[Node], Node | None]:
+    """A transform step that drops the nodes ``uids``."""
+    return lambda node: None if node.uid in uids else node
 
 
 def visit_weights(trees: Sequence[CompiledTree], starts: Sequence[State], effects: Effects,
@@ -231,7 +237,7 @@ def visit_weights(trees: Sequence[CompiledTree], starts: Sequence[State], effect
     return weights
 
 
-def select_question(learner: "Specializer", demos: Sequence[Demonstration], labels: Mapping[State, Answer],
+def select_question(learner: Learner, demos: Sequence[Demonstration], labels: Mapping[State, Answer],
                     asked: Iterable[State] = (), seed: int = 0) -> Question | None:
     """The situation whose answer is expected to change the robot's behaviour most, or None.
 
@@ -283,8 +289,8 @@ def _answer_shares(members: Sequence[CompiledTree], state: State, unshown: Seque
     votes: dict[Answer, int] = {}
     for member in members:
         vote = _answer(member, state)
-        if vote is not False:
-            votes[vote] = votes.get(vote, 0) + 1  # type: ignore[index]
+        if not isinstance(vote, bool):  # False: the member fails there
+            votes[vote] = votes.get(vote, 0) + 1
     total = sum(votes.values())
     surprise = SURPRISE if unshown else 0.0
     shares: dict[Answer, float] = {answer: surprise / len(unshown) for answer in unshown}
@@ -293,7 +299,7 @@ def _answer_shares(members: Sequence[CompiledTree], state: State, unshown: Seque
     return shares
 
 
-def _change(learner: "Specializer", state: State, answer: Answer, unseen: Sequence[State],
+def _change(learner: Learner, state: State, answer: Answer, unseen: Sequence[State],
             now: Mapping[State, Answer | bool], weights: Mapping[State, int]) -> float:
     """Weighted number of unseen situations whose behaviour would change after this answer."""
     trial = copy.deepcopy(learner)

@@ -148,10 +148,11 @@ def shape_batch(kind: str, geometry: list[tuple], where: np.ndarray, xyzw: np.nd
 
 def tick_columns(rows: list[tuple]) -> list[tuple[str, list[Any]]]:
     """Ticks as columns: node colours on the graph, a text line, and the fields read back."""
-    colours, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows)
+    colours, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows, strict=True)
     columns = [*rr.GraphNodes.columns(colors=[c for row in colours for c in row]).partition(
                    [len(row) for row in colours]),
-               *rr.TextLog.columns(text=[f"{s} {a}".rstrip() for s, a in zip(statuses, actions)], level=statuses),
+               *rr.TextLog.columns(text=[f"{s} {a}".rstrip() for s, a in zip(statuses, actions, strict=True)],
+                                   level=statuses),
                *rr.AnyValues.columns(status=list(statuses), action=list(actions), generation=list(generations))]
     lengths = [len(row) for row in nodes]
     if any(lengths):

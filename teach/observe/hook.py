@@ -26,19 +26,19 @@ class Observer:
         """Advance the clocks: ``step`` counts session steps (None keeps the session's step),
         ``sim_time`` is simulated seconds."""
 
-    def on_domain(self, domain: "Domain") -> None:
+    def on_domain(self, domain: Domain) -> None:
         """The vocabulary, logged first so a recording explains itself."""
 
-    def on_tree(self, generation: int, tree: "Node", xml: str, reason: str) -> None:
+    def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         """A new tree generation (``reason`` says what produced it)."""
 
-    def on_tick(self, tree: "Node", result: "TickResult") -> None:
+    def on_tick(self, tree: Node, result: TickResult) -> None:
         """One tick: root status, running action, and the statuses of visited nodes."""
 
     def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
         """The symbolic state and the action running in it."""
 
-    def on_scene(self, shapes: Sequence["SceneShape"]) -> None:
+    def on_scene(self, shapes: Sequence[SceneShape]) -> None:
         """The 3D scene's shapes at the current sim time."""
 
     def on_camera(self, image: Any) -> None:
@@ -47,7 +47,7 @@ class Observer:
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
         """A line of the dialogue; ``speaker`` is "teacher" or "robot"."""
 
-    def on_demonstration(self, name: str, demo: "Demonstration", domain: "Domain") -> None:
+    def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
         """A finished demonstration, as saved."""
 
     def on_question(self, question: str, budget_left: int) -> None:

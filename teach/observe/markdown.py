@@ -24,7 +24,7 @@ def domain_document(domain: Domain) -> str:
 def state_document(names: Sequence[str], values: Sequence[bool], action: str | None) -> str:
     """The running action and each condition's value."""
     doc = [f"**Running:** {action or '—'}", "", "| condition | value |", "|---|---|"]
-    doc += [f"| {n} | {'✔ true' if v else '✘ false'} |" for n, v in zip(names, values)]
+    doc += [f"| {n} | {'✔ true' if v else '✘ false'} |" for n, v in zip(names, values, strict=True)]
     return "\n".join(doc)
 
 
@@ -33,5 +33,5 @@ def demonstration_document(name: str, domain: Domain, states: Sequence[str], lab
     table = ["| # | " + " | ".join(domain.condition_names) + " | action |",
              "|---" * (len(domain.conditions) + 2) + "|"]
     table += [f"| {i} | " + " | ".join(state) + f" | {label} |"
-              for i, (state, label) in enumerate(zip(states, labels), 1)]
+              for i, (state, label) in enumerate(zip(states, labels, strict=True), 1)]
     return f"# {name}\n\n" + "\n".join(table)

@@ -216,11 +216,11 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
             contents.replays.append(ReplayRecord(_one(row, "reproduced", 0), _one(row, "total", 0),
                                                  bool(_one(row, "lenient", False)), step))
         elif entity == "/tree/graph" and "status" in row:
-            trace = tuple(zip(_many(row, "trace_labels"), _many(row, "trace_status")))
+            trace = tuple(zip(_many(row, "trace_labels"), _many(row, "trace_status"), strict=False))
             contents.ticks.append(TickRecord(step, row.get("sim_time"), _one(row, "generation", -1),
                                              _one(row, "status", ""), _one(row, "action") or None, trace))
         elif entity == "/state":
-            state = dict(zip(_many(row, "conditions"), map(bool, _many(row, "values"))))
+            state = dict(zip(_many(row, "conditions"), map(bool, _many(row, "values")), strict=False))
             contents.states.append(StateRecord(step, row.get("sim_time"), state, _one(row, "action") or None))
         elif entity == "/state/external":
             contents.externals.append((step, _one(row, "external", "")))

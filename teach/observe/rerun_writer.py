@@ -31,11 +31,21 @@ import rerun as rr
 
 from teach.bt.nodes import Node
 from teach.errors import TeachError
-from teach.observe.encode import (IDLE_COLOUR, SHAPE_ENTITIES, STATUS_COLOURS, Batch, SceneLayout, TreeView,
-                                  plain_values, shape_batch, step_label, tick_columns)
+from teach.observe.encode import (
+    IDLE_COLOUR,
+    SHAPE_ENTITIES,
+    STATUS_COLOURS,
+    Batch,
+    SceneLayout,
+    TreeView,
+    plain_values,
+    shape_batch,
+    step_label,
+    tick_columns,
+)
 from teach.observe.hook import Observer
-from teach.observe.markdown import demonstration_document, domain_document, state_document
 from teach.observe.layout import APPLICATION_ID, blueprint, default_recording_path
+from teach.observe.markdown import demonstration_document, domain_document, state_document
 from teach.observe.merge import keep_earlier, merge_into_place
 from teach.observe.viewer import has_display
 
@@ -264,7 +274,8 @@ class RerunLogger(Observer):
     def _dialogue(self, kind: str, speaker: str, shown: str, level: str, *, text: str = "",
                   budget_left: int | None = None, question: str = "", answer: str = "", change: str = "") -> None:
         self._log("dialogue", rr.TextLog(shown, level=level),
-                  plain_values(kind=kind, speaker=speaker, text=text, budget_left=-1 if budget_left is None else budget_left,
+                  plain_values(kind=kind, speaker=speaker, text=text,
+                               budget_left=-1 if budget_left is None else budget_left,
                           question=question, answer=answer, change=change))
 
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:

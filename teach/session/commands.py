@@ -43,7 +43,8 @@ class Command:
 
 COMMANDS: tuple[Command, ...] = (
     Command(Verb.HELP, ("help", "hilfe", "h"), "help", m.HELP_HELP),
-    Command(Verb.DEMONSTRATE, ("demonstrate", "demo", "zeigen", "vorfuhren"), "demonstrate [steps]", m.HELP_DEMONSTRATE),
+    Command(Verb.DEMONSTRATE, ("demonstrate", "demo", "zeigen", "vorfuhren"), "demonstrate [steps]",
+            m.HELP_DEMONSTRATE),
     Command(Verb.DONE, ("done", "fertig"), "done", m.HELP_DONE),
     Command(Verb.CANCEL, ("cancel", "abbrechen"), "cancel", m.HELP_CANCEL),
     Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), "undo", m.HELP_UNDO),

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import asdict, dataclass, field, fields
+from pathlib import Path
 from typing import Any, ClassVar
 
 from teach.domain import State
@@ -127,7 +128,7 @@ class Journal:
         return json.dumps(data, indent=1, ensure_ascii=False) + "\n"
 
     @classmethod
-    def from_text(cls, text: str, where: object) -> Journal:
+    def from_text(cls, text: str, where: Path) -> Journal:
         """Parse a journal file's text; damage is a one-line ``FormatError`` naming ``where``."""
         try:
             data = json.loads(text)

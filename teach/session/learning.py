@@ -48,7 +48,9 @@ class Learner(Protocol):
         """Why node ``uid`` is (or was) in the tree."""
 
     def guards(self, action: str) -> Sequence:
-        """The guards in front of an action (each with a ``uid``; ``str()`` gives its literals)."""
+        """The guards in front of an action: each with a ``uid``, its ``literals``, the situations
+        that need it (``needed_by``) and ``str()`` as literals. The question selector also
+        deep-copies the learner to try each possible answer on the copy."""
 
 
 def make_learner(domain: Domain) -> Learner:

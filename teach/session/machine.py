@@ -26,11 +26,30 @@ from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
 from teach.session import messages as m
-from teach.session.commands import (ANSWERING, BLOCKED_WHILE_ASKING, COMMANDS, DONE_WORDS, SKIP_WORDS, Command, Verb,
-                                    parse_command)
+from teach.session.commands import (
+    ANSWERING,
+    BLOCKED_WHILE_ASKING,
+    COMMANDS,
+    DONE_WORDS,
+    SKIP_WORDS,
+    Command,
+    Verb,
+    parse_command,
+)
 from teach.session.describe import unmet_goal, why_refused
-from teach.session.journal import (Answered, Asked, DemoLearned, Event, Journal, ModelAnswered, ModelLoaded, Undone,
-                                   effective_events, parse_state_text, state_text)
+from teach.session.journal import (
+    Answered,
+    Asked,
+    DemoLearned,
+    Event,
+    Journal,
+    ModelAnswered,
+    ModelLoaded,
+    Undone,
+    effective_events,
+    parse_state_text,
+    state_text,
+)
 from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.settings import Settings
@@ -231,10 +250,13 @@ class SessionManager:
         if self.open is not None and self.open.steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
         self.open = None
-        result = self.world.run(
-            tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt, stop_after=stop_after,
-            on_action=lambda a: self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(
-                self.lang, action=self.domain.action(a).label(self.lang)))]))
+
+        def announce(action: str) -> None:
+            self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
+                self.lang)))])
+
+        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
+                                stop_after=stop_after, on_action=announce)
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
@@ -273,7 +295,8 @@ class SessionManager:
         names = [w for w in rest.replace(",", " ").split() if w]
         for name in names:
             if not self.domain.has_condition(name):
-                raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=name, known=", ".join(self.domain.condition_names)))
+                known = ", ".join(self.domain.condition_names)
+                raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=name, known=known))
         self.world.arrange(self.domain.state(names))
         return [self._state_reply()]
 
@@ -506,7 +529,8 @@ class SessionManager:
 
     # --- learning results -------------------------------------------------------------------
 
-    def _after_learning(self, ask: bool, started: float | None = None, events: list[Event] | None = None) -> list[Reply]:
+    def _after_learning(self, ask: bool, started: float | None = None,
+                        events: list[Event] | None = None) -> list[Reply]:
         """Prune, save the generation, then commit ``events`` to the journal (so a journalled
         event always has its generation on disk), then show, replay and maybe ask."""
         from teach.replay import replay

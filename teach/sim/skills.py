@@ -28,8 +28,18 @@ import numpy as np
 from teach.bt.nodes import Status
 from teach.errors import DomainError
 from teach.observe.hook import Observer
-from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, FINGER_RELEASE, GRASP_OFFSET, LIFT_CARRY,
-                             LIFT_PLACE, ROOM, World, _wrap)
+from teach.sim.world import (
+    CONTROL_STEPS,
+    FINGER_CLOSED,
+    FINGER_OPEN,
+    FINGER_RELEASE,
+    GRASP_OFFSET,
+    LIFT_CARRY,
+    LIFT_PLACE,
+    ROOM,
+    World,
+    _wrap,
+)
 
 ALIGNED = 0.05        # approaches end with the grasp point this close to the target (m)
 LOWER_SPEED = 0.5     # m/s, the lift lowering a held ball
@@ -116,8 +126,8 @@ class FindBall(Skill):
         super().__init__(world)
         x, y, _ = world.base_pose()
         here, spot = np.array([x, y]), 0.6 * ROOM
-        waypoints = sorted((np.array(p) for p in ((0.0, 0.0), (spot, spot), (-spot, spot), (-spot, -spot), (spot, -spot))
-                            if np.linalg.norm(np.array(p) - here) > 0.5),
+        corners = ((0.0, 0.0), (spot, spot), (-spot, spot), (-spot, -spot), (spot, -spot))
+        waypoints = sorted((np.array(p) for p in corners if np.linalg.norm(np.array(p) - here) > 0.5),
                            key=lambda p: float(np.linalg.norm(p - here)))
         self.plan: list[tuple[str, np.ndarray | None]] = [("turn", None), ("back", None), ("turn", None)]
         for point in waypoints:

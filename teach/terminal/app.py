@@ -21,6 +21,7 @@ from teach.dialogue.completion import TeachCompleter, command_words
 from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb, parse_command
 from teach.session.machine import Mode, SessionManager
+from teach.session.replies import Reply
 from teach.terminal.view import prompt, render_reply, toolbar
 
 
@@ -37,7 +38,7 @@ class Terminal:
         self._interrupt = threading.Event()
 
     def run(self) -> None:
-        self.manager.live = lambda reply: self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
+        self.manager.live = self._show
         self.manager.greet()
         while not self.manager.finished:
             try:
@@ -48,6 +49,9 @@ class Terminal:
                 self.manager.handle("quit")
                 break
             self._handle(line)
+
+    def _show(self, reply: Reply) -> None:
+        self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
 
     def _handle(self, line: str) -> None:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the

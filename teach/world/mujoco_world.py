@@ -13,7 +13,6 @@ from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult
-from teach.world.protocol import ActResult, Outcome, RunResult
 from teach.domain import Domain, State
 from teach.errors import TeachError
 from teach.observe.hook import Observer
@@ -21,6 +20,7 @@ from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
 from teach.sim.world import World
+from teach.world.protocol import ActResult, Outcome, RunResult
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
@@ -119,7 +119,8 @@ class MujocoWorld:
 
         trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
                          tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame)
-        steps = [(state, action) for state, action, fresh in zip(trace.states, trace.actions, trace.started)
+        ticks = zip(trace.states, trace.actions, trace.started, strict=True)
+        steps = [(state, action) for state, action, fresh in ticks
                  if fresh and action is not None]
         if stop_after is not None and trace.outcome is Outcome.INTERRUPTED:
             steps = steps[:stop_after]

@@ -43,7 +43,10 @@ class RunResult:
 
 class TeachingWorld(Protocol):
     domain: Domain
-    events: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]
+
+    @property
+    def events(self) -> Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]:
+        """The events a teacher can cause, each with its English and German phrases."""
 
     def state(self) -> State: ...
 

@@ -55,7 +55,7 @@ class SymbolicWorld(OfflineWorld):
         names = self.domain.condition_names
         result = RunResult(Outcome.TIMEOUT)
         for _ in range(max_actions):
-            ticked = tick(tree, dict(zip(names, self._state)))
+            ticked = tick(tree, dict(zip(names, self._state, strict=True)))
             self.observer.on_tick(tree, ticked)
             if ticked.status is not Status.RUNNING or ticked.action is None:
                 result.outcome = Outcome.SUCCESS if ticked.status is Status.SUCCESS else Outcome.FAILURE
