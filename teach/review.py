@@ -1,6 +1,6 @@
 """A recorded session as a rich summary: what was demonstrated, asked, learned and replayed.
 
-Pure functions over ``teach.log.RecordingContents`` (which ``teach.log.read_recording`` reads
+Pure functions over ``teach.observe.reader.RecordingContents`` (which ``read_recording`` reads
 back with rerun), so the terminal prints them and tests compare their text.
 """
 
