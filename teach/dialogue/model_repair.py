@@ -45,6 +45,8 @@ from teach.learn.model_gaps import (
     reachable,
     requires,
 )
+from teach.session import messages as m
+from teach.session.messages import Text
 
 KINDS = ("timing", "effects", "achiever", "order", "never")
 
@@ -66,21 +68,16 @@ _WORDS: dict[str, frozenset[str]] = {
     "either": frozenset({"either", "any", "does not matter", "doesn t matter", "either order", "egal",
                          "beliebig", "ist egal"}),
 }
-_SHOWN: dict[str, tuple[str, str]] = {  # how an answer word is offered: (en, de)
-    "before": ("before", "vorher"), "after": ("after", "nachher"), "both": ("both", "beides"),
-    "neither": ("neither", "keins"), "nothing": ("nothing", "nichts"), "yes": ("yes", "ja"),
-    "no": ("no", "nein"), "either": ("either", "egal"),
+_SHOWN: dict[str, Text] = {  # how an answer word is offered
+    "before": m.WORD_BEFORE, "after": m.WORD_AFTER, "both": m.WORD_BOTH, "neither": m.WORD_NEITHER,
+    "nothing": m.WORD_NOTHING, "yes": m.WORD_YES, "no": m.WORD_NO, "either": m.WORD_EITHER,
 }
 _LIST_SPLIT = re.compile(r"\s*(?:[,;]|\band\b|\bund\b)\s*", re.IGNORECASE)
 
 
-def _t(lang: str, en: str, de: str) -> str:
-    return de if lang == "de" else en
-
-
 def _q(text: str, lang: str) -> str:
     """A label in the language's quotation marks."""
-    return f"„{text}“" if lang == "de" else f"“{text}”"
+    return m.QUOTED(lang, text=text)
 
 
 def _literal_label(domain: Domain, literal: Literal, lang: str) -> str:
@@ -117,25 +114,16 @@ class ModelQuestion:
         act = _q(domain.action(self.action).label(lang), lang) if self.action else ""
         cond = _q(_literal_label(domain, self.literal, lang), lang) if self.literal is not None else ""
         if self.kind == "timing":
-            return _t(lang, f"When you {act}: must {cond} already hold before you start, or does it only "
-                            f"hold afterwards? (before / after / both / neither)",
-                      f"Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
-                      f"(vorher / nachher / beides / keins)")
+            return m.ASK_TIMING(lang, act=act, cond=cond)
         if self.kind == "effects":
-            return _t(lang, f"What is different after you {act}? (what is true then, or “nothing”)",
-                      f"Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
+            return m.ASK_EFFECTS(lang, act=act)
         if self.kind == "achiever":
-            return _t(lang, f"What do you do so that {cond}? (an action, or “nothing”)",
-                      f"Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+            return m.ASK_ACHIEVER(lang, cond=cond)
         if self.kind == "order":
-            other = _q(domain.action(self.other).label(lang), lang)
-            return _t(lang, f"What do you do first: {act} or {other}? (one of them, or “either”)",
-                      f"Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
+            return m.ASK_ORDER(lang, act=act, other=_q(domain.action(self.other).label(lang), lang))
         if self.kind == "never":
             assert self.literal is not None
-            opposite = _q(_literal_label(domain, self.literal.negated(), lang), lang)
-            return _t(lang, f"Can you {act} while {opposite}? (yes / no)",
-                      f"Kannst du {act}, wenn {opposite}? (ja / nein)")
+            return m.ASK_NEVER(lang, act=act, opposite=_q(_literal_label(domain, self.literal.negated(), lang), lang))
         raise ValueError(f"unknown question kind {self.kind!r}")
 
 
@@ -222,7 +210,7 @@ def _unknown(answer: str, offered: Sequence[str], lang: str) -> UnknownPhrase:
 
 
 def _offered(kinds: Sequence[str], lang: str) -> list[str]:
-    return [_SHOWN[k][1 if lang == "de" else 0] for k in kinds]
+    return [_SHOWN[k](lang) for k in kinds]
 
 
 class _Conditions:
@@ -349,18 +337,14 @@ class ModelRepair:
         act, cond = self._act(action.name), self._cond(literal)
         if word == "after":
             self._set(action, pre=_without(action.pre, literal))
-            return _t(self.lang, f"So {act} makes {cond} true; it need not hold before.",
-                      f"Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
+            return m.SO_MAKES_TRUE_NOT_BEFORE(self.lang, act=act, cond=cond)
         if word == "neither":
             self._set(action, pre=_without(action.pre, literal), ram=_without(action.ram, literal))
-            return _t(self.lang, f"So {cond} has nothing to do with {act}.",
-                      f"Also hat {cond} nichts mit {act} zu tun.")
+            return m.SO_UNRELATED(self.lang, act=act, cond=cond)
         self._set(action, ram=_without(action.ram, literal))
         if word == "both":
-            return _t(self.lang, f"So {cond} must hold before {act} and stays true; {act} does not make it true.",
-                      f"Also muss {cond} vor {act} gelten und bleibt so; {act} macht es nicht wahr.")
-        return _t(self.lang, f"So {cond} must hold before {act}; {act} does not make it true.",
-                  f"Also muss {cond} vor {act} gelten; {act} macht es nicht wahr.")
+            return m.SO_BEFORE_AND_STAYS(self.lang, act=act, cond=cond)
+        return m.SO_BEFORE(self.lang, act=act, cond=cond)
 
     def _apply_effects(self, question: ModelQuestion, answer: str) -> str:
         action = self.model.action(question.action)
@@ -374,12 +358,10 @@ class ModelRepair:
         self._set(action, pre=tuple(p for p in action.pre if p not in effects), ram=effects)
         act = self._act(action.name)
         if not effects:
-            return _t(self.lang, f"So {act} changes nothing.", f"Also ändert {act} nichts.")
-        made = self._list(effects)
-        said = _t(self.lang, f"So after {act}: {made}.", f"Also gilt nach {act}: {made}.")
+            return m.SO_CHANGES_NOTHING(self.lang, act=act)
+        said = m.SO_AFTER(self.lang, act=act, made=self._list(effects))
         if dropped:
-            said += _t(self.lang, f" It need not hold before: {self._list(dropped)}.",
-                       f" Vorher muss nicht gelten: {self._list(dropped)}.")
+            said += m.NEED_NOT_HOLD_BEFORE(self.lang, conds=self._list(dropped))
         return said
 
     def _apply_achiever(self, question: ModelQuestion, answer: str) -> str:
@@ -388,15 +370,14 @@ class ModelRepair:
         cond = self._cond(literal)
         if _word(answer, ("nothing",)):
             self._refused.add(literal)
-            return _t(self.lang, f"So nothing makes {cond} true.", f"Also macht nichts {cond} wahr.")
+            return m.SO_NOTHING_MAKES(self.lang, cond=cond)
         action = self.model.action(self._one_action(answer))
         ram = tuple(r for r in action.ram if r != literal.negated())
         self._set(action, pre=_without(action.pre, literal), ram=ram if literal in ram else ram + (literal,))
         self._refused.discard(literal)
-        said = _t(self.lang, f"So {self._act(action.name)} makes {cond} true.",
-                  f"Also macht {self._act(action.name)} {cond} wahr.")
+        said = m.SO_MAKES_TRUE(self.lang, act=self._act(action.name), cond=cond)
         if literal in action.pre:
-            said += _t(self.lang, " It need not hold before.", " Es muss vorher nicht gelten.")
+            said += m.IT_NEED_NOT_HOLD_BEFORE(self.lang)
         return said
 
     def _apply_order(self, question: ModelQuestion, answer: str) -> str:
@@ -419,10 +400,9 @@ class ModelRepair:
                 self._set(action, pre=tuple(p for p in action.pre if p not in gone))
                 dropped += [(first, p) for p in gone]
         if not dropped:
-            return _t(self.lang, "That does not change what I know.", "Das ändert nichts an dem, was ich weiß.")
-        parts = [_t(self.lang, f"{self._act(a)} does not need {self._cond(p)}",
-                    f"{self._act(a)} braucht nicht {self._cond(p)}") for a, p in dropped]
-        return _t(self.lang, "So ", "Also: ") + "; ".join(parts) + "."
+            return m.CHANGES_NOTHING_KNOWN(self.lang)
+        parts = [m.DOES_NOT_NEED(self.lang, act=self._act(a), cond=self._cond(p)) for a, p in dropped]
+        return m.SO_LIST(self.lang, parts="; ".join(parts))
 
     def _apply_never(self, question: ModelQuestion, answer: str) -> str:
         word = _word(answer, ("yes", "no"))
@@ -432,10 +412,9 @@ class ModelRepair:
         assert literal is not None
         act, cond = self._act(action.name), self._cond(literal)
         if word == "no":
-            return _t(self.lang, f"So {act} really needs {cond}, and nothing makes it true: the task cannot be done.",
-                      f"Also braucht {act} wirklich {cond}, und nichts macht es wahr: die Aufgabe geht so nicht.")
+            return m.SO_CANNOT_BE_DONE(self.lang, act=act, cond=cond)
         self._set(action, pre=_without(action.pre, literal))
-        return _t(self.lang, f"So {act} does not need {cond}.", f"Also braucht {act} nicht {cond}.")
+        return m.SO_DOES_NOT_NEED(self.lang, act=act, cond=cond)
 
     # --- helpers
 
@@ -461,7 +440,7 @@ class ModelRepair:
         return _q(_literal_label(self.model, literal, self.lang), self.lang)
 
     def _list(self, literals: Iterable[Literal]) -> str:
-        return _t(self.lang, " and ", " und ").join(self._cond(lit) for lit in literals)
+        return m.AND(self.lang).join(self._cond(lit) for lit in literals)
 
 
 def _without(literals: tuple[Literal, ...], literal: Literal) -> tuple[Literal, ...]:
@@ -484,27 +463,27 @@ class ModelOracle:
             action, literal = true.action(question.action), question.literal
             before, after = literal in action.pre, literal in action.ram
             word = "both" if before and after else "before" if before else "after" if after else "neither"
-            return _SHOWN[word][1 if lang == "de" else 0]
+            return _SHOWN[word](lang)
         if question.kind == "effects":
             ram = true.action(question.action).ram
             if not ram:
-                return _SHOWN["nothing"][1 if lang == "de" else 0]
-            return _t(lang, " and ", " und ").join(_literal_label(true, lit, lang) for lit in ram)
+                return m.WORD_NOTHING(lang)
+            return m.AND(lang).join(_literal_label(true, lit, lang) for lit in ram)
         if question.kind == "achiever":
             assert question.literal is not None
             makers = achievers(true, question.literal)
-            return makers[0].label(lang) if makers else _SHOWN["nothing"][1 if lang == "de" else 0]
+            return makers[0].label(lang) if makers else m.WORD_NOTHING(lang)
         if question.kind == "order":
             everything = {Literal(n, True) for n in true.condition_names}  # what the empty start lacks
             first, second = true.action(question.action), true.action(question.other)
             first_waits = depends_on(true, first, second.name, everything)
             second_waits = depends_on(true, second, first.name, everything)
             if first_waits == second_waits:
-                return _SHOWN["either"][1 if lang == "de" else 0]
+                return m.WORD_EITHER(lang)
             return (second if first_waits else first).label(lang)
         if question.kind == "never":
             needed = question.literal in true.action(question.action).pre
-            return _SHOWN["no" if needed else "yes"][1 if lang == "de" else 0]
+            return (m.WORD_NO if needed else m.WORD_YES)(lang)
         raise ValueError(f"unknown question kind {question.kind!r}")
 
 

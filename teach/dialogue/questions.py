@@ -40,6 +40,7 @@ from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
+from teach.session import messages as m
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
@@ -92,17 +93,14 @@ class Question:
     expected: tuple[tuple[str, float], ...] = ()  # (answer or "done", committee share)
 
     def text(self, domain: Domain, lang: str = "en") -> str:
-        situation = describe_situation(domain, self.state, lang)
-        if lang == "de":
-            return f"Angenommen, {situation}. Was soll ich dann tun?"
-        return f"If {situation}, what should I do?"
+        return m.SITUATION_QUESTION(lang, situation=describe_situation(domain, self.state, lang))
 
 
 def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     """A state in plain words: what holds, then ``but`` what does not."""
     true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
-    joiner, but = (" und ", " aber ") if lang == "de" else (" and ", " but ")
+    joiner, but = m.AND(lang), m.BUT(lang)
 
     def join(items: list[str]) -> str:
         return items[0] if len(items) == 1 else ", ".join(items[:-1]) + joiner + items[-1]

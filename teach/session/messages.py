@@ -170,3 +170,48 @@ HELP_SKIP = Text("leave a question unanswered", "eine Frage offen lassen")
 HELP_WHY = Text("why a node is in the tree", "warum ein Knoten im Baum ist")
 HELP_SAVE = Text("save everything now", "alles jetzt speichern")
 HELP_QUIT = Text("save and leave", "speichern und beenden")
+
+# --- situation questions (teach/dialogue/questions.py) -----------------------------------------
+SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
+BUT = Text(" but ", " aber ")
+
+# --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
+QUOTED = Text("“{text}”", "„{text}“")
+ASK_TIMING = Text("When you {act}: must {cond} already hold before you start, or does it only hold afterwards? "
+                  "(before / after / both / neither)",
+                  "Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
+                  "(vorher / nachher / beides / keins)")
+ASK_EFFECTS = Text("What is different after you {act}? (what is true then, or “nothing”)",
+                   "Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
+ASK_ACHIEVER = Text("What do you do so that {cond}? (an action, or “nothing”)",
+                    "Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+ASK_ORDER = Text("What do you do first: {act} or {other}? (one of them, or “either”)",
+                 "Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
+ASK_NEVER = Text("Can you {act} while {opposite}? (yes / no)", "Kannst du {act}, wenn {opposite}? (ja / nein)")
+SO_MAKES_TRUE_NOT_BEFORE = Text("So {act} makes {cond} true; it need not hold before.",
+                                "Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
+SO_UNRELATED = Text("So {cond} has nothing to do with {act}.", "Also hat {cond} nichts mit {act} zu tun.")
+SO_BEFORE_AND_STAYS = Text("So {cond} must hold before {act} and stays true; {act} does not make it true.",
+                           "Also muss {cond} vor {act} gelten und bleibt so; {act} macht es nicht wahr.")
+SO_BEFORE = Text("So {cond} must hold before {act}; {act} does not make it true.",
+                 "Also muss {cond} vor {act} gelten; {act} macht es nicht wahr.")
+SO_CHANGES_NOTHING = Text("So {act} changes nothing.", "Also ändert {act} nichts.")
+SO_AFTER = Text("So after {act}: {made}.", "Also gilt nach {act}: {made}.")
+NEED_NOT_HOLD_BEFORE = Text(" It need not hold before: {conds}.", " Vorher muss nicht gelten: {conds}.")
+SO_NOTHING_MAKES = Text("So nothing makes {cond} true.", "Also macht nichts {cond} wahr.")
+SO_MAKES_TRUE = Text("So {act} makes {cond} true.", "Also macht {act} {cond} wahr.")
+IT_NEED_NOT_HOLD_BEFORE = Text(" It need not hold before.", " Es muss vorher nicht gelten.")
+CHANGES_NOTHING_KNOWN = Text("That does not change what I know.", "Das ändert nichts an dem, was ich weiß.")
+DOES_NOT_NEED = Text("{act} does not need {cond}", "{act} braucht nicht {cond}")
+SO_LIST = Text("So {parts}.", "Also: {parts}.")
+SO_CANNOT_BE_DONE = Text("So {act} really needs {cond}, and nothing makes it true: the task cannot be done.",
+                         "Also braucht {act} wirklich {cond}, und nichts macht es wahr: die Aufgabe geht so nicht.")
+SO_DOES_NOT_NEED = Text("So {act} does not need {cond}.", "Also braucht {act} nicht {cond}.")
+WORD_BEFORE = Text("before", "vorher")
+WORD_AFTER = Text("after", "nachher")
+WORD_BOTH = Text("both", "beides")
+WORD_NEITHER = Text("neither", "keins")
+WORD_NOTHING = Text("nothing", "nichts")
+WORD_YES = Text("yes", "ja")
+WORD_NO = Text("no", "nein")
+WORD_EITHER = Text("either", "egal")
