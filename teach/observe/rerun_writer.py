@@ -30,6 +30,7 @@ import PIL.Image
 import rerun as rr
 
 from teach.bt.nodes import Node
+from teach.display import has_display
 from teach.errors import TeachError
 from teach.observe.encode import (
     IDLE_COLOUR,
@@ -47,7 +48,6 @@ from teach.observe.hook import Observer
 from teach.observe.layout import APPLICATION_ID, blueprint, default_recording_path
 from teach.observe.markdown import demonstration_document, domain_document, state_document
 from teach.observe.merge import keep_earlier, merge_into_place
-from teach.observe.viewer import has_display
 
 if TYPE_CHECKING:
     from teach.bt.tick import TickResult

@@ -2,18 +2,13 @@
 
 from __future__ import annotations
 
-import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
+from teach.display import has_display
 from teach.errors import TeachError
-
-
-def has_display() -> bool:
-    """Whether a viewer window can open (Linux needs X11 or Wayland; macOS and Windows always can)."""
-    return sys.platform != "linux" or bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
 def open_viewer(path: Path) -> subprocess.Popen:

@@ -7,12 +7,12 @@ adapts ``teach.sim`` to the session.
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult
+from teach.display import has_display
 from teach.domain import Domain, State
 from teach.errors import TeachError
 from teach.observe.hook import Observer
@@ -74,7 +74,7 @@ class MujocoWorld:
         if pace > 0:
             self._frame_steps.append(_Pacer(self.world, pace))
         if viewer:
-            if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
+            if not has_display():
                 raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
             self._frame_steps.append(self.world.open_viewer().sync)
         self._on_frame = self._after_frame if self._frame_steps else None
