@@ -29,8 +29,9 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from enum import StrEnum
 
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
@@ -48,7 +49,16 @@ from teach.learn.model_gaps import (
 from teach.session import messages as m
 from teach.session.messages import Text
 
-KINDS = ("timing", "effects", "achiever", "order", "never")
+
+class QuestionKind(StrEnum):
+    TIMING = "timing"
+    EFFECTS = "effects"
+    ACHIEVER = "achiever"
+    ORDER = "order"
+    NEVER = "never"
+
+
+KINDS = tuple(QuestionKind)
 
 # Answer words, compared after ``normalize`` (lower case, no accents, no filler words).
 _WORDS: dict[str, frozenset[str]] = {
@@ -93,10 +103,13 @@ class ModelQuestion:
     action asked about (the first of the pair for ``order``), ``other`` the second action of
     an ``order`` question, ``literal`` the condition asked about."""
 
-    kind: str
+    kind: QuestionKind
     action: str = ""
     literal: Literal | None = None
     other: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", QuestionKind(self.kind))  # ValueError for an unknown kind
 
     def to_json(self) -> dict[str, str]:
         """As the session journal stores it."""
@@ -106,22 +119,22 @@ class ModelQuestion:
     @classmethod
     def from_json(cls, data: dict[str, str]) -> ModelQuestion:
         literal = data.get("literal")
-        return cls(data["kind"], data.get("action", ""), Literal.parse(literal) if literal else None,
+        return cls(QuestionKind(data["kind"]), data.get("action", ""), Literal.parse(literal) if literal else None,
                    data.get("other", ""))
 
     def text(self, domain: Domain, lang: str = "en") -> str:
         """The question in plain words from the domain's labels, with the expected answers."""
         act = _q(domain.action(self.action).label(lang), lang) if self.action else ""
         cond = _q(_literal_label(domain, self.literal, lang), lang) if self.literal is not None else ""
-        if self.kind == "timing":
+        if self.kind is QuestionKind.TIMING:
             return m.ASK_TIMING(lang, act=act, cond=cond)
-        if self.kind == "effects":
+        if self.kind is QuestionKind.EFFECTS:
             return m.ASK_EFFECTS(lang, act=act)
-        if self.kind == "achiever":
+        if self.kind is QuestionKind.ACHIEVER:
             return m.ASK_ACHIEVER(lang, cond=cond)
-        if self.kind == "order":
+        if self.kind is QuestionKind.ORDER:
             return m.ASK_ORDER(lang, act=act, other=_q(domain.action(self.other).label(lang), lang))
-        if self.kind == "never":
+        if self.kind is QuestionKind.NEVER:
             assert self.literal is not None
             return m.ASK_NEVER(lang, act=act, opposite=_q(_literal_label(domain, self.literal.negated(), lang), lang))
         raise ValueError(f"unknown question kind {self.kind!r}")
@@ -155,9 +168,9 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
     for action in domain.actions:  # PA-BT refuses a model with any of these, so they come first
         both = [lit for lit in action.pre if lit in action.ram]
         if len(both) == 1:
-            result.append(ModelQuestion("timing", action.name, both[0]))
+            result.append(ModelQuestion(QuestionKind.TIMING, action.name, both[0]))
         elif both:
-            result.append(ModelQuestion("effects", action.name))
+            result.append(ModelQuestion(QuestionKind.EFFECTS, action.name))
     reached = reachable(domain)
     unreached = {Literal(n, v) for n in domain.condition_names for v in (True, False)} - reached
     idle = [a for a in domain.actions if not a.ram]
@@ -168,17 +181,17 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
         if not makers:
             if literal in refused:
                 if consumer:
-                    result.append(ModelQuestion("never", consumer, literal))
+                    result.append(ModelQuestion(QuestionKind.NEVER, consumer, literal))
                 continue
             if len(idle) == 1:
-                result.append(ModelQuestion("effects", idle[0].name))
-            result.append(ModelQuestion("achiever", literal=literal))
+                result.append(ModelQuestion(QuestionKind.EFFECTS, idle[0].name))
+            result.append(ModelQuestion(QuestionKind.ACHIEVER, literal=literal))
             continue
         circular = [a for a in makers if literal in requires(domain, a, unreached)]
         if len(circular) < len(makers):
             continue  # some achiever is blocked by another gap, which is asked about on its own
         if idle and literal not in refused:
-            result.append(ModelQuestion("achiever", literal=literal))
+            result.append(ModelQuestion(QuestionKind.ACHIEVER, literal=literal))
         for achiever in circular:
             for pre in achiever.pre:
                 if pre not in unreached:
@@ -186,9 +199,9 @@ def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) 
                 for other in achievers(domain, pre):
                     if other.name != achiever.name and literal in requires(domain, other, unreached):
                         pair = sorted((achiever, other), key=lambda a: a.id)
-                        result.append(ModelQuestion("order", pair[0].name, other=pair[1].name))
+                        result.append(ModelQuestion(QuestionKind.ORDER, pair[0].name, other=pair[1].name))
     if not result:  # PA-BT fails for a reason not seen above (effects undoing each other): ask what each does
-        result = [ModelQuestion("effects", a.name) for a in domain.actions]
+        result = [ModelQuestion(QuestionKind.EFFECTS, a.name) for a in domain.actions]
     return result
 
 
@@ -318,9 +331,7 @@ class ModelRepair:
         """Change the model as the answer says and return a sentence saying what changed.
         Raises ``UnknownPhrase`` (one line, with a suggestion) for an answer it cannot read,
         leaving the model as it was."""
-        if question.kind not in KINDS:
-            raise ValueError(f"unknown question kind {question.kind!r}")
-        change = getattr(self, f"_apply_{question.kind}")(question, answer)
+        change = _APPLIERS[question.kind](self, question, answer)
         self._outcome = None
         if question not in self.asked:
             self.asked.append(question)
@@ -443,6 +454,13 @@ class ModelRepair:
         return m.AND(self.lang).join(self._cond(lit) for lit in literals)
 
 
+_APPLIERS: dict[QuestionKind, Callable[[ModelRepair, ModelQuestion, str], str]] = {
+    QuestionKind.TIMING: ModelRepair._apply_timing, QuestionKind.EFFECTS: ModelRepair._apply_effects,
+    QuestionKind.ACHIEVER: ModelRepair._apply_achiever, QuestionKind.ORDER: ModelRepair._apply_order,
+    QuestionKind.NEVER: ModelRepair._apply_never,
+}
+
+
 def _without(literals: tuple[Literal, ...], literal: Literal) -> tuple[Literal, ...]:
     return tuple(x for x in literals if x != literal)
 
@@ -459,21 +477,21 @@ class ModelOracle:
 
     def answer(self, question: ModelQuestion, lang: str = "en") -> str:
         true = self.true_domain
-        if question.kind == "timing":
+        if question.kind is QuestionKind.TIMING:
             action, literal = true.action(question.action), question.literal
             before, after = literal in action.pre, literal in action.ram
             word = "both" if before and after else "before" if before else "after" if after else "neither"
             return _SHOWN[word](lang)
-        if question.kind == "effects":
+        if question.kind is QuestionKind.EFFECTS:
             ram = true.action(question.action).ram
             if not ram:
                 return m.WORD_NOTHING(lang)
             return m.AND(lang).join(_literal_label(true, lit, lang) for lit in ram)
-        if question.kind == "achiever":
+        if question.kind is QuestionKind.ACHIEVER:
             assert question.literal is not None
             makers = achievers(true, question.literal)
             return makers[0].label(lang) if makers else m.WORD_NOTHING(lang)
-        if question.kind == "order":
+        if question.kind is QuestionKind.ORDER:
             everything = {Literal(n, True) for n in true.condition_names}  # what the empty start lacks
             first, second = true.action(question.action), true.action(question.other)
             first_waits = depends_on(true, first, second.name, everything)
@@ -481,7 +499,7 @@ class ModelOracle:
             if first_waits == second_waits:
                 return m.WORD_EITHER(lang)
             return (second if first_waits else first).label(lang)
-        if question.kind == "never":
+        if question.kind is QuestionKind.NEVER:
             needed = question.literal in true.action(question.action).pre
             return (m.WORD_NO if needed else m.WORD_YES)(lang)
         raise ValueError(f"unknown question kind {question.kind!r}")
