@@ -277,3 +277,22 @@ def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
     assert replies[0].kind == "error" and "in einer anderen Reihenfolge" in replies[0].text
     assert "ApproachBin" in replies[1].text  # the details follow for the facilitator
     assert session.mode == "demonstrating"  # kept open, to be mended with 'zurück'
+
+
+def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys):
+    """Answers to questions about no single condition (``effects``, ``order``) are journalled
+    without a literal; resuming re-applies them (it used to report a damaged journal)."""
+    from conftest import ROOT
+
+    from teach.cli import main
+
+    dialogue = ROOT / "dialogues" / "study" / "participant6.dialogue"
+    assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record",
+                 "--oracle-model", str(ROOT / "demos" / "ball" / "domain.toml")]) == 0
+    capsys.readouterr()
+    journal = json.loads((tmp_path / "recordings" / "participant6.journal.json").read_text())
+    answered = [e["question"] for e in journal["events"] if e["kind"] == "model_answer"]
+    assert answered and all(q["literal"] == "" for q in answered)
+    resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False), ball, SymbolicWorld(ball))
+    assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again
