@@ -29,7 +29,7 @@ def new_uid() -> int:
 
 
 def _uid() -> int:
-    return field(default_factory=new_uid, compare=False, kw_only=True)  # type: ignore[return-value]
+    return field(default_factory=new_uid, compare=False, kw_only=True)
 
 
 @dataclass(frozen=True, slots=True)
