@@ -34,9 +34,9 @@ from teach.bt.nodes import Action, Condition, Fallback, Sequence  # noqa: E402
 from teach.bt.tick import tick_state  # noqa: E402
 from teach.bt.xml import tree_to_xml  # noqa: E402
 from teach.domain import load_domain  # noqa: E402
-from teach.log import RerunLogger  # noqa: E402
-from teach.observe import Observer  # noqa: E402
-from teach.scene import SceneShape  # noqa: E402
+from teach.observe.hook import Observer  # noqa: E402
+from teach.observe.rerun_writer import RerunLogger  # noqa: E402
+from teach.observe.scene import SceneShape  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 FRAME_HZ = 10
@@ -101,7 +101,7 @@ def run(observer: Observer, minutes: float) -> float:
         state = states[(frame // 50) % len(states)]
         scene = shapes(t)
         result = tick_state(tree, names, state)
-        mapping = dict(zip(names, state))
+        mapping = dict(zip(names, state, strict=True))
         start = time.perf_counter()
         observer.set_time(frame, t)
         observer.on_scene(scene)

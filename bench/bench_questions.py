@@ -22,15 +22,20 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from teach.demos import Demonstration, Step  # noqa: E402
-from teach.dialogue.drive import answer_with_oracle  # noqa: E402
-from teach.dialogue.oracle import SKIP, Oracle  # noqa: E402
-from teach.dialogue.session import SessionConfig, SessionManager  # noqa: E402
-from teach.dialogue.worlds import OfflineWorld, SymbolicWorld  # noqa: E402
+from teach.dialogue.oracle import (  # noqa: E402
+    SKIP,
+    Oracle,
+    answer_open_questions,  # noqa: E402
+)
 from teach.domain import ActionDef, ConditionDef, Domain, Literal, State  # noqa: E402
 from teach.errors import LearnError  # noqa: E402
 from teach.learn.pabt import expand  # noqa: E402
-from teach.observe import Observer  # noqa: E402
+from teach.observe.hook import Observer  # noqa: E402
 from teach.replay import replay  # noqa: E402
+from teach.session.machine import SessionManager  # noqa: E402
+from teach.session.settings import Settings, WorldKind  # noqa: E402
+from teach.world.offline import OfflineWorld  # noqa: E402
+from teach.world.symbolic import SymbolicWorld  # noqa: E402
 
 DOMAINS = 40
 BUDGET = 5
@@ -68,27 +73,27 @@ def run_reference(model: Domain, reference: Oracle, start: State, name: str) -> 
 
 def taught_tree(model: Domain, train: list[Demonstration], reference: Oracle, strategy: str, rng: random.Random):
     with tempfile.TemporaryDirectory() as scratch:
-        config = SessionConfig("bench", model, questions=BUDGET, base=Path(scratch), world="offline")
-        session = SessionManager(config, OfflineWorld(model), Observer())
+        settings = Settings("bench", questions=BUDGET, world=WorldKind.OFFLINE, base=Path(scratch), record=False)
+        session = SessionManager(settings, model, OfflineWorld(model), Observer())
         session.import_demonstrations(train)
         if strategy == "selector":
             while session.budget.left > 0:
-                session.cmd_ask("")
+                session.handle("ask")
                 if session.pending is None:
                     break
-                answer_with_oracle(session, reference, None)
+                answer_open_questions(session, reference)
         elif strategy in ("random", "all"):
-            unseen = [s for s in all_states(len(model.conditions)) if s not in session.labels]
+            unseen = [s for s in all_states(len(model.conditions)) if s not in session.learning.labels]
             chosen = unseen if strategy == "all" else rng.sample(unseen, min(BUDGET, len(unseen)))
             for state in chosen:
                 answer = reference.answer(state)
                 if answer == SKIP:
                     continue
                 try:
-                    session.learner.teach_step(state, answer, "random question")
+                    session.learning.learner.teach_step(state, answer, "random question")
                 except LearnError:
                     pass
-        return session.learner.tree
+        return session.learning.learner.tree
 
 
 def all_states(n: int) -> list[State]:

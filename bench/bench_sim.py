@@ -32,7 +32,8 @@ def reference_ratio(seconds: float = 10.0) -> float:
     machine's load shows in both numbers."""
     import mujoco  # the bench may import it: it only measures teach.sim
 
-    bodies = "".join(f'<body pos="{i % 3 - 1} {i // 3 - 1} 0.2"><freejoint/><geom type="box" size=".05 .05 .05"/></body>'
+    bodies = "".join(f'<body pos="{i % 3 - 1} {i // 3 - 1} 0.2"><freejoint/>'
+                     f'<geom type="box" size=".05 .05 .05"/></body>'
                      for i in range(9))
     model = mujoco.MjModel.from_xml_string(f'<mujoco><worldbody><geom type="plane" size="3 3 .1"/>{bodies}'
                                            f'</worldbody></mujoco>')

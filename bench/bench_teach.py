@@ -25,9 +25,10 @@ sys.path.insert(0, str(ROOT))
 from teach.bt.tick import compile_tree  # noqa: E402
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.cli import main  # noqa: E402
-from teach.dialogue.session import SessionConfig, SessionManager  # noqa: E402
-from teach.dialogue.worlds import SymbolicWorld  # noqa: E402
 from teach.domain import load_domain  # noqa: E402
+from teach.session.machine import SessionManager  # noqa: E402
+from teach.session.settings import Settings, WorldKind  # noqa: E402
+from teach.world.symbolic import SymbolicWorld  # noqa: E402
 
 BALL = ROOT / "demos" / "ball"
 REFERENCE = BALL / "reference" / "table61.xml"
@@ -50,10 +51,10 @@ def latency(demos: int = 30) -> list[float]:
     rng = random.Random(1)
     times: list[float] = []
     with tempfile.TemporaryDirectory() as scratch:
-        config = SessionConfig("bench", domain, questions=0, base=Path(scratch), world="symbolic")
-        session = SessionManager(config, SymbolicWorld(domain))
+        settings = Settings("bench", questions=0, world=WorldKind.SYMBOLIC, base=Path(scratch), record=False)
+        session = SessionManager(settings, domain, SymbolicWorld(domain))
         shown: list[float] = []
-        session.emit = lambda reply: shown.append(time.perf_counter()) if reply.kind == "tree" else None
+        session.live = lambda reply: shown.append(time.perf_counter()) if reply.kind == "tree" else None
         for _ in range(demos):
             state = tuple(rng.random() < 0.5 for _ in domain.conditions[:-1]) + (False,)
             session.world.arrange(state)

@@ -22,6 +22,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 
 from conftest import colledanchise_tree  # noqa: E402
+
 from teach.bt.nodes import Action, Condition, Fallback, Node, Sequence, Status  # noqa: E402
 from teach.bt.tick import compile_tree, tick  # noqa: E402
 from teach.bt.xml import tree_to_xml  # noqa: E402
@@ -70,7 +71,7 @@ def ours_compiled(tree: Node) -> tuple[dict[str, Callable[[], object]], list[tup
 
 
 def ours_traced(tree: Node) -> tuple[Callable[[], object], list[tuple[Status, str | None]]]:
-    mappings = [dict(zip(NAMES, s)) for s in STATES]
+    mappings = [dict(zip(NAMES, s, strict=True)) for s in STATES]
 
     def run() -> None:
         for mapping in mappings:
@@ -109,7 +110,7 @@ def py_trees_tree(tree: Node) -> tuple[Callable[[], object], list[tuple[Status, 
     root = build(tree)
     statuses = {py_trees.common.Status.SUCCESS: Status.SUCCESS, py_trees.common.Status.FAILURE: Status.FAILURE,
                 py_trees.common.Status.RUNNING: Status.RUNNING}
-    mappings = [dict(zip(NAMES, s)) for s in STATES]
+    mappings = [dict(zip(NAMES, s, strict=True)) for s in STATES]
 
     def run() -> None:
         for mapping in mappings:

@@ -8,7 +8,7 @@ with, copied from its Tables 6.2 and 6.3 and the text of §6.1–6.4.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -230,7 +230,7 @@ def _count(approach: str, source: str, learned: Learned | str, reference: Node) 
 
 
 def cross_table(key: str, title: str, domain: Domain, sets: dict[str, list[Demonstration]],
-                learned: dict[str, Learned | str], thesis: dict[str, tuple[int, ...]]) -> CrossTable:
+                learned: dict[str, Learned | str], thesis: Mapping[str, tuple[int, ...]]) -> CrossTable:
     """Each set's pruned tree replayed on every set; a set the learner failed on gives a row
     without figures and its error."""
     from teach.bt.tick import compile_tree
@@ -268,32 +268,24 @@ def participant_result(path: Path, number: int) -> ParticipantResult:
 
 
 def run_to_goal(domain: Domain, tree: Node, start: State) -> tuple[bool, str]:
-    """Tick ``tree`` in the symbolic world of ``domain``'s action model until it succeeds,
+    """Run ``tree`` in the symbolic world of ``domain``'s action model until it succeeds,
     fails or repeats a state; says which."""
-    from teach.bt.nodes import Status
-    from teach.bt.tick import compile_tree
+    from teach.symbolic import RunEnd
+    from teach.symbolic import run_to_goal as run
 
-    compiled = compile_tree(tree, domain.condition_names)
-    state, seen, trace = start, {start}, []
-    for _ in range(MAX_RUN_STEPS):
-        status, action = compiled(state)
-        if status is Status.SUCCESS:
-            return True, "usable: reaches the goal from the empty state" + (f" ({' → '.join(trace)})" if trace else "")
-        if status is Status.FAILURE or action is None:
-            return False, f"the tree fails in {_true(domain, state)}"
-        trace.append(action)
-        values = list(state)
-        for literal in domain.action(action).ram:
-            values[domain.index(literal.name)] = literal.value
-        state = tuple(values)
-        if state in seen:
-            return False, f"{action} changes nothing in {_true(domain, state)}: the tree loops"
-        seen.add(state)
+    result = run(domain, tree, start, MAX_RUN_STEPS)
+    if result.end is RunEnd.SUCCESS:
+        trace = f" ({' → '.join(result.actions)})" if result.actions else ""
+        return True, "usable: reaches the goal from the empty state" + trace
+    if result.end is RunEnd.FAILURE:
+        return False, f"the tree fails in {_true(domain, result.state)}"
+    if result.end is RunEnd.LOOP:
+        return False, f"{result.actions[-1]} changes nothing in {_true(domain, result.state)}: the tree loops"
     return False, f"no goal after {MAX_RUN_STEPS} actions"
 
 
 def _true(domain: Domain, state: State) -> str:
-    names = [n for n, v in zip(domain.condition_names, state) if v]
+    names = [n for n, v in zip(domain.condition_names, state, strict=True) if v]
     return "{" + ", ".join(names) + "}"
 
 

@@ -71,7 +71,8 @@ def replay_demo(tree: CompiledTree, domain: Domain, demo: Demonstration, lenient
     return DemoResult(demo.name, True)
 
 
-def replay(tree: Node | CompiledTree, domain: Domain, demos: list[Demonstration], lenient: bool = False) -> ReplayReport:
+def replay(tree: Node | CompiledTree, domain: Domain, demos: list[Demonstration],
+           lenient: bool = False) -> ReplayReport:
     compiled = tree if isinstance(tree, CompiledTree) else compile_tree(tree, domain.condition_names)
     return ReplayReport(tuple(replay_demo(compiled, domain, d, lenient) for d in demos), lenient)
 

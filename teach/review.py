@@ -1,6 +1,6 @@
 """A recorded session as a rich summary: what was demonstrated, asked, learned and replayed.
 
-Pure functions over ``teach.log.RecordingContents`` (which ``teach.log.read_recording`` reads
+Pure functions over ``teach.observe.reader.RecordingContents`` (which ``read_recording`` reads
 back with rerun), so the terminal prints them and tests compare their text.
 """
 
@@ -13,7 +13,7 @@ from rich.text import Text
 
 from teach.bt.render import render_tree
 from teach.bt.xml import tree_from_xml
-from teach.log import DemoRecord, RecordingContents
+from teach.observe.reader import DemoRecord, RecordingContents
 
 
 def summary(contents: RecordingContents) -> Group:
@@ -56,8 +56,8 @@ def _demonstration(demo: DemoRecord, conditions: tuple[str, ...]) -> RenderableT
     table.add_column("#", justify="right")
     table.add_column("state (true conditions)")
     table.add_column("action")
-    for number, (state, action) in enumerate(zip(demo.states, demo.actions), 1):
-        true = [name for name, value in zip(conditions, state) if value] if conditions else \
+    for number, (state, action) in enumerate(zip(demo.states, demo.actions, strict=False), 1):
+        true = [name for name, value in zip(conditions, state, strict=False) if value] if conditions else \
             ["".join("1" if v else "0" for v in state)]
         style = "magenta" if action == "external" else "green" if action == "goal" else ""
         table.add_row(str(number), " ".join(true) or "—", Text(action, style=style))

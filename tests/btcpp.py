@@ -98,7 +98,7 @@ def assert_matches_btcpp(tree: Node, domain: Domain) -> None:
     compiled = compile_tree(tree, domain.condition_names)
     states = list(domain_states(domain))
     theirs = btcpp_tick(tree, domain, states)
-    for state, their in zip(states, theirs):
+    for state, their in zip(states, theirs, strict=False):
         ours = compiled(state)
         assert ours == their, (f"BehaviorTree.CPP gives {their[0].name} {their[1]} but teach gives "
                                f"{ours[0].name} {ours[1]} in state [{domain.describe(state)}] for\n"

@@ -35,7 +35,7 @@ def first_difference(a: Node, b: Node, names: Sequence[str]) -> str | None:
     for state in states(len(names)):
         ra, rb = ta(state), tb(state)
         if ra != rb:
-            true = [n for n, v in zip(names, state) if v]
+            true = [n for n, v in zip(names, state, strict=True) if v]
             return f"in state {true or '(all false)'}: {ra[0].name} {ra[1]} vs {rb[0].name} {rb[1]}"
     return None
 

@@ -6,10 +6,9 @@ from __future__ import annotations
 import json
 
 import pytest
+from conftest import ROOT
 
 from teach.cli import main
-
-from conftest import ROOT
 
 BALL = ROOT / "demos" / "ball"
 

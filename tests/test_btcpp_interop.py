@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import pytest
-from hypothesis import given, settings
-
 from btcpp import assert_matches_btcpp, btcpp_tick, domain_states
 from conftest import colledanchise_tree
+from hypothesis import given, settings
 from strategies import trees
+
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status
 from teach.domain import ActionDef, ConditionDef, Domain
 
@@ -58,6 +58,7 @@ def test_a_halted_parallel_action_is_not_reported_as_running(ball: Domain) -> No
              ["FindBall", "ApproachBall", "GraspBall", "ApproachBin", "PlaceBall"], max_leaves=15))
 def test_random_trees_match(tree: Node) -> None:
     from conftest import BALL_DOMAIN
+
     from teach.domain import load_domain
 
     assert_matches_btcpp(tree, load_domain(BALL_DOMAIN))
@@ -77,8 +78,8 @@ def test_bt_cpp_parallel_remembers_finished_children_unless_halted(ball: Domain)
     """Why the harness halts between states: BT.CPP's Parallel does not re-tick a child that
     finished while the Parallel keeps running, so without a halt it is not memoryless."""
     import behaviortreepy as btcpp
-
     from btcpp import _harness
+
     from teach.bt.xml import tree_to_xml
 
     tree = Parallel((C("BallFound"), A("FindBall")), 2)

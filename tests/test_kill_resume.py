@@ -11,8 +11,9 @@ import sys
 import time
 
 from teach.bt.xml import read_tree
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import SymbolicWorld
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings, WorldKind
+from teach.world.symbolic import SymbolicWorld
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
 
@@ -40,8 +41,8 @@ def test_sigkill_then_resume(ball, tmp_path):
     assert len(events) >= 3
     demos = sorted((tmp_path / "demos" / "long").glob("demo-*.csv"))
     assert len(demos) >= len(events)  # every journalled demonstration is on disk
-    config = SessionConfig("long", ball, "en", 0, base=tmp_path, world="symbolic")
-    resumed = SessionManager.resume(config, SymbolicWorld(ball))
+    settings = Settings("long", lang="en", questions=0, world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    resumed = SessionManager.resume(settings, ball, SymbolicWorld(ball))
     assert len(resumed.demos) == len(events)
     # the resumed learner is the one that was killed: its pruned tree equals the last generation saved
     generations = sorted((tmp_path / "trees" / "long").glob("gen-*.xml"))
@@ -54,7 +55,7 @@ def test_sigkill_then_resume(ball, tmp_path):
 
 
 def test_recording_survives_a_kill_and_a_resume(tmp_path):
-    from teach.log import read_recording
+    from teach.observe.reader import read_recording
 
     script = tmp_path / "rec.dialogue"
     lines = ["@world symbolic", "@questions 0", SEQUENCE, "done"]

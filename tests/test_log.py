@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import colledanchise_tree
 
 from teach.bt.nodes import Action, Condition, Fallback, Sequence, size
 from teach.bt.tick import tick_state
@@ -15,9 +16,10 @@ from teach.bt.xml import tree_to_xml
 from teach.demos import parse_demonstration
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
-from teach.log import RerunLogger, default_recording_path, read_recording
-from teach.scene import SceneShape
-from conftest import colledanchise_tree
+from teach.observe.layout import default_recording_path
+from teach.observe.reader import read_recording
+from teach.observe.rerun_writer import RerunLogger
+from teach.observe.scene import SceneShape
 
 RERUN = Path(sys.executable).with_name("rerun")
 
@@ -64,7 +66,7 @@ def record_session(path: Path, ball: Domain) -> dict:
         result = tick_state(first, names, line.state)
         ticks.append((result.status.name, result.action))
         logger.on_tick(first, result)
-        logger.on_state(dict(zip(names, line.state)), result.action)
+        logger.on_state(dict(zip(names, line.state, strict=True)), result.action)
     logger.on_demonstration("demo-001", demo_1, ball)
     at()
     logger.on_learner("specialize", "1 demonstration", removed=["(BinClose)"])
@@ -90,8 +92,9 @@ def record_session(path: Path, ball: Domain) -> dict:
 
 @pytest.fixture(scope="module")
 def recorded(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict]:
-    from teach.domain import load_domain
     from conftest import BALL_DOMAIN
+
+    from teach.domain import load_domain
 
     path = tmp_path_factory.mktemp("rec") / "session.rrd"
     return path, record_session(path, load_domain(BALL_DOMAIN))
@@ -120,7 +123,7 @@ def test_demonstrations_in_order_with_states(recorded: tuple[Path, dict], ball: 
     contents = read_recording(recorded[0])
     demos = recorded[1]["demos"]
     assert [d.name for d in contents.demonstrations] == ["demo-001", "demo-002"]
-    for record, demo in zip(contents.demonstrations, demos):
+    for record, demo in zip(contents.demonstrations, demos, strict=False):
         assert record.states == tuple(s.state for s in demo.steps)
         assert record.reached_goal
     # external actions and the goal line are marked as such
@@ -144,7 +147,7 @@ def test_questions_with_answers_in_order(recorded: tuple[Path, dict]) -> None:
 def test_generations_learner_events_and_replays(recorded: tuple[Path, dict]) -> None:
     contents = read_recording(recorded[0])
     fed = recorded[1]
-    assert [(g.generation, g.nodes) for g in contents.generations] == list(zip([0, 1, 2], fed["sizes"]))
+    assert [(g.generation, g.nodes) for g in contents.generations] == list(zip([0, 1, 2], fed["sizes"], strict=True))
     assert [g.reason for g in contents.generations] == ["start", "demonstration demo-001", "answer"]
     assert contents.final_tree_xml == fed["xml"]
     assert [(e.event, e.removed) for e in contents.learner_events] == [
@@ -248,7 +251,7 @@ def test_state_is_logged_when_it_changes(tmp_path: Path, ball: Domain) -> None:
         for step, (true, action) in enumerate([([], "FindBall")] * 5 + [(["BallFound"], "FindBall")] * 3
                                               + [(["BallFound"], "ApproachBall")] * 4):
             logger.set_time(step, step * 0.1)
-            logger.on_state(dict(zip(names, ball.state(true))), action)
+            logger.on_state(dict(zip(names, ball.state(true), strict=True)), action)
     contents = read_recording(path)
     # twelve reports, three distinct (state, action) pairs: the viewer holds each until the next
     assert [(s.step, s.action, s.state["BallFound"]) for s in contents.states] == [
@@ -273,11 +276,11 @@ def test_scene_geometry_changes_and_vanishing_kinds(tmp_path: Path) -> None:
 
 
 def test_capsule_is_placed_from_its_end() -> None:
-    from teach.log import _SceneLayout
+    from teach.observe.encode import SceneLayout
 
     # a capsule centred at (0, 0, 0.5), half length 0.2, turned 90° about x: its axis points along -y,
     # and rerun draws it from the end at +y towards -y
-    layout = _SceneLayout.of((("arm", "capsule", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),))
+    layout = SceneLayout.of((("arm", "capsule", (0.03, 0.2), (1.0, 1.0, 1.0, 1.0)),))
     pos, xyzw = layout.poses("capsule", np.array([[[0.0, 0.0, 0.5]]], dtype=np.float32),
                              np.array([[[0.70710678, 0.70710678, 0.0, 0.0]]], dtype=np.float32))
     assert pos[0, 0] == pytest.approx([0.0, 0.2, 0.5], abs=1e-6)

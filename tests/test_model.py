@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 from btcpp import assert_matches_btcpp
-
 from conftest import ROOT, colledanchise_tree
+
 from teach.bt.nodes import size
 from teach.demos import parse_demonstration, read_demo_set
 from teach.domain import Literal

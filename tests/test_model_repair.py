@@ -4,18 +4,17 @@ real PA-BT, real answers parsed from plain strings."""
 from __future__ import annotations
 
 import json
-
 import random
 
 import pytest
-
 from conftest import BALL_DOMAIN, ROOT
-from teach.dialogue.model_repair import (KINDS, ModelOracle, ModelQuestion, ModelRepair, RepairReport,
-                                         plan_model, repair)
+
+from teach.dialogue.model_repair import KINDS, ModelOracle, ModelQuestion, ModelRepair, RepairReport, repair
 from teach.dialogue.phrases import UnknownPhrase
 from teach.dialogue.questions import QuestionBudget
 from teach.dialogue.script import read_script
 from teach.domain import ActionDef, ConditionDef, Domain, Literal, load_domain
+from teach.learn.model_gaps import plan_model
 
 STUDY = ROOT / "dialogues" / "study"
 RESCUED = (1, 2, 3, 6)
@@ -144,7 +143,8 @@ def test_effects_answers_name_conditions_true_or_untrue():
     session.apply(ModelQuestion("effects", "ApproachBall"), "nothing")
     assert session.model.action("ApproachBall").ram == ()
     with pytest.raises(UnknownPhrase):  # both true and untrue at once
-        session.apply(ModelQuestion("effects", "ApproachBall"), "the ball is in your hand, the ball is not in your hand")
+        session.apply(ModelQuestion("effects", "ApproachBall"),
+                      "the ball is in your hand, the ball is not in your hand")
 
 
 def test_a_condition_nothing_makes_true_leads_to_asking_whether_it_is_needed():

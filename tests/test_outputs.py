@@ -6,13 +6,12 @@ from __future__ import annotations
 import os
 
 import pytest
+from conftest import ROOT
 
 from teach.cli import main
 from teach.demos import Demonstration, Step
 from teach.errors import DomainError
 from teach.fsutil import atomic_write_text
-
-from conftest import ROOT
 
 REFERENCE = ROOT / "demos" / "ball" / "reference" / "colledanchise.xml"
 
@@ -54,8 +53,9 @@ def test_goal_only_demonstrations_are_a_clear_error(tmp_path, capsys):
 
 def test_generations_folder_holds_only_this_runs_generations(tmp_path, capsys):
     folder = tmp_path / "gens"
-    main(["learn", str(ROOT / "demos" / "ball" / "delta1"), "-o", str(tmp_path / "a.xml"), "--generations", str(folder)])
-    main(["learn", str(ROOT / "demos" / "ball" / "delta4"), "-o", str(tmp_path / "b.xml"), "--generations", str(folder)])
+    for demos, output in (("delta1", "a.xml"), ("delta4", "b.xml")):
+        main(["learn", str(ROOT / "demos" / "ball" / demos), "-o", str(tmp_path / output),
+              "--generations", str(folder)])
     capsys.readouterr()
     last = sorted(folder.glob("gen-*.xml"))[-1]
     assert last.read_bytes() == (tmp_path / "b.xml").read_bytes()

@@ -6,8 +6,8 @@ from dataclasses import replace
 
 import pytest
 from btcpp import assert_matches_btcpp
-
 from conftest import colledanchise_tree
+
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, Status, size
 from teach.bt.tick import tick_state
 from teach.bt.xml import read_tree

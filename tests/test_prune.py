@@ -8,21 +8,32 @@ from collections.abc import Mapping
 from pathlib import Path
 
 import pytest
+from conftest import ROOT, colledanchise_tree
+from equivalence import assert_equivalent, first_difference
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from strategies import trees
 
-from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, renumber,
-                            replace_node, size, walk)
+from teach.bt.nodes import (
+    Action,
+    Condition,
+    Fallback,
+    Inverter,
+    Node,
+    Parallel,
+    Sequence,
+    Status,
+    renumber,
+    replace_node,
+    size,
+    walk,
+)
 from teach.bt.tick import tick
 from teach.bt.xml import read_tree, write_tree
 from teach.domain import Literal, load_domain
 from teach.errors import LearnError
 from teach.learn.pabt import expand
 from teach.learn.prune import label, prune, prune_with_report, ramifications_of
-
-from conftest import ROOT, colledanchise_tree
-from equivalence import assert_equivalent, first_difference
-from strategies import trees
 
 CONDITIONS = ["a", "b", "c", "d"]
 ACTIONS = ["X", "Y", "Z"]
@@ -60,7 +71,7 @@ def specialization_trees(draw: st.DrawFn, conditions: list[str], actions: list[s
     for action in order:
         kept = draw(st.lists(st.booleans(), min_size=len(full), max_size=len(full)))
         guards = tuple(Condition(n.name) if isinstance(n, Condition) else Inverter(Condition(n.child.name))
-                       for n, keep in zip(full, kept) if keep)
+                       for n, keep in zip(full, kept, strict=False) if keep)
         pairs.append(Fallback((*guards, Action(action))))
     return Sequence(tuple(pairs))
 
@@ -148,7 +159,7 @@ def test_same_behaviour_when_actions_succeed_or_fail(tree: Node, values: list[bo
                                                      outcomes: list[tuple[Status, bool]]) -> None:
     # beyond the symbolic world: the same actions in the same order, the same result, the same
     # world afterwards, whatever the actions return (given that they change only their ramifications)
-    state = dict(zip(CONDITIONS, values))
+    state = dict(zip(CONDITIONS, values, strict=True))
     pruned = prune(tree, PARTIAL)
     assert _run_in_world(pruned, state, outcomes) == _run_in_world(tree, state, outcomes)
 
@@ -212,7 +223,8 @@ def test_known_false_under_sequence_cuts_the_unreachable_rest() -> None:
 
 def test_ramification_of_an_action_that_succeeded() -> None:
     # Fallback(a, X) succeeds only with a true or X done, and X makes a true
-    tree = Sequence((Fallback((Condition("a"), Action("X"))), Fallback((Condition("b"), Sequence((Condition("a"), Action("Y")))))))
+    tree = Sequence((Fallback((Condition("a"), Action("X"))),
+                     Fallback((Condition("b"), Sequence((Condition("a"), Action("Y")))))))
     expected = Sequence((Fallback((Condition("a"), Action("X"))), Fallback((Condition("b"), Action("Y")))))
     assert check(tree, CONDITIONS, RAMS) == expected
     assert check(tree, CONDITIONS) == tree  # without the action model nothing is known after X

@@ -3,13 +3,18 @@
 from __future__ import annotations
 
 import pytest
+from conftest import ROOT
 
 from teach.demos import read_demo_set
+from teach.dialogue.questions import (
+    BudgetExhausted,
+    QuestionBudget,
+    describe_situation,
+    effects_from,
+    prior_real,
+    select_question,
+)
 from teach.learn.specialize import specialize
-
-from conftest import ROOT
-from teach.dialogue.questions import (BudgetExhausted, QuestionBudget, describe_situation, effects_from, prior_real,
-                                      select_question)
 
 
 def test_budget_is_never_exceeded():
@@ -25,7 +30,8 @@ def test_situation_in_words(ball):
     state = ball.state(["BallGrasped"])
     assert describe_situation(ball, state) == ("the ball is in your hand, but you cannot see the ball, the ball is "
                                                "out of reach, the bin is out of reach and the ball is not in the bin")
-    assert describe_situation(ball, state, "de").startswith("du hast den Ball in der Hand, aber du siehst den Ball nicht")
+    german = describe_situation(ball, state, "de")
+    assert german.startswith("du hast den Ball in der Hand, aber du siehst den Ball nicht")
 
 
 def test_causal_prior_from_demonstrations(ball):

@@ -7,9 +7,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+from conftest import ROOT, colledanchise_tree
 from rich.console import Console
 
-from conftest import ROOT, colledanchise_tree
 from teach.bt.nodes import Action, Condition, Inverter, Parallel, Status
 from teach.bt.render import render_text, render_tree, to_dot
 from teach.bt.tick import tick_state

@@ -6,14 +6,14 @@ import re
 from pathlib import Path
 
 import pytest
-from rich.console import Console
-
 from conftest import BALL_DOMAIN
+from rich.console import Console
+from test_log import record_session
+
 from teach.cli import main
 from teach.domain import load_domain
-from teach.log import read_recording
+from teach.observe.reader import read_recording
 from teach.review import summary
-from test_log import record_session
 
 
 @pytest.fixture(scope="module")

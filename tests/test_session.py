@@ -8,9 +8,10 @@ import json
 import pytest
 
 from teach.demos import read_demo_set
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import SymbolicWorld
-from teach.observe import Observer
+from teach.observe.hook import Observer
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings, WorldKind
+from teach.world.symbolic import SymbolicWorld
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
 SECOND = "go to the ball, grasp the ball, go to the bin, put the ball in the bin"
@@ -32,9 +33,12 @@ class Events(Observer):
         self.dialogue.append((speaker, text))
 
 
+def settings(tmp_path, questions=5, lang="en"):
+    return Settings("t", lang=lang, questions=questions, world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+
+
 def new_session(ball, tmp_path, questions=5, lang="en", observer=None):
-    config = SessionConfig("t", ball, lang, questions, base=tmp_path, world="symbolic")
-    return SessionManager(config, SymbolicWorld(ball), observer)
+    return SessionManager(settings(tmp_path, questions, lang), ball, SymbolicWorld(ball), observer)
 
 
 def teach_two_demonstrations(session):
@@ -105,14 +109,14 @@ def test_an_answer_changes_the_tree(ball, tmp_path):
     session = new_session(ball, tmp_path)
     replies = teach_two_demonstrations(session)
     assert session.pending is not None, "two demonstrations leave guards in doubt: the robot asks"
-    before = session.learner.tree
+    before = session.learning.learner.tree
     question = session.pending
     state = question.state
     answer = next(a for a, _ in question.expected if a != "done")
     replies = session.handle(ball.action(answer).label("en"))
-    assert session.learner.tree != before
+    assert session.learning.learner.tree != before
     assert any(r.text.startswith("Thank you.") for r in replies)
-    assert session.labels[state] == answer
+    assert session.learning.labels[state] == answer
 
 
 def test_run_interrupt_and_correction(ball, tmp_path):
@@ -157,11 +161,10 @@ def test_resume_after_a_killed_session(ball, tmp_path):
     teach_two_demonstrations(session)
     if session.pending is not None:
         session.handle("skip")
-    tree, used = session.learner.tree, session.budget.used
+    tree, used = session.learning.learner.tree, session.budget.used
     # no close(), no save: as if the process was killed here
-    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
-    resumed = SessionManager.resume(config, SymbolicWorld(ball))
-    assert resumed.learner.tree == tree and resumed.budget.used == used
+    resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))
+    assert resumed.learning.learner.tree == tree and resumed.budget.used == used
     assert len(resumed.demos) == 2
     assert "Resumed" in resumed.greet()[0].text
 
@@ -220,8 +223,7 @@ def test_generations_are_never_overwritten(ball, tmp_path):
     first = sorted(p.name for p in (tmp_path / "trees" / "t").glob("gen-*.xml"))
     assert first == ["gen-01.xml", "gen-02.xml"]
     saved = (tmp_path / "trees" / "t" / "gen-01.xml").read_bytes()
-    config = SessionConfig("t", ball, "en", 5, base=tmp_path, world="symbolic")
-    resumed = SessionManager.resume(config, SymbolicWorld(ball))
+    resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))
     resumed.handle("start BallFound")
     resumed.handle(SECOND)
     resumed.handle("done")
@@ -262,7 +264,7 @@ def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
 
 def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
     from teach.demos import Step, parse_demonstration
-    from teach.dialogue.session import _OpenDemo
+    from teach.session.machine import _OpenDemo
 
     session = new_session(ball, tmp_path, lang="de")
     session.import_demonstrations([parse_demonstration("0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n"
@@ -275,3 +277,22 @@ def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
     assert replies[0].kind == "error" and "in einer anderen Reihenfolge" in replies[0].text
     assert "ApproachBin" in replies[1].text  # the details follow for the facilitator
     assert session.mode == "demonstrating"  # kept open, to be mended with 'zurück'
+
+
+def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys):
+    """Answers to questions about no single condition (``effects``, ``order``) are journalled
+    without a literal; resuming re-applies them (it used to report a damaged journal)."""
+    from conftest import ROOT
+
+    from teach.cli import main
+
+    dialogue = ROOT / "dialogues" / "study" / "participant6.dialogue"
+    assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record",
+                 "--oracle-model", str(ROOT / "demos" / "ball" / "domain.toml")]) == 0
+    capsys.readouterr()
+    journal = json.loads((tmp_path / "recordings" / "participant6.journal.json").read_text())
+    answered = [e["question"] for e in journal["events"] if e["kind"] == "model_answer"]
+    assert answered and all(q["literal"] == "" for q in answered)
+    resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False), ball, SymbolicWorld(ball))
+    assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again

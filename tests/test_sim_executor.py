@@ -9,7 +9,7 @@ import pytest
 from teach.bt.nodes import Action, Condition, Fallback, Sequence
 from teach.demos import Demonstration
 from teach.learn.specialize import specialize
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.replay import replay
 from teach.sim.executor import run_tree
 from teach.sim.recorder import Recorder
@@ -33,7 +33,8 @@ def table_6_1_tree() -> Sequence:
         return Fallback((Condition(condition), Action(action)))
 
     fetch = Fallback((Condition("BallGrasped"),
-                      Sequence((pair("BallFound", "FindBall"), pair("BallClose", "ApproachBall"), Action("GraspBall")))))
+                      Sequence((pair("BallFound", "FindBall"), pair("BallClose", "ApproachBall"),
+                                Action("GraspBall")))))
     return Fallback((Condition("BallPlaced"), Sequence((fetch, pair("BinClose", "ApproachBin"), Action("PlaceBall")))))
 
 
@@ -57,7 +58,7 @@ def test_tree_runs_to_success_and_becomes_a_demonstration() -> None:
     assert trace.outcome == "success" and world.conditions()["BallPlaced"]
     assert observer.ticks == trace.ticks and observer.externals == ["push_robot"]
     # ticks come at a fixed rate of simulated time (the push itself takes the teacher's time)
-    gaps = {round(b - a, 3) for i, (a, b) in enumerate(zip(trace.times, trace.times[1:])) if i + 1 != 20}
+    gaps = {round(b - a, 3) for i, (a, b) in enumerate(zip(trace.times, trace.times[1:], strict=False)) if i + 1 != 20}
     assert gaps == {0.1}
     demo = trace.as_demonstration(world.domain)
     assert demo.reached_goal and -1 in [s.action for s in demo.steps]

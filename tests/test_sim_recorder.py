@@ -10,7 +10,7 @@ from teach.cli import main
 from teach.demos import read_demo_set
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION
 from teach.errors import DomainError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.recorder import Recorder, record, save_demonstration
 from teach.sim.world import World

@@ -6,10 +6,10 @@ import itertools
 
 import numpy as np
 import pytest
+from conftest import BALL_DOMAIN
 
 from teach.errors import DomainError
 from teach.sim.world import BIN_RADIUS, CLOSE_RADIUS, DOMAIN_FILE, World
-from conftest import BALL_DOMAIN
 
 NON_GOAL_STATES = [(*map(bool, bits), False) for bits in itertools.product((0, 1), repeat=4)]
 

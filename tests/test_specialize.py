@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 from btcpp import assert_matches_btcpp
+from conftest import ROOT, colledanchise_tree
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from conftest import ROOT, colledanchise_tree
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, Status, size, walk
 from teach.bt.tick import compile_tree
 from teach.demos import Demonstration, Step, parse_demonstration, read_demo_set

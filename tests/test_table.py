@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 
 import pytest
-
 from conftest import ROOT
+
 from teach.cli import main
 from teach.evaluate import SETS, THESIS_TABLE_6_2, evaluate
 

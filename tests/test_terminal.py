@@ -3,19 +3,22 @@
 from __future__ import annotations
 
 import io
+import json
+from pathlib import Path
 
 from prompt_toolkit.input import create_pipe_input
 from prompt_toolkit.output import DummyOutput
 from rich.console import Console
 
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.terminal import Terminal
-from teach.dialogue.worlds import SymbolicWorld
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings, WorldKind
+from teach.terminal.app import Terminal
+from teach.world.symbolic import SymbolicWorld
 
 
 def drive(ball, tmp_path, keys: str, lang: str = "de") -> tuple[str, SessionManager]:
-    config = SessionConfig("term", ball, lang, 5, base=tmp_path, world="symbolic")
-    manager = SessionManager(config, SymbolicWorld(ball))
+    settings = Settings("term", lang=lang, world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball))
     buffer = io.StringIO()
     console = Console(file=buffer, width=100, color_system=None)
     with create_pipe_input() as pipe:
@@ -50,3 +53,46 @@ def test_run_and_unknown_words(ball, tmp_path):
     out, _ = drive(ball, tmp_path, keys, lang="en")
     assert "Done! The task is finished." in out
     assert "I don't know “fly away”" in out
+
+
+def recorded_drive(ball, tmp_path, keys: str) -> tuple[str, SessionManager, Path]:
+    """Like ``drive``, in English, with a real rerun recording written and closed."""
+    from teach.observe.rerun_writer import RerunLogger
+
+    rrd = tmp_path / "recordings" / "term.rrd"
+    rrd.parent.mkdir(parents=True)
+    settings = Settings("term", lang="en", world=WorldKind.SYMBOLIC, base=tmp_path, record=True)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball), RerunLogger(rrd, "term"))
+    buffer = io.StringIO()
+    console = Console(file=buffer, width=100, color_system=None)
+    with create_pipe_input() as pipe:
+        pipe.send_text(keys)
+        Terminal(manager, console=console, input=pipe, output=DummyOutput()).run()
+    manager.close()
+    return buffer.getvalue(), manager, rrd
+
+
+TEACH_ONCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\rdone\r"
+
+
+def test_a_bad_run_argument_is_an_error_reply_and_the_session_goes_on(ball, tmp_path):
+    out, manager = drive(ball, tmp_path, TEACH_ONCE + "run abc\rstate\rquit\r", lang="en")
+    assert "! expected a whole number, not 'abc'" in out
+    assert out.index("expected a whole number") < out.index("Goodbye!")  # the session went on to 'quit'
+    assert manager.finished
+
+
+def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(ball, tmp_path):
+    from teach.observe.reader import read_recording
+
+    out, manager, rrd = recorded_drive(ball, tmp_path, TEACH_ONCE + "start\rrun\r\x04")
+    assert "Done! The task is finished." in out
+    lines = [(d.speaker, d.text, d.step) for d in read_recording(rrd).dialogue if d.kind == "line"]
+    run_step = next(step for speaker, text, step in lines if speaker == "teacher" and text == "run")
+    said = [text for speaker, text, step in lines if speaker == "robot" and step == run_step]
+    assert "Done! The task is finished." in said and any(t.startswith("I did: ") for t in said)
+    # 'run' had a step of its own on the clock, and the journal was saved with it
+    steps = [step for speaker, _, step in lines if speaker == "teacher"]
+    assert steps == sorted(set(steps)) and run_step == steps[-2]
+    journal = json.loads((tmp_path / "recordings" / "term.journal.json").read_text())
+    assert journal["step"] == manager.step == steps[-1]

@@ -5,8 +5,8 @@ from __future__ import annotations
 import importlib.util
 
 import pytest
-
 from conftest import ROOT, colledanchise_tree
+
 from teach.bt.xml import read_tree
 from teach.demos import format_demonstration, read_demo_set
 from teach.domain import EXTERNAL_ACTION, load_domain

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import itertools
 
+from conftest import colledanchise_tree
 from hypothesis import given, settings
+from strategies import trees
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Parallel, Sequence, Status, renumber, size
 from teach.bt.tick import compile_tree, tick, tick_state
-
-from conftest import colledanchise_tree
-from strategies import trees
 
 NAMES = ["A", "B", "C", "D"]
 

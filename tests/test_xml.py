@@ -5,10 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from hypothesis import given, settings
-
 from conftest import colledanchise_tree
+from hypothesis import given, settings
 from strategies import trees
+
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Parallel, Sequence, walk
 from teach.bt.xml import MAX_BYTES, read_tree, tree_from_xml, tree_to_xml, write_tree
 from teach.errors import FormatError

@@ -29,7 +29,7 @@ def new_uid() -> int:
 
 
 def _uid() -> int:
-    return field(default_factory=new_uid, compare=False, kw_only=True)  # type: ignore[return-value]
+    return field(default_factory=new_uid, compare=False, kw_only=True)
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,7 +48,7 @@ class Action:
 class Sequence:
     """→: succeeds if all children succeed, memoryless (ReactiveSequence)."""
 
-    children: tuple["Node", ...]
+    children: tuple[Node, ...]
     uid: int = _uid()
 
 
@@ -56,7 +56,7 @@ class Sequence:
 class Fallback:
     """?: succeeds as soon as one child succeeds, memoryless (ReactiveFallback)."""
 
-    children: tuple["Node", ...]
+    children: tuple[Node, ...]
     uid: int = _uid()
 
 
@@ -64,7 +64,7 @@ class Fallback:
 class Parallel:
     """⇉: succeeds when at least ``success_threshold`` of its N children succeed."""
 
-    children: tuple["Node", ...]
+    children: tuple[Node, ...]
     success_threshold: int
     uid: int = _uid()
 
@@ -78,7 +78,7 @@ class Parallel:
 class Inverter:
     """◇: swaps SUCCESS and FAILURE of its single child."""
 
-    child: "Node"
+    child: Node
     uid: int = _uid()
 
 
@@ -154,7 +154,7 @@ def transform(node: Node, fn: Callable[[Node], Node | None]) -> Node | None:
         new_kids = tuple(k for k in (transform(kid, fn) for kid in kids) if k is not None)
         if not new_kids:
             return None
-        if len(new_kids) != len(kids) or any(a is not b for a, b in zip(new_kids, kids)):
+        if len(new_kids) != len(kids) or any(a is not b for a, b in zip(new_kids, kids, strict=True)):
             if isinstance(node, Parallel) and node.success_threshold > len(new_kids):
                 node = replace(node, success_threshold=len(new_kids))
             node = with_children(node, new_kids)

@@ -8,7 +8,8 @@ then finished is halted at once, so it counts as not run).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence as Seq
+from collections.abc import Callable, Mapping
+from collections.abc import Sequence as Seq
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
@@ -88,7 +89,7 @@ def _parallel_status(results: Seq[Status], threshold: int) -> Status:
 
 def tick_state(root: Node, names: Seq[str], state: Seq[bool]) -> TickResult:
     """Traced tick over a symbolic state given as truth values in ``names`` order."""
-    return tick(root, dict(zip(names, state)))
+    return tick(root, dict(zip(names, state, strict=True)))
 
 
 # --- compiled tick -----------------------------------------------------------------------------
@@ -181,7 +182,7 @@ def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
             emit(node.child, pad, nesting, out)
             out.append(f"{pad}r = not r")
         elif isinstance(node, (Sequence, Fallback)) and nesting >= _MAX_NESTING:
-            name = function(node)
+            name = subroutine(node)
             out.append(f"{pad}r = {name}(s)")
             out.append(f"{pad}if r.__class__ is tuple: return r")
         elif isinstance(node, (Sequence, Fallback)):
@@ -203,7 +204,7 @@ def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
             out.append(f"{pad}{ok} = {no} = 0")
             out.append(f"{pad}{running} = None")
             for kid in node.children:
-                out.append(f"{pad}x = {function(kid)}(s)")
+                out.append(f"{pad}x = {subroutine(kid)}(s)")
                 out.append(f"{pad}if x.__class__ is tuple: {running} = {running} or x")
                 out.append(f"{pad}elif x: {ok} += 1")
                 out.append(f"{pad}else: {no} += 1")
@@ -214,7 +215,7 @@ def _generate(root: Node, index: Mapping[str, int]) -> tuple[str, dict]:
         else:  # pragma: no cover
             raise TypeError(f"not a node: {node!r}")
 
-    def function(node: Node) -> str:
+    def subroutine(node: Node) -> str:
         name = fresh("_sub")
         body: list[str] = [f"def {name}(s):"]
         emit(node, "    ", 0, body)

@@ -35,15 +35,14 @@ def run(args: argparse.Namespace) -> int:
     import tempfile
 
     from teach.demos import read_demo_set
-    from teach.dialogue.drive import answer_with_oracle
-    from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
-    from teach.dialogue.session import SessionConfig, SessionManager
-    from teach.dialogue.worlds import OfflineWorld
+    from teach.dialogue.oracle import answer_open_questions, oracle_from_model, oracle_from_tree
     from teach.domain import load_domain
-    from teach.observe import Observer
-    from teach.replay import replay
-
     from teach.errors import TeachError
+    from teach.observe.hook import Observer
+    from teach.replay import replay
+    from teach.session.machine import SessionManager
+    from teach.session.settings import Settings, WorldKind
+    from teach.world.offline import OfflineWorld
 
     if args.questions < 0:
         raise TeachError("--questions must be 0 or more")
@@ -61,14 +60,15 @@ def run(args: argparse.Namespace) -> int:
             asked[-1].update(answer=answer, change=change)
 
     with tempfile.TemporaryDirectory(prefix="teach-bench-") as scratch:
-        config = SessionConfig("bench", domain, args.lang, args.questions, base=Path(scratch), world="offline")
-        manager = SessionManager(config, OfflineWorld(domain), Questions())
+        settings = Settings("bench", lang=args.lang, questions=args.questions, world=WorldKind.OFFLINE,
+                            base=Path(scratch), record=False)
+        manager = SessionManager(settings, domain, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)
         while manager.budget.left > 0:
-            manager.cmd_ask("")
+            manager.handle("ask")
             if manager.pending is None:
                 break
-            answer_with_oracle(manager, oracle, None)
+            answer_open_questions(manager, oracle)
         tree = manager.pruned
     if tree is None:
         raise TeachError("the training demonstrations show no action, so there is nothing to learn", args.train)

@@ -49,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.bt.xml import write_tree
     from teach.domain import Literal
     from teach.errors import LearnError
-    from teach.learn.pabt import write_generations
+    from teach.generations import write_generations
     from teach.replay import replay
 
     domain, demos = _inputs(args)
@@ -101,9 +101,9 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     """Generations (last = the learned tree) and the ramifications pruning may use."""
     from teach.errors import LearnError
     from teach.learn.model import detect_model, learn_detect
+    from teach.learn.order import action_order
     from teach.learn.pabt import expand
     from teach.learn.specialize import Specializer
-    from teach.learn.order import action_order
 
     if approach == "pabt":
         return expand(domain, goal), {a.name: a.ram for a in domain.actions if a.ram}

@@ -12,7 +12,6 @@ printed and written atomically as the next demo-NNN.csv in demos/<set>/.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
@@ -39,12 +38,13 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
 
 def run(args: argparse.Namespace) -> int:
     from teach.demos import format_demonstration
+    from teach.display import has_display
     from teach.errors import TeachError
     from teach.sim.perturb import PERTURBATIONS
     from teach.sim.recorder import Recorder, resolve_action, save_demonstration
     from teach.sim.world import World
 
-    if args.viewer and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+    if args.viewer and not has_display():
         raise TeachError("--viewer needs a display (DISPLAY is not set); leave it out to record headless")
     with World(seed=args.seed) as world:
         for step in args.steps:  # check the whole script before moving anything

@@ -39,24 +39,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
-    from teach.dialogue.drive import run_script
     from teach.dialogue.model_repair import ModelOracle
-    from teach.domain import load_domain
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
     from teach.dialogue.script import read_script
-    from teach.dialogue.setup import SessionOptions, open_session
+    from teach.domain import load_domain
+    from teach.session.settings import Settings, WorldKind
+    from teach.session.setup import open_session
+    from teach.terminal.scripted import run_script
 
     script = read_script(args.dialogue)
-    settings = script.settings
-    domain = args.domain or (Path(str(settings["domain"])) if "domain" in settings else None)
-    options = SessionOptions(
+    chosen = script.settings
+    domain = args.domain or (Path(str(chosen["domain"])) if "domain" in chosen else None)
+    settings = Settings(
         session=args.session or args.dialogue.stem, domain=domain,
-        lang=args.lang or str(settings.get("lang", "en")),
-        questions=args.questions if args.questions is not None else int(settings.get("questions", 5)),  # type: ignore[arg-type]
-        seed=args.seed if args.seed is not None else int(settings.get("seed", 0)),  # type: ignore[arg-type]
-        world=args.world or str(settings.get("world", "mujoco")),
-        base=args.base, record=not args.no_record, fresh=True)
-    manager = open_session(options)
+        lang=args.lang or str(chosen.get("lang", "en")),
+        questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
+        seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
+        world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
+        base=args.base, record=not args.no_record)
+    manager = open_session(settings, fresh=True)
     oracle, model_oracle = None, None
     if args.oracle:
         oracle = oracle_from_tree(args.oracle, manager.domain)

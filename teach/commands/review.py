@@ -26,7 +26,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
-    from teach.log import open_viewer, read_recording
+    from teach.observe.reader import read_recording
+    from teach.observe.viewer import open_viewer
     from teach.review import summary
 
     contents = read_recording(args.recording)

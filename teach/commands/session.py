@@ -39,15 +39,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from teach.dialogue.setup import SessionOptions, open_session
-    from teach.dialogue.terminal import Terminal
+    from teach.session.settings import Settings
+    from teach.session.setup import open_session
+    from teach.terminal.app import Terminal
 
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
-    options = SessionOptions(session=name, domain=args.domain, lang=args.lang, questions=args.questions,
-                             seed=args.seed, world=args.world, base=args.base, record=not args.no_record,
-                             spawn=args.spawn, resume=bool(args.resume), viewer=args.viewer,
-                             pace=args.pace)
-    manager = open_session(options)
+    settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
+                        world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
+                        viewer=args.viewer, pace=args.pace)
+    manager = open_session(settings, resume=bool(args.resume))
     history = args.base / "recordings" / ".teach_history"
     history.parent.mkdir(parents=True, exist_ok=True)
     try:

@@ -60,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def render(evaluation: "Evaluation") -> list[object]:
+def render(evaluation: Evaluation) -> list[object]:
     """Rich renderables for every table, in the thesis's order."""
     from rich.table import Table
 
@@ -101,6 +101,7 @@ def render(evaluation: "Evaluation") -> list[object]:
             nodes.add_row(n.approach.replace("approach", "Approach "), source, "[red]—[/]", "[red]—[/]",
                           f"no tree: {n.error}")
             continue
+        assert n.before is not None and n.after is not None  # a learner that did not fail counted both
         nodes.add_row(n.approach.replace("approach", "Approach "), source,
                       _vs(n.before, n.thesis_before), _vs(n.after, n.thesis_after), same)
     out.append(nodes)

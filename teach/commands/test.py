@@ -62,7 +62,7 @@ def _as_json(report, domain) -> dict:  # type: ignore[no-untyped-def]
             {"name": r.name, "reproduced": r.reproduced,
              **({"line": r.divergence.line, "expected": r.divergence.expected,
                  "status": r.divergence.status.name, "executed": r.divergence.executed,
-                 "state": dict(zip(domain.condition_names, map(int, r.divergence.state)))}
+                 "state": dict(zip(domain.condition_names, map(int, r.divergence.state), strict=True))}
                 if r.divergence else {})}
             for r in report.results
         ],

@@ -1,1 +1,2 @@
-"""The teaching dialogue: phrases, questions, the session manager and its two front-ends."""
+"""The teaching dialogue's language side: phrases, situation questions, model-repair
+questions, oracle teachers and dialogue scripts."""

@@ -18,8 +18,7 @@ def complete(text: str, commands: Sequence[str], phrases: Sequence[str]) -> list
     if "," not in text:
         candidates += [c for c in commands if c.startswith(lowered) and lowered]
     candidates += [p for p in phrases if p.lower().startswith(lowered)]
-    seen: set[str] = set()
-    return [c for c in candidates if not (c in seen or seen.add(c))]
+    return list(dict.fromkeys(candidates))  # each once, in order
 
 
 class TeachCompleter(Completer):

@@ -29,16 +29,36 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from enum import StrEnum
 
-from teach.bt.nodes import Action, Node, Sequence as SeqNode, transform
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import ActionDef, Domain, Literal
-from teach.errors import LearnError
+from teach.learn.model_gaps import (
+    PlanOutcome,
+    achievers,
+    depends_on,
+    needed,
+    needs_actions,
+    plan_model,
+    reachable,
+    requires,
+)
+from teach.session import messages as m
+from teach.session.messages import Text
 
-KINDS = ("timing", "effects", "achiever", "order", "never")
+
+class QuestionKind(StrEnum):
+    TIMING = "timing"
+    EFFECTS = "effects"
+    ACHIEVER = "achiever"
+    ORDER = "order"
+    NEVER = "never"
+
+
+KINDS = tuple(QuestionKind)
 
 # Answer words, compared after ``normalize`` (lower case, no accents, no filler words).
 _WORDS: dict[str, frozenset[str]] = {
@@ -58,21 +78,16 @@ _WORDS: dict[str, frozenset[str]] = {
     "either": frozenset({"either", "any", "does not matter", "doesn t matter", "either order", "egal",
                          "beliebig", "ist egal"}),
 }
-_SHOWN: dict[str, tuple[str, str]] = {  # how an answer word is offered: (en, de)
-    "before": ("before", "vorher"), "after": ("after", "nachher"), "both": ("both", "beides"),
-    "neither": ("neither", "keins"), "nothing": ("nothing", "nichts"), "yes": ("yes", "ja"),
-    "no": ("no", "nein"), "either": ("either", "egal"),
+_SHOWN: dict[str, Text] = {  # how an answer word is offered
+    "before": m.WORD_BEFORE, "after": m.WORD_AFTER, "both": m.WORD_BOTH, "neither": m.WORD_NEITHER,
+    "nothing": m.WORD_NOTHING, "yes": m.WORD_YES, "no": m.WORD_NO, "either": m.WORD_EITHER,
 }
 _LIST_SPLIT = re.compile(r"\s*(?:[,;]|\band\b|\bund\b)\s*", re.IGNORECASE)
 
 
-def _t(lang: str, en: str, de: str) -> str:
-    return de if lang == "de" else en
-
-
 def _q(text: str, lang: str) -> str:
     """A label in the language's quotation marks."""
-    return f"„{text}“" if lang == "de" else f"“{text}”"
+    return m.QUOTED(lang, text=text)
 
 
 def _literal_label(domain: Domain, literal: Literal, lang: str) -> str:
@@ -88,50 +103,41 @@ class ModelQuestion:
     action asked about (the first of the pair for ``order``), ``other`` the second action of
     an ``order`` question, ``literal`` the condition asked about."""
 
-    kind: str
+    kind: QuestionKind
     action: str = ""
     literal: Literal | None = None
     other: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", QuestionKind(self.kind))  # ValueError for an unknown kind
+
+    def to_json(self) -> dict[str, str]:
+        """As the session journal stores it."""
+        return {"kind": self.kind, "action": self.action, "other": self.other,
+                "literal": str(self.literal) if self.literal is not None else ""}
+
+    @classmethod
+    def from_json(cls, data: dict[str, str]) -> ModelQuestion:
+        literal = data.get("literal")
+        return cls(QuestionKind(data["kind"]), data.get("action", ""), Literal.parse(literal) if literal else None,
+                   data.get("other", ""))
 
     def text(self, domain: Domain, lang: str = "en") -> str:
         """The question in plain words from the domain's labels, with the expected answers."""
         act = _q(domain.action(self.action).label(lang), lang) if self.action else ""
         cond = _q(_literal_label(domain, self.literal, lang), lang) if self.literal is not None else ""
-        if self.kind == "timing":
-            return _t(lang, f"When you {act}: must {cond} already hold before you start, or does it only "
-                            f"hold afterwards? (before / after / both / neither)",
-                      f"Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
-                      f"(vorher / nachher / beides / keins)")
-        if self.kind == "effects":
-            return _t(lang, f"What is different after you {act}? (what is true then, or “nothing”)",
-                      f"Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
-        if self.kind == "achiever":
-            return _t(lang, f"What do you do so that {cond}? (an action, or “nothing”)",
-                      f"Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
-        if self.kind == "order":
-            other = _q(domain.action(self.other).label(lang), lang)
-            return _t(lang, f"What do you do first: {act} or {other}? (one of them, or “either”)",
-                      f"Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
-        if self.kind == "never":
+        if self.kind is QuestionKind.TIMING:
+            return m.ASK_TIMING(lang, act=act, cond=cond)
+        if self.kind is QuestionKind.EFFECTS:
+            return m.ASK_EFFECTS(lang, act=act)
+        if self.kind is QuestionKind.ACHIEVER:
+            return m.ASK_ACHIEVER(lang, cond=cond)
+        if self.kind is QuestionKind.ORDER:
+            return m.ASK_ORDER(lang, act=act, other=_q(domain.action(self.other).label(lang), lang))
+        if self.kind is QuestionKind.NEVER:
             assert self.literal is not None
-            opposite = _q(_literal_label(domain, self.literal.negated(), lang), lang)
-            return _t(lang, f"Can you {act} while {opposite}? (yes / no)",
-                      f"Kannst du {act}, wenn {opposite}? (ja / nein)")
+            return m.ASK_NEVER(lang, act=act, opposite=_q(_literal_label(domain, self.literal.negated(), lang), lang))
         raise ValueError(f"unknown question kind {self.kind!r}")
-
-
-@dataclass(frozen=True)
-class PlanOutcome:
-    """PA-BT on a model: ``usable`` when it builds a tree and the tree, run in that model's
-    symbolic world from the state where nothing holds, reaches the goal. ``true_usable`` says
-    the same for the true model when one is known (None otherwise), with actions that fail
-    whenever the true model's preconditions do not hold."""
-
-    usable: bool
-    tree: Node | None
-    reason: str
-    true_usable: bool | None = None
-    true_reason: str = ""
 
 
 @dataclass(frozen=True)
@@ -156,123 +162,46 @@ class RepairReport:
         return len(self.steps)
 
 
-# --- the model's structure ---------------------------------------------------------------------
-
-
-def _holds_at_start(literal: Literal) -> bool:
-    """PA-BT starts from the state where nothing holds: exactly the negative literals are true."""
-    return not literal.value
-
-
-def _achievers(domain: Domain, literal: Literal) -> list[ActionDef]:
-    return [a for a in domain.actions if literal in a.ram]
-
-
-def _reachable(domain: Domain) -> set[Literal]:
-    """Literals some sequence of actions could make true, ignoring that effects may undo each
-    other (the usual relaxed reachability)."""
-    reached = {Literal(name, False) for name in domain.condition_names}
-    changed = True
-    while changed:
-        changed = False
-        for action in domain.actions:
-            if all(p in reached for p in action.pre) and not set(action.ram) <= reached:
-                reached |= set(action.ram)
-                changed = True
-    return reached
-
-
-def _needed(domain: Domain, goal: Sequence[Literal]) -> list[tuple[Literal, str]]:
-    """The literals the goal needs, nearest the goal first, each with the action that needs it
-    ("" for the goal itself); literals that hold at the start need nothing further."""
-    order: list[tuple[Literal, str]] = []
-    seen: set[Literal] = set()
-    queue = [(g, "") for g in goal]
-    while queue:
-        literal, consumer = queue.pop(0)
-        if literal in seen or _holds_at_start(literal):
-            continue
-        seen.add(literal)
-        order.append((literal, consumer))
-        for action in _achievers(domain, literal):
-            queue += [(p, action.name) for p in action.pre]
-    return order
-
-
-def _requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> set[Literal]:
-    """The open literals ``action`` needs, directly or through the achievers of what it needs."""
-    found: set[Literal] = set()
-    stack = [p for p in action.pre if p in open_literals]
-    while stack:
-        literal = stack.pop()
-        if literal in found:
-            continue
-        found.add(literal)
-        for achiever in _achievers(domain, literal):
-            stack += [p for p in achiever.pre if p in open_literals]
-    return found
-
-
-def _needs_actions(domain: Domain, literal: Literal, open_literals: set[Literal]) -> set[str]:
-    """Every action that may have to run before ``literal`` can hold."""
-    names: set[str] = set()
-    stack, seen = [literal], set()
-    while stack:
-        current = stack.pop()
-        if current in seen:
-            continue
-        seen.add(current)
-        for achiever in _achievers(domain, current):
-            names.add(achiever.name)
-            stack += [p for p in achiever.pre if p in open_literals]
-    return names
-
-
-def _depends_on(domain: Domain, first: ActionDef, second: str, open_literals: set[Literal]) -> bool:
-    """Whether ``first`` needs something that only ``second`` (or what follows it) makes true."""
-    return any(second in _needs_actions(domain, p, open_literals) for p in first.pre if p in open_literals)
-
-
 def _candidates(domain: Domain, goal: Sequence[Literal], refused: set[Literal]) -> list[ModelQuestion]:
     """Every question that could help, most useful first (see the module docstring)."""
     result: list[ModelQuestion] = []
     for action in domain.actions:  # PA-BT refuses a model with any of these, so they come first
         both = [lit for lit in action.pre if lit in action.ram]
         if len(both) == 1:
-            result.append(ModelQuestion("timing", action.name, both[0]))
+            result.append(ModelQuestion(QuestionKind.TIMING, action.name, both[0]))
         elif both:
-            result.append(ModelQuestion("effects", action.name))
-    reached = _reachable(domain)
+            result.append(ModelQuestion(QuestionKind.EFFECTS, action.name))
+    reached = reachable(domain)
     unreached = {Literal(n, v) for n in domain.condition_names for v in (True, False)} - reached
     idle = [a for a in domain.actions if not a.ram]
-    for literal, consumer in _needed(domain, goal):
+    for literal, consumer in needed(domain, goal):
         if literal in reached:
             continue
-        achievers = _achievers(domain, literal)
-        if not achievers:
+        makers = achievers(domain, literal)
+        if not makers:
             if literal in refused:
                 if consumer:
-                    result.append(ModelQuestion("never", consumer, literal))
+                    result.append(ModelQuestion(QuestionKind.NEVER, consumer, literal))
                 continue
             if len(idle) == 1:
-                result.append(ModelQuestion("effects", idle[0].name))
-            result.append(ModelQuestion("achiever", literal=literal))
+                result.append(ModelQuestion(QuestionKind.EFFECTS, idle[0].name))
+            result.append(ModelQuestion(QuestionKind.ACHIEVER, literal=literal))
             continue
-        circular = [a for a in achievers if literal in _requires(domain, a, unreached)]
-        if len(circular) < len(achievers):
+        circular = [a for a in makers if literal in requires(domain, a, unreached)]
+        if len(circular) < len(makers):
             continue  # some achiever is blocked by another gap, which is asked about on its own
         if idle and literal not in refused:
-            result.append(ModelQuestion("achiever", literal=literal))
+            result.append(ModelQuestion(QuestionKind.ACHIEVER, literal=literal))
         for achiever in circular:
             for pre in achiever.pre:
                 if pre not in unreached:
                     continue
-                for other in _achievers(domain, pre):
-                    if other.name != achiever.name and literal in _requires(domain, other, unreached):
+                for other in achievers(domain, pre):
+                    if other.name != achiever.name and literal in requires(domain, other, unreached):
                         pair = sorted((achiever, other), key=lambda a: a.id)
-                        result.append(ModelQuestion("order", pair[0].name, other=pair[1].name))
+                        result.append(ModelQuestion(QuestionKind.ORDER, pair[0].name, other=pair[1].name))
     if not result:  # PA-BT fails for a reason not seen above (effects undoing each other): ask what each does
-        result = [ModelQuestion("effects", a.name) for a in domain.actions]
+        result = [ModelQuestion(QuestionKind.EFFECTS, a.name) for a in domain.actions]
     return result
 
 
@@ -294,7 +223,7 @@ def _unknown(answer: str, offered: Sequence[str], lang: str) -> UnknownPhrase:
 
 
 def _offered(kinds: Sequence[str], lang: str) -> list[str]:
-    return [_SHOWN[k][1 if lang == "de" else 0] for k in kinds]
+    return [_SHOWN[k](lang) for k in kinds]
 
 
 class _Conditions:
@@ -402,9 +331,7 @@ class ModelRepair:
         """Change the model as the answer says and return a sentence saying what changed.
         Raises ``UnknownPhrase`` (one line, with a suggestion) for an answer it cannot read,
         leaving the model as it was."""
-        if question.kind not in KINDS:
-            raise ValueError(f"unknown question kind {question.kind!r}")
-        change = getattr(self, f"_apply_{question.kind}")(question, answer)
+        change = _APPLIERS[question.kind](self, question, answer)
         self._outcome = None
         if question not in self.asked:
             self.asked.append(question)
@@ -421,18 +348,14 @@ class ModelRepair:
         act, cond = self._act(action.name), self._cond(literal)
         if word == "after":
             self._set(action, pre=_without(action.pre, literal))
-            return _t(self.lang, f"So {act} makes {cond} true; it need not hold before.",
-                      f"Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
+            return m.SO_MAKES_TRUE_NOT_BEFORE(self.lang, act=act, cond=cond)
         if word == "neither":
             self._set(action, pre=_without(action.pre, literal), ram=_without(action.ram, literal))
-            return _t(self.lang, f"So {cond} has nothing to do with {act}.",
-                      f"Also hat {cond} nichts mit {act} zu tun.")
+            return m.SO_UNRELATED(self.lang, act=act, cond=cond)
         self._set(action, ram=_without(action.ram, literal))
         if word == "both":
-            return _t(self.lang, f"So {cond} must hold before {act} and stays true; {act} does not make it true.",
-                      f"Also muss {cond} vor {act} gelten und bleibt so; {act} macht es nicht wahr.")
-        return _t(self.lang, f"So {cond} must hold before {act}; {act} does not make it true.",
-                  f"Also muss {cond} vor {act} gelten; {act} macht es nicht wahr.")
+            return m.SO_BEFORE_AND_STAYS(self.lang, act=act, cond=cond)
+        return m.SO_BEFORE(self.lang, act=act, cond=cond)
 
     def _apply_effects(self, question: ModelQuestion, answer: str) -> str:
         action = self.model.action(question.action)
@@ -446,12 +369,10 @@ class ModelRepair:
         self._set(action, pre=tuple(p for p in action.pre if p not in effects), ram=effects)
         act = self._act(action.name)
         if not effects:
-            return _t(self.lang, f"So {act} changes nothing.", f"Also ändert {act} nichts.")
-        made = self._list(effects)
-        said = _t(self.lang, f"So after {act}: {made}.", f"Also gilt nach {act}: {made}.")
+            return m.SO_CHANGES_NOTHING(self.lang, act=act)
+        said = m.SO_AFTER(self.lang, act=act, made=self._list(effects))
         if dropped:
-            said += _t(self.lang, f" It need not hold before: {self._list(dropped)}.",
-                       f" Vorher muss nicht gelten: {self._list(dropped)}.")
+            said += m.NEED_NOT_HOLD_BEFORE(self.lang, conds=self._list(dropped))
         return said
 
     def _apply_achiever(self, question: ModelQuestion, answer: str) -> str:
@@ -460,15 +381,14 @@ class ModelRepair:
         cond = self._cond(literal)
         if _word(answer, ("nothing",)):
             self._refused.add(literal)
-            return _t(self.lang, f"So nothing makes {cond} true.", f"Also macht nichts {cond} wahr.")
+            return m.SO_NOTHING_MAKES(self.lang, cond=cond)
         action = self.model.action(self._one_action(answer))
         ram = tuple(r for r in action.ram if r != literal.negated())
         self._set(action, pre=_without(action.pre, literal), ram=ram if literal in ram else ram + (literal,))
         self._refused.discard(literal)
-        said = _t(self.lang, f"So {self._act(action.name)} makes {cond} true.",
-                  f"Also macht {self._act(action.name)} {cond} wahr.")
+        said = m.SO_MAKES_TRUE(self.lang, act=self._act(action.name), cond=cond)
         if literal in action.pre:
-            said += _t(self.lang, " It need not hold before.", " Es muss vorher nicht gelten.")
+            said += m.IT_NEED_NOT_HOLD_BEFORE(self.lang)
         return said
 
     def _apply_order(self, question: ModelQuestion, answer: str) -> str:
@@ -481,20 +401,19 @@ class ModelRepair:
                 raise UnknownPhrase(answer.strip(), [self._act_plain(n) for n in pair], self.lang)
             firsts = [first]
         unreached = {Literal(n, v) for n in self.model.condition_names for v in (True, False)} - \
-            _reachable(self.model)
+            reachable(self.model)
         dropped: list[tuple[str, Literal]] = []
         for first in firsts:
             second = pair[1] if first == pair[0] else pair[0]
             action = self.model.action(first)
-            gone = [p for p in action.pre if p in unreached and second in _needs_actions(self.model, p, unreached)]
+            gone = [p for p in action.pre if p in unreached and second in needs_actions(self.model, p, unreached)]
             if gone:
                 self._set(action, pre=tuple(p for p in action.pre if p not in gone))
                 dropped += [(first, p) for p in gone]
         if not dropped:
-            return _t(self.lang, "That does not change what I know.", "Das ändert nichts an dem, was ich weiß.")
-        parts = [_t(self.lang, f"{self._act(a)} does not need {self._cond(p)}",
-                    f"{self._act(a)} braucht nicht {self._cond(p)}") for a, p in dropped]
-        return _t(self.lang, "So ", "Also: ") + "; ".join(parts) + "."
+            return m.CHANGES_NOTHING_KNOWN(self.lang)
+        parts = [m.DOES_NOT_NEED(self.lang, act=self._act(a), cond=self._cond(p)) for a, p in dropped]
+        return m.SO_LIST(self.lang, parts="; ".join(parts))
 
     def _apply_never(self, question: ModelQuestion, answer: str) -> str:
         word = _word(answer, ("yes", "no"))
@@ -504,10 +423,9 @@ class ModelRepair:
         assert literal is not None
         act, cond = self._act(action.name), self._cond(literal)
         if word == "no":
-            return _t(self.lang, f"So {act} really needs {cond}, and nothing makes it true: the task cannot be done.",
-                      f"Also braucht {act} wirklich {cond}, und nichts macht es wahr: die Aufgabe geht so nicht.")
+            return m.SO_CANNOT_BE_DONE(self.lang, act=act, cond=cond)
         self._set(action, pre=_without(action.pre, literal))
-        return _t(self.lang, f"So {act} does not need {cond}.", f"Also braucht {act} nicht {cond}.")
+        return m.SO_DOES_NOT_NEED(self.lang, act=act, cond=cond)
 
     # --- helpers
 
@@ -533,46 +451,18 @@ class ModelRepair:
         return _q(_literal_label(self.model, literal, self.lang), self.lang)
 
     def _list(self, literals: Iterable[Literal]) -> str:
-        return _t(self.lang, " and ", " und ").join(self._cond(lit) for lit in literals)
+        return m.AND(self.lang).join(self._cond(lit) for lit in literals)
+
+
+_APPLIERS: dict[QuestionKind, Callable[[ModelRepair, ModelQuestion, str], str]] = {
+    QuestionKind.TIMING: ModelRepair._apply_timing, QuestionKind.EFFECTS: ModelRepair._apply_effects,
+    QuestionKind.ACHIEVER: ModelRepair._apply_achiever, QuestionKind.ORDER: ModelRepair._apply_order,
+    QuestionKind.NEVER: ModelRepair._apply_never,
+}
 
 
 def _without(literals: tuple[Literal, ...], literal: Literal) -> tuple[Literal, ...]:
     return tuple(x for x in literals if x != literal)
-
-
-def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model: Domain | None = None) -> PlanOutcome:
-    """PA-BT on ``model``, the tree run in ``model``'s symbolic world from the state where nothing
-    holds, and, when ``true_model`` is given, in the true model's world, where an action whose
-    true preconditions do not hold fails (as a skill that cannot start does)."""
-    from teach.evaluate import run_to_goal
-    from teach.learn.pabt import expand
-
-    goal = tuple(model.goal if goal is None else goal)
-    try:
-        tree = expand(model, goal)[-1]
-    except LearnError as error:
-        return PlanOutcome(False, None, error.message, None if true_model is None else False,
-                           "" if true_model is None else "no tree")
-    start = tuple(False for _ in model.conditions)
-    usable, reason = run_to_goal(model, tree, start)
-    if true_model is None:
-        return PlanOutcome(usable, tree, reason)
-    true_usable, true_reason = run_to_goal(true_model, guarded(tree, true_model), start)
-    return PlanOutcome(usable, tree, reason, true_usable, true_reason)
-
-
-def guarded(tree: Node, model: Domain) -> Node:
-    """The tree with every action preceded by its preconditions in ``model``."""
-    from teach.learn.pabt import literal_node
-
-    def guard(node: Node) -> Node:
-        if isinstance(node, Action) and model.has_action(node.name) and model.action(node.name).pre:
-            return SeqNode(tuple(literal_node(p) for p in model.action(node.name).pre) + (node,))
-        return node
-
-    result = transform(tree, guard)
-    assert result is not None
-    return result
 
 
 # --- the oracle teacher and the loop ------------------------------------------------------------
@@ -587,31 +477,31 @@ class ModelOracle:
 
     def answer(self, question: ModelQuestion, lang: str = "en") -> str:
         true = self.true_domain
-        if question.kind == "timing":
+        if question.kind is QuestionKind.TIMING:
             action, literal = true.action(question.action), question.literal
             before, after = literal in action.pre, literal in action.ram
             word = "both" if before and after else "before" if before else "after" if after else "neither"
-            return _SHOWN[word][1 if lang == "de" else 0]
-        if question.kind == "effects":
+            return _SHOWN[word](lang)
+        if question.kind is QuestionKind.EFFECTS:
             ram = true.action(question.action).ram
             if not ram:
-                return _SHOWN["nothing"][1 if lang == "de" else 0]
-            return _t(lang, " and ", " und ").join(_literal_label(true, lit, lang) for lit in ram)
-        if question.kind == "achiever":
+                return m.WORD_NOTHING(lang)
+            return m.AND(lang).join(_literal_label(true, lit, lang) for lit in ram)
+        if question.kind is QuestionKind.ACHIEVER:
             assert question.literal is not None
-            achievers = _achievers(true, question.literal)
-            return achievers[0].label(lang) if achievers else _SHOWN["nothing"][1 if lang == "de" else 0]
-        if question.kind == "order":
+            makers = achievers(true, question.literal)
+            return makers[0].label(lang) if makers else m.WORD_NOTHING(lang)
+        if question.kind is QuestionKind.ORDER:
             everything = {Literal(n, True) for n in true.condition_names}  # what the empty start lacks
             first, second = true.action(question.action), true.action(question.other)
-            first_waits = _depends_on(true, first, second.name, everything)
-            second_waits = _depends_on(true, second, first.name, everything)
+            first_waits = depends_on(true, first, second.name, everything)
+            second_waits = depends_on(true, second, first.name, everything)
             if first_waits == second_waits:
-                return _SHOWN["either"][1 if lang == "de" else 0]
+                return m.WORD_EITHER(lang)
             return (second if first_waits else first).label(lang)
-        if question.kind == "never":
+        if question.kind is QuestionKind.NEVER:
             needed = question.literal in true.action(question.action).pre
-            return _SHOWN["no" if needed else "yes"][1 if lang == "de" else 0]
+            return (m.WORD_NO if needed else m.WORD_YES)(lang)
         raise ValueError(f"unknown question kind {question.kind!r}")
 
 

@@ -3,12 +3,18 @@ teacher who knows what they want would, from a reference tree or a true action m
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, Status, action_names, condition_names
 from teach.bt.tick import compile_tree
 from teach.domain import Domain, State, load_domain
 from teach.errors import DomainError
+
+if TYPE_CHECKING:
+    from teach.dialogue.model_repair import ModelOracle
+    from teach.session.machine import SessionManager
 
 SKIP = "skip"
 
@@ -46,3 +52,25 @@ def oracle_from_model(path: str | Path, domain: Domain) -> Oracle:
     if model.condition_names != domain.condition_names:
         raise DomainError("the model's conditions differ from the session's domain", path)
     return Oracle(expand(model)[-1], domain, str(path))
+
+
+def answer_open_questions(manager: SessionManager, oracle: Oracle | None, model_oracle: ModelOracle | None = None,
+                          said: Callable[[str], None] | None = None) -> None:
+    """Answer the session's open questions through ``handle`` until none is open (each answer
+    may raise another); ``said`` hears each answer before the session does."""
+    while True:
+        if manager.pending_model is not None and model_oracle is not None:
+            line = model_oracle.answer(manager.pending_model, manager.lang)
+        elif manager.pending is not None and oracle is not None:
+            answer = oracle.answer(manager.pending.state)
+            if answer == SKIP:
+                line = "skip"
+            elif answer is None:
+                line = "done"
+            else:
+                line = manager.domain.action(answer).label(manager.lang)
+        else:
+            return
+        if said is not None:
+            said(line)
+        manager.handle(line)

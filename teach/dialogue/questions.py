@@ -31,18 +31,20 @@ from __future__ import annotations
 import copy
 import itertools
 import random
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from teach.bt.nodes import Status, transform
+from teach.bt.nodes import Node, Status, transform
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
+from teach.session import messages as m
+from teach.symbolic import assign
 
 if TYPE_CHECKING:
-    from teach.learn.specialize import Specializer
+    from teach.session.learning import Learner
 
 EXHAUSTIVE_UP_TO = 10
 STATE_SAMPLE = 512
@@ -91,17 +93,14 @@ class Question:
     expected: tuple[tuple[str, float], ...] = ()  # (answer or "done", committee share)
 
     def text(self, domain: Domain, lang: str = "en") -> str:
-        situation = describe_situation(domain, self.state, lang)
-        if lang == "de":
-            return f"Angenommen, {situation}. Was soll ich dann tun?"
-        return f"If {situation}, what should I do?"
+        return m.SITUATION_QUESTION(lang, situation=describe_situation(domain, self.state, lang))
 
 
 def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     """A state in plain words: what holds, then ``but`` what does not."""
-    true = [c.label(lang) for c, v in zip(domain.conditions, state) if v]
-    false = [c.label(lang, False) for c, v in zip(domain.conditions, state) if not v]
-    joiner, but = (" und ", " aber ") if lang == "de" else (" and ", " but ")
+    true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
+    false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
+    joiner, but = m.AND(lang), m.BUT(lang)
 
     def join(items: list[str]) -> str:
         return items[0] if len(items) == 1 else ", ".join(items[:-1]) + joiner + items[-1]
@@ -126,22 +125,20 @@ class Effects:
     finishing: set[Lit] = field(default_factory=set)
 
     def apply(self, state: State, action: str) -> State:
-        after = list(state)
-        for index, value in self.made.get(action, ()):
-            after[index] = value
-        return tuple(after)
+        return assign(state, self.made.get(action, ()))
 
 
 def effects_from(domain: Domain, demos: Iterable[Demonstration]) -> Effects:
     effects = Effects()
     for demo in demos:
         previous: str | None = None
-        for step, following in zip(demo.steps, demo.steps[1:]):
+        for step, following in zip(demo.steps, demo.steps[1:], strict=False):
             if step.action <= 0:
                 previous = None
                 continue
             name = domain.action(step.action).name
-            changed = frozenset((i, after) for i, (now, after) in enumerate(zip(step.state, following.state))
+            pairs = zip(step.state, following.state, strict=True)
+            changed = frozenset((i, after) for i, (now, after) in enumerate(pairs)
                                 if now != after)
             effects.made[name] = effects.made[name] & changed if name in effects.made else changed
             if previous is not None:
@@ -187,7 +184,7 @@ def all_states(n: int, seed: int = 0) -> list[State]:
     return sorted({tuple(rng.random() < 0.5 for _ in range(n)) for _ in range(STATE_SAMPLE)})
 
 
-def committee(learner: "Specializer", labels: Mapping[State, Answer], effects: Effects,
+def committee(learner: Learner, labels: Mapping[State, Answer], effects: Effects,
               rng: random.Random) -> list[CompiledTree]:
     """Trees the learner's guards could really stand for, each consistent with every label."""
     domain = learner.domain
@@ -205,13 +202,18 @@ def committee(learner: "Specializer", labels: Mapping[State, Answer], effects: E
         if drop in seen:
             continue
         seen.add(drop)
-        relaxed = transform(tree, lambda node: None if node.uid in drop else node)
+        relaxed = transform(tree, _without(drop))
         if relaxed is None:
             continue
         member = compile_tree(relaxed, names)
         if all(_answer(member, s) == label for s, label in labels.items()):
             members.append(member)
     return members
+
+
+def _without(uids: frozenset[int]) -> Callable[[Node], Node | None]:
+    """A transform step that drops the nodes ``uids``."""
+    return lambda node: None if node.uid in uids else node
 
 
 def visit_weights(trees: Sequence[CompiledTree], starts: Sequence[State], effects: Effects,
@@ -233,7 +235,7 @@ def visit_weights(trees: Sequence[CompiledTree], starts: Sequence[State], effect
     return weights
 
 
-def select_question(learner: "Specializer", demos: Sequence[Demonstration], labels: Mapping[State, Answer],
+def select_question(learner: Learner, demos: Sequence[Demonstration], labels: Mapping[State, Answer],
                     asked: Iterable[State] = (), seed: int = 0) -> Question | None:
     """The situation whose answer is expected to change the robot's behaviour most, or None.
 
@@ -285,8 +287,8 @@ def _answer_shares(members: Sequence[CompiledTree], state: State, unshown: Seque
     votes: dict[Answer, int] = {}
     for member in members:
         vote = _answer(member, state)
-        if vote is not False:
-            votes[vote] = votes.get(vote, 0) + 1  # type: ignore[index]
+        if not isinstance(vote, bool):  # False: the member fails there
+            votes[vote] = votes.get(vote, 0) + 1
     total = sum(votes.values())
     surprise = SURPRISE if unshown else 0.0
     shares: dict[Answer, float] = {answer: surprise / len(unshown) for answer in unshown}
@@ -295,7 +297,7 @@ def _answer_shares(members: Sequence[CompiledTree], state: State, unshown: Seque
     return shares
 
 
-def _change(learner: "Specializer", state: State, answer: Answer, unseen: Sequence[State],
+def _change(learner: Learner, state: State, answer: Answer, unseen: Sequence[State],
             now: Mapping[State, Answer | bool], weights: Mapping[State, int]) -> float:
     """Weighted number of unseen situations whose behaviour would change after this answer."""
     trial = copy.deepcopy(learner)

@@ -17,14 +17,15 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from teach.bt.nodes import Node, Status
-from teach.bt.tick import tick
+from teach.bt.tick import TickResult, tick
 from teach.demos import Demonstration, Step
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import DomainError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, Skill, skill_for
 from teach.sim.world import CONTROL_STEPS, World
+from teach.world.protocol import Outcome
 
 
 @dataclass(frozen=True, slots=True)
@@ -39,7 +40,7 @@ class External:
 class RunTrace:
     """What happened in a run, tick by tick (``states[i]`` is the state ticked at tick i)."""
 
-    outcome: str = "timeout"  # "success" | "failure" | "timeout" | "interrupted"
+    outcome: Outcome = Outcome.TIMEOUT
     states: list[State] = field(default_factory=list)
     actions: list[str | None] = field(default_factory=list)
     statuses: list[Status] = field(default_factory=list)
@@ -63,23 +64,26 @@ class RunTrace:
                 steps.append(Step(state, domain.action(action).id, len(steps) + 1))
         for external in pending:
             steps.append(Step(external.before, EXTERNAL_ACTION, len(steps) + 1))
-        if self.outcome == "success":
+        if self.outcome is Outcome.SUCCESS:
             steps.append(Step(self.states[-1], GOAL_ACTION, len(steps) + 1))
         return Demonstration(name, tuple(steps))
 
 
 def run_tree(world: World, tree: Node, observer: Observer | None = None, max_ticks: int = 600,
              tick_hz: float = 10.0, interrupt: Callable[[], bool] | None = None,
-             perturbations: Mapping[int, str] | None = None) -> RunTrace:
+             perturbations: Mapping[int, str] | None = None, after_tick: Callable[[TickResult], None] | None = None,
+             on_frame: Callable[[], None] | None = None) -> RunTrace:
     """Tick ``tree`` in ``world`` until it finishes, ``max_ticks`` pass, or ``interrupt()`` is true.
 
     ``perturbations`` maps a tick number to a perturbation name applied just before that tick.
+    ``after_tick`` hears each tick's result once the observer has (a caller's run limit);
+    ``on_frame`` runs after each scene frame (see ``FrameClock``).
     """
     for name in (perturbations or {}).values():
         if name not in PERTURBATIONS:
             raise DomainError(f"unknown perturbation {name!r} (known: {', '.join(PERTURBATIONS)})")
     period = 1.0 / tick_hz
-    frames = FrameClock(world, observer)
+    frames = FrameClock(world, observer, on_frame)
     trace = RunTrace()
     running: list[Skill | None] = [None]
     fresh = [False]
@@ -95,7 +99,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
 
     for number in range(max_ticks):
         if interrupt is not None and interrupt():
-            trace.outcome = "interrupted"
+            trace.outcome = Outcome.INTERRUPTED
             break
         if perturbations and number in perturbations:
             if running[0] is not None:
@@ -117,8 +121,10 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
         frames(result.action, force=True)
         if observer is not None:
             observer.on_tick(tree, result)
+        if after_tick is not None:
+            after_tick(result)
         if result.status is not Status.RUNNING:
-            trace.outcome = "success" if result.status is Status.SUCCESS else "failure"
+            trace.outcome = Outcome.SUCCESS if result.status is Status.SUCCESS else Outcome.FAILURE
             break
         skill = running[0]
         while world.sim_time < start + period - 1e-9:  # the rest of the tick period

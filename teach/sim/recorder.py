@@ -18,7 +18,7 @@ from teach.demos import Demonstration, Step, next_demo_path, write_demonstration
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import DomainError, FormatError
 from teach.fsutil import atomic_write_text
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
 from teach.sim.world import DOMAIN_FILE, World
@@ -46,7 +46,6 @@ class Recorder:
         self.steps: list[Step] = list(prefix.steps) if prefix is not None else []
         if self.steps and self.steps[-1].action == GOAL_ACTION:
             self.steps.pop()  # a finished run continued by the teacher: the goal line comes last
-        self.recorded: list[RecordedStep] = []
 
     def step(self, action: str) -> RecordedStep:
         """Run the skill for ``action`` (a name or phrase) and record (state, action, next state)."""
@@ -69,9 +68,7 @@ class Recorder:
 
     def _note(self, before: State, action: int, name: str, status: Status | None) -> RecordedStep:
         self.steps.append(Step(before, action, len(self.steps) + 1))
-        recorded = RecordedStep(before, action, self.world.state(), name, status)
-        self.recorded.append(recorded)
-        return recorded
+        return RecordedStep(before, action, self.world.state(), name, status)
 
     def goal_holds(self) -> bool:
         state = self.world.state()

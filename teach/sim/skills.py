@@ -8,7 +8,8 @@ period, so a perturbation in the middle is answered by the controller, not by a 
 - FindBall: turns a full circle on the spot; if the ball stays unseen it backs up 0.8 m and
   turns again, then visits room waypoints; a ball held in the gripper is found by touch.
 - ApproachBall: drives until the grasp point is within ``ALIGNED`` of the remembered ball.
-- GraspBall: aligns to within 2 cm, lowers the lift, closes the fingers, lifts to carry height.
+- GraspBall: aligns to within 2 cm, lowers the lift and closes the fingers; SUCCESS as soon as
+  the ball is held (ApproachBin raises it to carry height).
 - ApproachBin: raises the lift and drives until the grasp point is within ``ALIGNED`` of the bin.
 - PlaceBall: aligns over the bin to within 3 cm, lowers the ball into it, opens the fingers
   and lifts the gripper out; SUCCESS once the ball rests in the bin and the gripper is up.
@@ -26,9 +27,19 @@ import numpy as np
 
 from teach.bt.nodes import Status
 from teach.errors import DomainError
-from teach.observe import Observer
-from teach.sim.world import (CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, FINGER_RELEASE, GRASP_OFFSET, LIFT_CARRY,
-                             LIFT_PLACE, ROOM, World, _wrap)
+from teach.observe.hook import Observer
+from teach.sim.world import (
+    CONTROL_STEPS,
+    FINGER_CLOSED,
+    FINGER_OPEN,
+    FINGER_RELEASE,
+    GRASP_OFFSET,
+    LIFT_CARRY,
+    LIFT_PLACE,
+    ROOM,
+    World,
+    _wrap,
+)
 
 ALIGNED = 0.05        # approaches end with the grasp point this close to the target (m)
 LOWER_SPEED = 0.5     # m/s, the lift lowering a held ball
@@ -115,8 +126,8 @@ class FindBall(Skill):
         super().__init__(world)
         x, y, _ = world.base_pose()
         here, spot = np.array([x, y]), 0.6 * ROOM
-        waypoints = sorted((np.array(p) for p in ((0.0, 0.0), (spot, spot), (-spot, spot), (-spot, -spot), (spot, -spot))
-                            if np.linalg.norm(np.array(p) - here) > 0.5),
+        corners = ((0.0, 0.0), (spot, spot), (-spot, spot), (-spot, -spot), (spot, -spot))
+        waypoints = sorted((np.array(p) for p in corners if np.linalg.norm(np.array(p) - here) > 0.5),
                            key=lambda p: float(np.linalg.norm(p - here)))
         self.plan: list[tuple[str, np.ndarray | None]] = [("turn", None), ("back", None), ("turn", None)]
         for point in waypoints:
@@ -310,10 +321,11 @@ def skill_for(name: str) -> type[Skill]:
 
 
 class FrameClock:
-    """Reports scene frames and camera images to an observer at fixed rates of simulated time."""
+    """Reports scene frames and camera images to an observer at fixed rates of simulated time;
+    ``on_frame`` runs after each scene frame (pacing to wall time, a viewer's redraw)."""
 
-    def __init__(self, world: World, observer: Observer | None):
-        self.world, self.observer = world, observer
+    def __init__(self, world: World, observer: Observer | None, on_frame: Callable[[], None] | None = None):
+        self.world, self.observer, self.on_frame = world, observer, on_frame
         self.next_frame = world.sim_time
         self.next_camera = world.sim_time
 
@@ -326,6 +338,8 @@ class FrameClock:
         observer.set_time(None, world.sim_time)
         observer.on_state(world.conditions(), action)
         observer.on_scene(world.shapes())
+        if self.on_frame is not None:
+            self.on_frame()
         if world.sim_time + 1e-9 >= self.next_camera:
             self.next_camera = world.sim_time + 1.0 / CAMERA_HZ
             image = world.camera_image()

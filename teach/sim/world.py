@@ -41,7 +41,7 @@ import numpy as np
 
 from teach.domain import Domain, State, load_domain
 from teach.errors import DomainError
-from teach.scene import SceneShape
+from teach.observe.scene import SceneShape
 
 ASSETS = Path(str(resources.files("teach.sim") / "assets"))
 SCENE_FILE = ASSETS / "ball_in_bin.xml"
@@ -305,7 +305,7 @@ class World:
         else:
             if len(state) != len(names):
                 raise DomainError(f"a state needs {len(names)} values ({', '.join(names)}), got {len(state)}")
-            given = dict(zip(names, map(bool, state)))
+            given = dict(zip(names, map(bool, state), strict=True))
         return {name: given.get(name, False) for name in CONDITIONS}
 
     def _try_arrange(self, want: dict[str, bool]) -> bool:
@@ -437,7 +437,7 @@ class World:
             self._renderer.close()
         self._renderer = False
 
-    def __enter__(self) -> "World":
+    def __enter__(self) -> World:
         return self
 
     def __exit__(self, *exc: object) -> None:

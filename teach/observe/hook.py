@@ -1,0 +1,144 @@
+"""One observer hook for everything a session does (ticks, scene, dialogue, learner events).
+
+The session machine, the worlds and the simulation's executor report to an ``Observer``;
+``teach.observe.rerun_writer.RerunLogger`` implements it with rerun, tests can collect events,
+and the default does nothing. Callers set the clock once per step with ``set_time``. An
+observer only observes: pacing, run limits and viewer redraws are the world's own business.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from teach.bt.nodes import Node
+    from teach.bt.tick import TickResult
+    from teach.demos import Demonstration
+    from teach.domain import Domain
+    from teach.observe.scene import SceneShape
+
+
+class Observer:
+    """Receives session events; every method is optional (the base class ignores them)."""
+
+    def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        """Advance the clocks: ``step`` counts session steps (None keeps the session's step),
+        ``sim_time`` is simulated seconds."""
+
+    def on_domain(self, domain: Domain) -> None:
+        """The vocabulary, logged first so a recording explains itself."""
+
+    def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
+        """A new tree generation (``reason`` says what produced it)."""
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        """One tick: root status, running action, and the statuses of visited nodes."""
+
+    def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
+        """The symbolic state and the action running in it."""
+
+    def on_scene(self, shapes: Sequence[SceneShape]) -> None:
+        """The 3D scene's shapes at the current sim time."""
+
+    def on_camera(self, image: Any) -> None:
+        """The robot's camera image (H×W×3 uint8) at the current sim time."""
+
+    def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
+        """A line of the dialogue; ``speaker`` is "teacher" or "robot"."""
+
+    def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
+        """A finished demonstration, as saved."""
+
+    def on_question(self, question: str, budget_left: int) -> None:
+        """The robot asks a clarifying question."""
+
+    def on_answer(self, question: str, answer: str, change: str) -> None:
+        """The teacher's answer and what it changed in the tree."""
+
+    def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
+        """What a demonstration ("specialize") or an answer ("answer") changed, in words;
+        ``removed`` names the guards it removed."""
+
+    def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
+        """Replay of all demonstrations so far against the current tree."""
+
+    def on_external(self, name: str) -> None:
+        """An external action (perturbation) nobody in the tree caused."""
+
+    def checkpoint(self) -> None:
+        """Make everything reported so far survive a crash; called before each new prompt."""
+
+    def close(self) -> None:
+        """Flush and release resources."""
+
+
+class Observers(Observer):
+    """Fan each event out to several observers, in order."""
+
+    def __init__(self, *observers: Observer):
+        self.observers = [o for o in observers if o is not None]
+
+    def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        for o in self.observers:
+            o.set_time(step, sim_time)
+
+    def on_domain(self, domain: Domain) -> None:
+        for o in self.observers:
+            o.on_domain(domain)
+
+    def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
+        for o in self.observers:
+            o.on_tree(generation, tree, xml, reason)
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        for o in self.observers:
+            o.on_tick(tree, result)
+
+    def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
+        for o in self.observers:
+            o.on_state(state, action)
+
+    def on_scene(self, shapes: Sequence[SceneShape]) -> None:
+        for o in self.observers:
+            o.on_scene(shapes)
+
+    def on_camera(self, image: Any) -> None:
+        for o in self.observers:
+            o.on_camera(image)
+
+    def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
+        for o in self.observers:
+            o.on_dialogue(speaker, text, budget_left)
+
+    def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
+        for o in self.observers:
+            o.on_demonstration(name, demo, domain)
+
+    def on_question(self, question: str, budget_left: int) -> None:
+        for o in self.observers:
+            o.on_question(question, budget_left)
+
+    def on_answer(self, question: str, answer: str, change: str) -> None:
+        for o in self.observers:
+            o.on_answer(question, answer, change)
+
+    def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
+        for o in self.observers:
+            o.on_learner(event, detail, removed)
+
+    def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
+        for o in self.observers:
+            o.on_replay(reproduced, total, lenient)
+
+    def on_external(self, name: str) -> None:
+        for o in self.observers:
+            o.on_external(name)
+
+    def checkpoint(self) -> None:
+        for o in self.observers:
+            o.checkpoint()
+
+    def close(self) -> None:
+        for o in self.observers:
+            o.close()

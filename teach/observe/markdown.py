@@ -1,0 +1,37 @@
+"""The documents a recording shows beside the scene (domain, state, demonstration), as markdown."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from teach.domain import Domain
+
+
+def domain_document(domain: Domain) -> str:
+    """The vocabulary: conditions, actions with their phrases and definitions, the goal."""
+    lines = [f"# Domain {domain.name}", "", "| ID | condition | meaning |", "|---|---|---|"]
+    lines += [f"| {i} | {c.name} | {c.en} |" for i, c in enumerate(domain.conditions, 1)]
+    lines += ["", "| ID | action | phrases | pre | ram |", "|---|---|---|---|---|"]
+    lines += [f"| {a.id} | {a.name} | {', '.join(a.en)} | {' '.join(map(str, a.pre))} | "
+              f"{' '.join(map(str, a.ram))} |" for a in domain.actions]
+    if domain.goal:
+        lines += ["", "Goal: " + " ".join(map(str, domain.goal))]
+    return "\n".join(lines)
+
+
+def state_document(names: Sequence[str], values: Sequence[bool], action: str | None) -> str:
+    """The running action and each condition's value."""
+    doc = [f"**Running:** {action or '—'}", "", "| condition | value |", "|---|---|"]
+    doc += [f"| {n} | {'✔ true' if v else '✘ false'} |" for n, v in zip(names, values, strict=True)]
+    return "\n".join(doc)
+
+
+def demonstration_document(name: str, domain: Domain, states: Sequence[str], labels: Sequence[str]) -> str:
+    """A demonstration as a table: one row per line, its state bits and its action label."""
+    table = ["| # | " + " | ".join(domain.condition_names) + " | action |",
+             "|---" * (len(domain.conditions) + 2) + "|"]
+    table += [f"| {i} | " + " | ".join(state) + f" | {label} |"
+              for i, (state, label) in enumerate(zip(states, labels, strict=True), 1)]
+    return f"# {name}\n\n" + "\n".join(table)

@@ -1,0 +1,678 @@
+"""The session machine: a plain state machine that turns teacher lines into replies.
+
+It interleaves demonstrations in a world, online learning after every demonstration (through
+``teach.session.learning``), at most ``budget`` clarifying questions, and runs of the learned
+tree that the teacher can interrupt and correct. Every driver (the terminal, scripted replays,
+bench-teach) feeds lines to ``handle(line, interrupt)``, which returns every reply of that line
+in order. A driver that shows replies while a line is still being handled (steps as they
+happen, run progress) sets ``live``: it then sees each of those same replies once, as it is
+produced. Files are read and written only through the ``SessionStore``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from enum import StrEnum
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from teach.bt.nodes import Node, size
+from teach.demos import Demonstration, Step
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.questions import Question, QuestionBudget, describe_situation
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain
+from teach.errors import FormatError, LearnError, TeachError
+from teach.observe.hook import Observer
+from teach.session import messages as m
+from teach.session.commands import (
+    ANSWERING,
+    BLOCKED_WHILE_ASKING,
+    COMMANDS,
+    DONE_WORDS,
+    SKIP_WORDS,
+    Command,
+    Verb,
+    parse_command,
+)
+from teach.session.describe import unmet_goal, why_refused
+from teach.session.journal import (
+    Answered,
+    Asked,
+    DemoLearned,
+    Event,
+    Journal,
+    ModelAnswered,
+    ModelLoaded,
+    Undone,
+    effective_events,
+    parse_state_text,
+    state_text,
+)
+from teach.session.learning import Learning
+from teach.session.replies import Reply, ReplyKind
+from teach.session.settings import Settings
+from teach.session.store import SessionStore
+from teach.world.protocol import Outcome, TeachingWorld
+
+if TYPE_CHECKING:
+    from teach.dialogue.model_repair import ModelQuestion, ModelRepair
+
+QUESTIONS_PER_TURN = 2
+MIN_DEMOS_BEFORE_ASKING = 2
+
+
+class Mode(StrEnum):
+    IDLE = "idle"
+    """Waiting for a command or actions."""
+    DEMONSTRATING = "demonstrating"
+    """A demonstration is open."""
+    ASKING = "asking"
+    """A question waits for its answer."""
+
+
+@dataclass
+class _OpenDemo:
+    """The demonstration being shown (or a run's steps, to be continued as a correction)."""
+
+    steps: list[Step] = field(default_factory=list)
+
+
+class SessionManager:
+    """One teaching session. Not thread-safe: one driver feeds it lines."""
+
+    def __init__(self, settings: Settings, domain: Domain, world: TeachingWorld, observer: Observer | None = None,
+                 journal: Journal | None = None):
+        self.settings = settings
+        self.domain = domain
+        self.world = world
+        self.observer = observer or Observer()
+        self.lang = settings.lang
+        self.store = SessionStore(settings.base, settings.session, settings.record)
+        self.phrases = PhraseBook(domain, world.events)
+        self.learning = Learning(domain, self.store, self.observer)
+        self.budget = QuestionBudget(settings.questions)
+        self.pending: Question | None = None
+        self.model_repair: ModelRepair | None = None
+        self.pending_model: ModelQuestion | None = None
+        self.planned: Node | None = None
+        self.open: _OpenDemo | None = None
+        self.finished = False
+        self.step = 0
+        self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
+        self._turn: list[Reply] = []
+        self._interrupt: Callable[[], bool] | None = None
+        self._turn_questions = 0
+        self.journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang,
+                                          settings.questions, settings.world, settings.seed)
+        self.store.prepare(domain)
+        self.observer.on_domain(domain)
+
+    # --- what drivers and tests read --------------------------------------------------------
+
+    @property
+    def mode(self) -> Mode:
+        if self.pending is not None or self.pending_model is not None:
+            return Mode.ASKING
+        return Mode.DEMONSTRATING if self.open is not None else Mode.IDLE
+
+    @property
+    def generation(self) -> int:
+        return self.learning.generation
+
+    @property
+    def pruned(self) -> Node | None:
+        return self.learning.pruned
+
+    @property
+    def demos(self) -> list[Demonstration]:
+        return self.learning.demos
+
+    # --- the driver's interface -----------------------------------------------------------
+
+    def greet(self) -> list[Reply]:
+        actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
+        replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=actions))]
+        if self.demos:
+            replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED(self.lang, session=self.settings.session,
+                                                              demos=len(self.demos), asked=self.budget.used,
+                                                              generation=self.generation)))
+            if self.pruned is not None:
+                replies.append(Reply(ReplyKind.TREE, tree=self.pruned))
+        replies.append(self._state_reply())
+        self._turn = []
+        return self._end_turn(replies)
+
+    def handle(self, line: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
+        """One teacher line in, every reply to it out, in order. Never raises for bad input.
+        ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
+        line = line.strip()
+        if not line:
+            return []
+        self._turn = []
+        self._interrupt = interrupt
+        self._tick_clock()
+        self.observer.on_dialogue("teacher", line, self.budget.left)
+        try:
+            replies = self._dispatch(line)
+        except UnknownPhrase as unknown:
+            replies = [Reply(ReplyKind.ERROR, unknown.message)]
+        except TeachError as error:
+            replies = [Reply(ReplyKind.ERROR, str(error))]
+        finally:
+            self._interrupt = None
+        turn = self._end_turn(replies)
+        self.observer.checkpoint()
+        self.store.save_journal(self.journal)  # the step clock too, so a resume goes on from it
+        return turn
+
+    def command(self, line: str) -> tuple[Command | None, str]:
+        return parse_command(line)
+
+    def close(self) -> None:
+        self.store.save_journal(self.journal)
+        self.world.close()
+        self.observer.close()
+
+    def _dispatch(self, line: str) -> list[Reply]:
+        command, rest = parse_command(line)
+        answering = command is None or command.verb in ANSWERING
+        if self.pending_model is not None and answering:
+            return self._answer_model(line)
+        if self.pending is not None and answering:
+            return self._answer(line)
+        if command is not None and self.mode is Mode.ASKING and command.verb in BLOCKED_WHILE_ASKING:
+            return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
+        self._turn_questions = 0
+        if command is None:
+            return self._teach_actions(line)
+        return self._handlers[command.verb](self, rest)
+
+    # --- commands --------------------------------------------------------------------------
+
+    def cmd_help(self, rest: str) -> list[Reply]:
+        lines = [f"  {c.usage:<28} {c.help(self.lang)}" for c in COMMANDS]
+        examples = "; ".join(self.phrases.phrases(self.lang)[:12])
+        return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
+
+    def cmd_demonstrate(self, rest: str) -> list[Reply]:
+        replies = []
+        if self.open is None:
+            self.open = _OpenDemo()
+            replies.append(Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang)))
+        if rest.strip():
+            replies += self._teach_actions(rest)
+        return replies
+
+    def cmd_done(self, rest: str) -> list[Reply]:
+        if self.open is None or not self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.NO_STEPS_YET(self.lang))]
+        state = self.world.state()
+        unmet = unmet_goal(self.domain, state, self.lang)
+        if unmet:
+            return [Reply(ReplyKind.ERROR, m.NOT_FINISHED(self.lang, unmet=unmet))]
+        self.open.steps.append(Step(state, GOAL_ACTION, len(self.open.steps) + 1))
+        return self._finish_demo()
+
+    def cmd_cancel(self, rest: str) -> list[Reply]:
+        self.open = None
+        return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
+
+    def cmd_undo(self, rest: str) -> list[Reply]:
+        if self.open is not None and self.open.steps:
+            last = self.open.steps.pop()
+            self.world.arrange(last.state)
+            if not self.open.steps:
+                self.open = None
+            return [Reply(ReplyKind.INFO, m.UNDONE_STEP(self.lang)), self._state_reply()]
+        if not self.demos:
+            return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
+        self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
+        self._journal(Undone())
+        self._rebuild_from_journal()
+        head = self._flush([Reply(ReplyKind.INFO, m.UNDONE_LEARNING(self.lang))])
+        return head + self._after_learning(ask=False)
+
+    def cmd_perturb(self, rest: str) -> list[Reply]:
+        tokens = self.phrases.parse(rest, self.lang) if rest.strip() else []
+        if not any(t.kind == "event" for t in tokens):
+            names = ", ".join(en[0] for en, _ in self.world.events.values())
+            return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=names))]
+        return self._teach_actions(rest)
+
+    def cmd_run(self, rest: str) -> list[Reply]:
+        # the unpruned tree runs: pruning assumes actions have only the effects seen so far
+        tree = self.learning.tree if self.learning.has_behaviour else self.planned
+        if tree is None:
+            return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
+        stop_after = _number(rest, self.lang)
+        if self.open is not None and self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
+        self.open = None
+
+        def announce(action: str) -> None:
+            self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
+                self.lang)))])
+
+        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
+                                stop_after=stop_after, on_action=announce)
+        unmet = unmet_goal(self.domain, self.world.state(), self.lang)
+        if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
+            return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
+        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
+        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done))]
+        if result.outcome is Outcome.SUCCESS and not unmet:
+            replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
+            return replies + [self._state_reply()]
+        if result.outcome is Outcome.INTERRUPTED:
+            message = m.STOPPED(self.lang)
+        elif result.outcome is Outcome.SUCCESS:
+            message = m.THOUGHT_DONE(self.lang, unmet=unmet)
+        else:
+            message = m.STUCK(self.lang, outcome=result.outcome)
+        # what the robot did so far and what the teacher shows next become one corrective demonstration
+        self.open = _OpenDemo([Step(s, self.domain.action(a).id, i + 1) for i, (s, a) in enumerate(result.steps)])
+        return replies + [Reply(ReplyKind.SAY, message), self._state_reply()]
+
+    def cmd_stop(self, rest: str) -> list[Reply]:
+        return [Reply(ReplyKind.INFO, m.NOT_RUNNING(self.lang))]
+
+    def cmd_show(self, rest: str) -> list[Reply]:
+        if self.pruned is None and self.planned is not None:
+            return [Reply(ReplyKind.TREE, tree=self.planned)]
+        if self.pruned is None:
+            return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
+        tree = self.learning.tree if normalize(rest) in ("full", "ganz", "all") else self.pruned
+        return [Reply(ReplyKind.TREE, tree=tree)]
+
+    def cmd_state(self, rest: str) -> list[Reply]:
+        return [self._state_reply()]
+
+    def cmd_start(self, rest: str) -> list[Reply]:
+        if self.open is not None and self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
+        names = [w for w in rest.replace(",", " ").split() if w]
+        for name in names:
+            if not self.domain.has_condition(name):
+                known = ", ".join(self.domain.condition_names)
+                raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=name, known=known))
+        self.world.arrange(self.domain.state(names))
+        return [self._state_reply()]
+
+    def cmd_reset(self, rest: str) -> list[Reply]:
+        if self.open is not None and self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
+        self.open = None
+        self.world.reset(_number(rest, self.lang))
+        return [self._state_reply()]
+
+    def cmd_ask(self, rest: str) -> list[Reply]:
+        if self.model_repair is not None and not self.model_repair.plan().usable:
+            return self._ask_model()
+        replies = self._maybe_ask(force=True)
+        return replies or [Reply(ReplyKind.INFO, self._no_question_text())]
+
+    def cmd_skip(self, rest: str) -> list[Reply]:
+        return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+
+    def cmd_why(self, rest: str) -> list[Reply]:
+        name = rest.strip()
+        if self.pruned is None:
+            return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
+        lines = self.learning.why(name, self.lang)
+        if lines is None:
+            return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=name))]
+        return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
+
+    def cmd_save(self, rest: str) -> list[Reply]:
+        self.store.save_journal(self.journal)
+        self.observer.checkpoint()
+        where = ", ".join(map(str, self.store.places()))
+        return [Reply(ReplyKind.INFO, m.SAVED(self.lang, places=where))]
+
+    def cmd_quit(self, rest: str) -> list[Reply]:
+        self.finished = True
+        replies = self.cmd_save(rest)
+        return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
+
+    # --- action definitions (the thesis's Approach 1, repaired by questions) ---------------
+
+    def cmd_model(self, rest: str) -> list[Reply]:
+        from teach.dialogue.model_repair import ModelRepair
+
+        path = Path(rest.strip())
+        if not rest.strip():
+            return [Reply(ReplyKind.ERROR, m.WHICH_FILE(self.lang))]
+        model = self.store.read_model(path)
+        if model.condition_names != self.domain.condition_names or \
+                not set(model.action_names) <= set(self.domain.action_names):
+            raise TeachError(m.MODEL_MISMATCH(self.lang, domain=self.domain.path), path)
+        self.model_repair = ModelRepair(model, self.budget, lang=self.lang)
+        self.pending_model = None
+        self._journal(ModelLoaded(str(path.resolve())))
+        return self._show_plan(ask=True)
+
+    def cmd_plan(self, rest: str) -> list[Reply]:
+        if self.model_repair is None:
+            return [Reply(ReplyKind.ERROR, m.NO_DEFINITIONS(self.lang))]
+        return self._show_plan(ask=False)
+
+    def _show_plan(self, ask: bool) -> list[Reply]:
+        """What the action definitions give; after a change (``ask``) the tree is saved as a
+        generation and, while it is not usable, the next repair question is asked."""
+        assert self.model_repair is not None
+        outcome = self.model_repair.plan()
+        if outcome.usable and outcome.tree is not None:
+            self.planned = outcome.tree
+            if ask:
+                self.learning.save_generation(outcome.tree, "planned from the action definitions")
+            return [Reply(ReplyKind.SAY, m.CAN_BUILD(self.lang)), Reply(ReplyKind.TREE, tree=outcome.tree)]
+        replies = [Reply(ReplyKind.SAY, m.CANNOT_BUILD(self.lang, reason=outcome.reason))]
+        return replies + (self._ask_model() if ask else [])
+
+    def _ask_model(self) -> list[Reply]:
+        assert self.model_repair is not None
+        if self.budget.left <= 0:
+            return [Reply(ReplyKind.INFO, self._no_question_text())]
+        question = self.model_repair.ask()
+        if question is None:
+            return [Reply(ReplyKind.INFO, m.NOTHING_TO_ASK(self.lang))]
+        self.pending_model = question
+        self._journal(Asked(model_question=question.to_json()))
+        text = self.model_repair.text(question, self.lang)
+        self.observer.on_question(text, self.budget.left)
+        return [Reply(ReplyKind.QUESTION, text)]
+
+    def _answer_model(self, line: str) -> list[Reply]:
+        assert self.model_repair is not None and self.pending_model is not None
+        question = self.pending_model
+        text = self.model_repair.text(question, self.lang)
+        if normalize(line) in SKIP_WORDS:
+            self.pending_model = None
+            self.observer.on_answer(text, line, "nothing (skipped)")
+            self._journal(ModelAnswered(question.to_json(), "skip"))
+            return [Reply(ReplyKind.INFO, m.ASK_ANOTHER(self.lang))]
+        change = self.model_repair.apply(question, line)  # UnknownPhrase keeps the question open
+        self.pending_model = None
+        self.observer.on_answer(text, line, change)
+        self._journal(ModelAnswered(question.to_json(), line))
+        return [Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))] + self._show_plan(ask=True)
+
+    # --- demonstrations ---------------------------------------------------------------------
+
+    def _teach_actions(self, text: str) -> list[Reply]:
+        tokens = self.phrases.parse(text, self.lang)
+        replies: list[Reply] = []
+        if self.open is None:
+            replies += self._flush(self.cmd_demonstrate(""))
+        assert self.open is not None
+        for token in tokens:
+            if token.kind == "event":
+                result = self.world.perturb(token.name)
+                self.open.steps.append(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1))
+                self.observer.on_external(token.name)
+                replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
+                continue
+            result = self.world.act(token.name)
+            label = self.domain.action(token.name).label(self.lang)
+            if not result.ok:
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=result.message)))
+                break
+            if result.after == result.before:
+                # a step that changes nothing would teach two different actions in one state
+                replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
+                continue
+            self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
+            replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
+        replies.append(self._state_reply())
+        return replies
+
+    def _finish_demo(self) -> list[Reply]:
+        assert self.open is not None
+        started = time.perf_counter()
+        path = self.store.next_demo_path()
+        demo = Demonstration(path.stem, tuple(self.open.steps), path)
+        source = path.name
+        try:
+            update = self.learning.learn_demonstration(demo, source)
+        except LearnError as error:
+            self.open.steps.pop()  # the goal line: the demonstration stays open to be mended
+            return [Reply(ReplyKind.ERROR, m.CANNOT_LEARN(self.lang, why=why_refused(error, self.lang))),
+                    Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
+        self.store.write_demonstration(path, demo)
+        self.open = None
+        self.observer.on_demonstration(demo.name, demo, self.domain)
+        self.learning.report("specialize", update, self.lang)
+        return self._after_learning(ask=True, started=started, events=[DemoLearned(path.name, source)])
+
+    def import_demonstrations(self, demos: list[Demonstration]) -> list[Reply]:
+        """Learn demonstrations recorded elsewhere (one generation for all of them)."""
+        self._turn = []
+        started = time.perf_counter()
+        events: list[Event] = []
+        for demo in demos:
+            path = self.store.next_demo_path()
+            source = f"imported {demo.name} ({path.name})"
+            self.learning.learn_demonstration(demo, source)
+            self.store.write_demonstration(path, demo)
+            events.append(DemoLearned(path.name, source))
+            self.observer.on_demonstration(demo.name, demo, self.domain)
+        return self._end_turn(self._after_learning(ask=False, started=started, events=events))
+
+    # --- questions --------------------------------------------------------------------------
+
+    def _maybe_ask(self, force: bool = False) -> list[Reply]:
+        """Ask the best question if the budget allows; unforced, at most QUESTIONS_PER_TURN in a row."""
+        if self.budget.left <= 0 or self.pending is not None:
+            return []
+        if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or self._turn_questions >= QUESTIONS_PER_TURN):
+            return []
+        question = self.next_question()
+        if question is None:
+            return []
+        self.budget.spend()
+        self._turn_questions += 1
+        self.pending = question
+        self.learning.asked.add(question.state)
+        self._journal(Asked(state=state_text(question.state)))
+        text = question.text(self.domain, self.lang)
+        self.observer.on_question(text, self.budget.left)
+        options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
+                             [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
+        return [Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")]
+
+    def next_question(self) -> Question | None:
+        return self.learning.next_question(self.settings.seed)
+
+    def _answer(self, line: str) -> list[Reply]:
+        question = self.pending
+        assert question is not None
+        key = normalize(line)
+        if key in SKIP_WORDS:
+            self.pending = None
+            text = question.text(self.domain, self.lang)
+            self._journal(Answered(state_text(question.state), "skip", text))
+            self.observer.on_answer(text, line, "nothing (skipped)")
+            return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
+        if key in DONE_WORDS:
+            answer: str | None = None
+        else:
+            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
+            if len(tokens) != 1:
+                return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
+            answer = tokens[0].name
+        return self.apply_answer(answer, line)
+
+    def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
+        """Learn from the answer to the pending question (None: the task is done there)."""
+        question = self.pending
+        assert question is not None
+        started = time.perf_counter()
+        text = question.text(self.domain, self.lang)
+        source = f"answer to question {self.budget.used}"
+        self.pending = None
+        try:
+            update = self.learning.learn_answer(question.state, answer, source)
+        except LearnError as error:
+            return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
+                    Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
+        change = self.learning.describe(update, self.lang)
+        self.observer.on_answer(text, said, change)
+        self.learning.report("answer", update, self.lang)
+        head = self._flush([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
+        event = Answered(state_text(question.state), answer or "done", text)
+        return head + self._after_learning(ask=True, started=started, events=[event])
+
+    def _no_question_text(self) -> str:
+        return (m.ALL_QUESTIONS_USED if self.budget.left <= 0 else m.NO_QUESTION_NOW)(self.lang)
+
+    # --- learning results -------------------------------------------------------------------
+
+    def _after_learning(self, ask: bool, started: float | None = None,
+                        events: list[Event] | None = None) -> list[Reply]:
+        """Prune, save the generation, then commit ``events`` to the journal (so a journalled
+        event always has its generation on disk), then show, replay and maybe ask."""
+        from teach.replay import replay
+
+        if not self.learning.has_behaviour:  # only goal states so far: there is no behaviour to show yet
+            if events:
+                self._journal(*events)
+            return self._flush([Reply(ReplyKind.INFO, m.GOAL_ONLY(self.lang))])
+        pruned = self.learning.prune()
+        path = self.learning.save_generation(pruned, "learned from demonstrations and answers")
+        if events:
+            self._journal(*events)
+        report = replay(pruned, self.domain, self.demos)
+        self.observer.on_replay(report.reproduced, report.total)
+        summary = m.GENERATION(self.lang, generation=self.generation, nodes=size(pruned),
+                               unpruned=size(self.learning.tree), path=path, reproduced=report.reproduced,
+                               total=report.total)
+        replies = self._flush([Reply(ReplyKind.TREE, tree=pruned), Reply(ReplyKind.INFO, summary)])
+        if ask:
+            replies += self._maybe_ask()
+        return replies
+
+    # --- the journal: undo and resume -------------------------------------------------------
+
+    def _journal(self, *events: Event) -> None:
+        self.journal.events.extend(events)
+        self.store.save_journal(self.journal)
+
+    def _rebuild_from_journal(self) -> None:
+        """Re-learn everything in the journal (after an undo or on resume), deterministically."""
+        try:
+            self._replay_journal()
+        except (KeyError, TypeError, ValueError, AttributeError) as error:
+            raise FormatError(f"the session journal is damaged ({type(error).__name__}: {error})",
+                              self.store.journal_path) from None
+
+    def _replay_journal(self) -> None:
+        from teach.dialogue.model_repair import ModelQuestion, ModelRepair
+
+        self.learning.restart()
+        self.model_repair, self.pending_model, self.planned = None, None, None
+        # every question asked stays paid for, even when what it was about is undone
+        self.budget = QuestionBudget(self.settings.questions, sum(isinstance(e, Asked) for e in self.journal.events))
+        answered = 0
+        for event in effective_events(self.journal.events):
+            if isinstance(event, DemoLearned):
+                self.learning.learn_demonstration(self.store.read_demonstration(event.file, self.domain),
+                                                  event.source)
+            elif isinstance(event, ModelLoaded):
+                self.model_repair = ModelRepair(self.store.read_model(Path(event.file)), self.budget, lang=self.lang)
+            elif isinstance(event, ModelAnswered) and self.model_repair is not None:
+                if event.answer != "skip":
+                    self.model_repair.apply(ModelQuestion.from_json(event.question), event.answer)
+            elif isinstance(event, Answered):
+                answered += 1
+                state = parse_state_text(event.state)
+                if len(state) != len(self.domain.conditions):
+                    raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
+                self.learning.asked.add(state)
+                if event.answer != "skip":
+                    try:
+                        self.learning.learn_answer(state, None if event.answer == "done" else event.answer,
+                                                   f"answer to question {answered}")
+                    except LearnError:
+                        pass  # it was rejected when it was given, too
+        if self.learning.has_behaviour:
+            self.learning.prune()
+        if self.model_repair is not None:
+            outcome = self.model_repair.plan()
+            self.planned = outcome.tree if outcome.usable else None
+
+    @classmethod
+    def resume(cls, settings: Settings, domain: Domain, world: TeachingWorld,
+               observer: Observer | None = None) -> SessionManager:
+        store = SessionStore(settings.base, settings.session, settings.record)
+        journal = store.load_journal()
+        manager = cls(settings, domain, world, observer, journal)
+        manager._rebuild_from_journal()
+        manager.step = journal.step + 1  # a step of its own: the kill may have come before the save
+        manager.observer.set_time(manager.step)
+        current = manager.pruned or manager.planned
+        if current is not None:
+            from teach.bt.xml import tree_to_xml
+
+            manager.observer.on_tree(manager.generation, current, tree_to_xml(current), "resumed")
+        if manager.demos:
+            world.arrange(manager.demos[-1].steps[-1].state)
+        return manager
+
+    # --- helpers ---------------------------------------------------------------------------
+
+    def _state_reply(self) -> Reply:
+        state = self.world.state()
+        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang),
+                     state=dict(zip(self.domain.condition_names, state, strict=True)))
+
+    def _tick_clock(self) -> None:
+        self.step += 1
+        self.journal.step = self.step
+        self.observer.set_time(self.step)
+
+    def _flush(self, replies: list[Reply]) -> list[Reply]:
+        """The one way a reply leaves the session: told to the observer, added to the line's
+        replies and shown by a live driver at once (the tree appears before a question is
+        chosen). Returns nothing left to hand back."""
+        for reply in replies:
+            if reply.spoken:  # questions go to on_question
+                self.observer.on_dialogue("robot", reply.text, self.budget.left)
+        self._turn.extend(replies)
+        if self.live is not None:
+            for reply in replies:
+                self.live(reply)
+        return []
+
+    def _end_turn(self, replies: list[Reply]) -> list[Reply]:
+        """Send the last replies and hand back all of this turn's, in the order they were sent."""
+        self._flush(replies)
+        turn, self._turn = self._turn, []
+        return turn
+
+    _handlers: dict[Verb, Callable[[SessionManager, str], list[Reply]]] = {}
+
+
+SessionManager._handlers = {
+    Verb.HELP: SessionManager.cmd_help, Verb.DEMONSTRATE: SessionManager.cmd_demonstrate,
+    Verb.DONE: SessionManager.cmd_done, Verb.CANCEL: SessionManager.cmd_cancel, Verb.UNDO: SessionManager.cmd_undo,
+    Verb.PERTURB: SessionManager.cmd_perturb, Verb.RUN: SessionManager.cmd_run, Verb.STOP: SessionManager.cmd_stop,
+    Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
+    Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
+    Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
+    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit,
+}
+
+
+def _number(text: str, lang: str) -> int | None:
+    """An optional whole number argument ("run 3", "reset 7")."""
+    if not text.strip():
+        return None
+    try:
+        value = int(text.strip())
+    except ValueError:
+        raise TeachError(m.WHOLE_NUMBER(lang, text=text.strip())) from None
+    if value < 0:
+        raise TeachError(m.NOT_NEGATIVE(lang))
+    return value

@@ -1,0 +1,217 @@
+"""Every message a teacher sees, in English and German: the one catalogue.
+
+A message is a ``Text`` with both languages and ``{name}`` fields filled in when it is said:
+``HELLO("de", actions=...)``. ``tests/test_messages.py`` fails when one lacks a language or
+the two disagree on their fields.
+"""
+
+from __future__ import annotations
+
+import string
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Text:
+    en: str
+    de: str
+
+    def __call__(self, lang: str, **fields: object) -> str:
+        return (self.de if lang == "de" else self.en).format(**fields)
+
+    def fields(self, lang: str) -> set[str]:
+        """The ``{name}`` fields the text in ``lang`` fills in."""
+        text = self.de if lang == "de" else self.en
+        return {name for _, name, _, _ in string.Formatter().parse(text) if name}
+
+
+# --- greeting, help, the state -----------------------------------------------------------------
+HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {actions}. "
+             "Say 'done' when the task is finished, 'help' for more.",
+             "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
+             "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
+RESUMED = Text("Resumed session {session}: {demos} demonstrations, {asked} questions asked, generation {generation}.",
+               "Sitzung {session} fortgesetzt: {demos} Vorführungen, {asked} Fragen gestellt, Generation {generation}.")
+HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
+                  "Schreib, was der Roboter tun soll, z. B. “{examples}”.")
+AND = Text(" and ", " und ")
+OR = Text(" or ", " oder ")
+
+# --- demonstrations ----------------------------------------------------------------------------
+NEW_DEMONSTRATION = Text("New demonstration. Show me the steps.", "Neue Vorführung. Zeig mir die Schritte.")
+NO_STEPS_YET = Text("You have not shown me any steps yet.", "Du hast mir noch keine Schritte gezeigt.")
+NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
+                    "Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'.")
+DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
+UNDONE_STEP = Text("Undone: the last step.", "Rückgängig: der letzte Schritt.")
+NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
+UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
+WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
+EVENT = Text("Event: {event}.", "Ereignis: {event}.")
+COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
+DID_STEP = Text("✓ {action}", "✓ {action}")
+NOTHING_CHANGED = Text("✓ {action} (nothing changed: not recorded)",
+                       "✓ {action} (nichts hat sich geändert: nicht aufgezeichnet)")
+CANNOT_LEARN = Text("I cannot learn this demonstration: {why} Say 'undo' to take back steps, or 'cancel'.",
+                    "Diese Vorführung kann ich nicht lernen: {why} "
+                    "Sag 'zurück', um Schritte zurückzunehmen, oder 'abbrechen'.")
+DETAILS = Text("({details})", "({details})")
+FINISH_FIRST = Text("Finish or cancel the open demonstration first.",
+                    "Beende oder verwirf zuerst die laufende Vorführung.")
+UNKNOWN_CONDITION = Text("unknown condition {name!r} (known: {known})",
+                         "unbekannte Bedingung {name!r} (bekannt: {known})")
+
+# --- runs --------------------------------------------------------------------------------------
+NOTHING_LEARNED = Text("I have not learned anything yet: show me first.",
+                       "Ich habe noch nichts gelernt: zeig es mir zuerst.")
+FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first.",
+                         "Beende ('fertig') oder verwirf zuerst die laufende Vorführung.")
+RUNNING_ACTION = Text("→ {action}", "→ {action}")
+NOTHING_TO_DO = Text("There is nothing to do: the task is already finished. Say 'reset' for a new start.",
+                     "Es gibt nichts zu tun: die Aufgabe ist schon erledigt. Sag 'neu' für einen neuen Start.")
+I_DID = Text("I did: {actions}.", "Ich habe gemacht: {actions}.")
+TASK_FINISHED = Text("Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")
+STOPPED = Text("Stopped. Show me how to go on from here, then say 'done'.",
+               "Angehalten. Zeig mir, wie es von hier weitergeht, dann sag 'fertig'.")
+THOUGHT_DONE = Text("I thought I was done, but {unmet}. Show me how to go on, then say 'done'.",
+                    "Ich dachte, ich bin fertig, aber {unmet}. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
+STUCK = Text("I got stuck ({outcome}). Show me how to go on, then say 'done'.",
+             "Ich komme nicht weiter ({outcome}). Zeig mir, wie es weitergeht, dann sag 'fertig'.")
+NOT_RUNNING = Text("The robot is not running.", "Der Roboter läuft gerade nicht.")
+ROBOT_RUNNING = Text("robot running, Ctrl-C interrupts ...", "Roboter läuft, Strg-C hält ihn an ...")
+WHOLE_NUMBER = Text("expected a whole number, not {text!r}", "erwartet eine ganze Zahl, nicht {text!r}")
+NOT_NEGATIVE = Text("the number cannot be negative", "die Zahl darf nicht negativ sein")
+
+# --- trees and learning ------------------------------------------------------------------------
+NO_TREE = Text("No tree yet.", "Noch kein Baum.")
+NO_SUCH_NODE = Text("No action or condition named {name!r} in the tree.",
+                    "Keine Handlung oder Bedingung namens {name!r} im Baum.")
+GOAL_ONLY = Text("I have seen the finished task, but no steps yet.",
+                 "Ich habe die erledigte Aufgabe gesehen, aber noch keine Schritte.")
+GENERATION = Text("Generation {generation}: {nodes} nodes ({unpruned} before pruning), saved as {path}. "
+                  "I reproduce {reproduced} of {total} demonstrations.",
+                  "Generation {generation}: {nodes} Knoten ({unpruned} vor dem Beschneiden), gespeichert als {path}. "
+                  "Ich kann {reproduced} von {total} Vorführungen nachmachen.")
+LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {steps} gelernt")
+ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
+NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
+ANYWAY = Text("That is what I would have done anyway.", "Das hätte ich sowieso getan.")
+WHY_CONTRADICTION = Text("in the same situation you once showed one thing and once another.",
+                         "in derselben Lage hast du einmal das eine und einmal etwas anderes gezeigt.")
+WHY_REPEATED = Text("it does the same step twice; I can only learn each step once in a task.",
+                    "darin kommt ein Schritt zweimal vor; ich kann jeden Schritt nur einmal lernen.")
+WHY_ORDER = Text("it does the steps in another order than before.",
+                 "darin kommen die Schritte in einer anderen Reihenfolge vor als vorher.")
+
+# --- questions ---------------------------------------------------------------------------------
+ANSWER_FIRST = Text("Please answer my question first (an action, 'done' or 'skip').",
+                    "Bitte beantworte zuerst meine Frage (eine Handlung, 'fertig' oder 'weiter').")
+DONE_WORD = Text("done", "fertig")
+SKIP_WORD = Text("skip", "weiter")
+KEEP_CAREFUL = Text("All right, I keep being careful there.", "In Ordnung, da bleibe ich vorsichtig.")
+ONE_ACTION = Text("Please answer with one action, 'done' or 'skip'.",
+                  "Bitte antworte mit einer Handlung, 'fertig' oder 'weiter'.")
+CONTRADICTS = Text("That contradicts what you showed me: {why}", "Das widerspricht dem Gezeigten: {why}")
+THANKS = Text("Thank you. {change}", "Danke. {change}")
+NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
+ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
+NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")
+
+# --- action definitions ------------------------------------------------------------------------
+WHICH_FILE = Text("Which file? model FILE.toml", "Welche Datei? model DATEI.toml")
+MODEL_MISMATCH = Text("its conditions and actions must be those of {domain}",
+                      "ihre Bedingungen und Handlungen müssen die von {domain} sein")
+NO_DEFINITIONS = Text("No action definitions yet: load them with 'model FILE'.",
+                      "Noch keine Handlungsbeschreibungen: lade sie mit 'model DATEI'.")
+CAN_BUILD = Text("I can build a behaviour from these definitions.",
+                 "Aus diesen Beschreibungen kann ich ein Verhalten bauen.")
+CANNOT_BUILD = Text("I cannot build a behaviour from these definitions yet: {reason}",
+                    "Aus diesen Beschreibungen kann ich noch kein Verhalten bauen: {reason}")
+NOTHING_TO_ASK = Text("I do not know what else to ask.", "Ich weiß nicht, was ich noch fragen soll.")
+ASK_ANOTHER = Text("All right. Say 'ask' for another question.", "In Ordnung. Sag 'frag' für eine andere Frage.")
+
+# --- saving and leaving ------------------------------------------------------------------------
+SAVED = Text("Saved: {places}.", "Gespeichert: {places}.")
+GOODBYE = Text("Goodbye! Resume with: teach session --resume {session}",
+               "Auf Wiedersehen! Weiter mit: teach session --resume {session}")
+
+# --- the terminal ------------------------------------------------------------------------------
+PROMPT = Text("teach> ", "teach> ")
+ANSWER_PROMPT = Text("answer> ", "Antwort> ")
+TREE_TITLE = Text("learned tree", "gelernter Baum")
+SAY_PREFIX = Text("robot: ", "Roboter: ")
+QUESTION_PREFIX = Text("robot asks: ", "Roboter fragt: ")
+ERROR_PREFIX = Text("! ", "! ")
+STATE_PREFIX = Text("  state: ", "  Zustand: ")
+TOOLBAR = Text(" {mode} │ true: {holds} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
+               " {mode} │ wahr: {holds} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
+MODE_IDLE = Text("idle", "bereit")
+MODE_DEMONSTRATING = Text("demonstrating", "Vorführung")
+MODE_ASKING = Text("asking", "Frage offen")
+
+# --- the command table's help ------------------------------------------------------------------
+HELP_HELP = Text("show this help", "diese Hilfe zeigen")
+HELP_DEMONSTRATE = Text("start a demonstration", "eine Vorführung beginnen")
+HELP_DONE = Text("the task is finished: learn this demonstration", "die Aufgabe ist erledigt: diese Vorführung lernen")
+HELP_CANCEL = Text("discard the open demonstration", "die Vorführung verwerfen")
+HELP_UNDO = Text("undo the last step, demonstration or answer", "letzten Schritt, Vorführung oder Antwort zurücknehmen")
+HELP_PERTURB = Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)")
+HELP_RUN = Text("let the robot do the task (N: stop after N actions)", "den Roboter die Aufgabe machen lassen")
+HELP_STOP = Text("interrupt the robot", "den Roboter anhalten")
+HELP_SHOW = Text("show the learned tree", "den gelernten Baum zeigen")
+HELP_STATE = Text("show the current situation", "die aktuelle Lage zeigen")
+HELP_START = Text("put the world in a situation (named conditions true)", "die Welt in eine Lage bringen")
+HELP_RESET = Text("new random start", "neuer zufälliger Start")
+HELP_ASK = Text("let the robot ask a question", "den Roboter fragen lassen")
+HELP_MODEL = Text("load action definitions (pre/ram) and plan with them",
+                  "Handlungsbeschreibungen laden und damit planen")
+HELP_PLAN = Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben")
+HELP_SKIP = Text("leave a question unanswered", "eine Frage offen lassen")
+HELP_WHY = Text("why a node is in the tree", "warum ein Knoten im Baum ist")
+HELP_SAVE = Text("save everything now", "alles jetzt speichern")
+HELP_QUIT = Text("save and leave", "speichern und beenden")
+
+# --- situation questions (teach/dialogue/questions.py) -----------------------------------------
+SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
+BUT = Text(" but ", " aber ")
+
+# --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
+QUOTED = Text("“{text}”", "„{text}“")
+ASK_TIMING = Text("When you {act}: must {cond} already hold before you start, or does it only hold afterwards? "
+                  "(before / after / both / neither)",
+                  "Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
+                  "(vorher / nachher / beides / keins)")
+ASK_EFFECTS = Text("What is different after you {act}? (what is true then, or “nothing”)",
+                   "Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
+ASK_ACHIEVER = Text("What do you do so that {cond}? (an action, or “nothing”)",
+                    "Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+ASK_ORDER = Text("What do you do first: {act} or {other}? (one of them, or “either”)",
+                 "Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
+ASK_NEVER = Text("Can you {act} while {opposite}? (yes / no)", "Kannst du {act}, wenn {opposite}? (ja / nein)")
+SO_MAKES_TRUE_NOT_BEFORE = Text("So {act} makes {cond} true; it need not hold before.",
+                                "Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
+SO_UNRELATED = Text("So {cond} has nothing to do with {act}.", "Also hat {cond} nichts mit {act} zu tun.")
+SO_BEFORE_AND_STAYS = Text("So {cond} must hold before {act} and stays true; {act} does not make it true.",
+                           "Also muss {cond} vor {act} gelten und bleibt so; {act} macht es nicht wahr.")
+SO_BEFORE = Text("So {cond} must hold before {act}; {act} does not make it true.",
+                 "Also muss {cond} vor {act} gelten; {act} macht es nicht wahr.")
+SO_CHANGES_NOTHING = Text("So {act} changes nothing.", "Also ändert {act} nichts.")
+SO_AFTER = Text("So after {act}: {made}.", "Also gilt nach {act}: {made}.")
+NEED_NOT_HOLD_BEFORE = Text(" It need not hold before: {conds}.", " Vorher muss nicht gelten: {conds}.")
+SO_NOTHING_MAKES = Text("So nothing makes {cond} true.", "Also macht nichts {cond} wahr.")
+SO_MAKES_TRUE = Text("So {act} makes {cond} true.", "Also macht {act} {cond} wahr.")
+IT_NEED_NOT_HOLD_BEFORE = Text(" It need not hold before.", " Es muss vorher nicht gelten.")
+CHANGES_NOTHING_KNOWN = Text("That does not change what I know.", "Das ändert nichts an dem, was ich weiß.")
+DOES_NOT_NEED = Text("{act} does not need {cond}", "{act} braucht nicht {cond}")
+SO_LIST = Text("So {parts}.", "Also: {parts}.")
+SO_CANNOT_BE_DONE = Text("So {act} really needs {cond}, and nothing makes it true: the task cannot be done.",
+                         "Also braucht {act} wirklich {cond}, und nichts macht es wahr: die Aufgabe geht so nicht.")
+SO_DOES_NOT_NEED = Text("So {act} does not need {cond}.", "Also braucht {act} nicht {cond}.")
+WORD_BEFORE = Text("before", "vorher")
+WORD_AFTER = Text("after", "nachher")
+WORD_BOTH = Text("both", "beides")
+WORD_NEITHER = Text("neither", "keins")
+WORD_NOTHING = Text("nothing", "nichts")
+WORD_YES = Text("yes", "ja")
+WORD_NO = Text("no", "nein")
+WORD_EITHER = Text("either", "egal")

@@ -1,0 +1,53 @@
+"""A session's settings, in one place: what the command line chose and a resume restores."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from enum import StrEnum
+from pathlib import Path
+
+from teach.errors import TeachError
+
+SESSION_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
+LANGUAGES = ("en", "de")
+
+
+class WorldKind(StrEnum):
+    MUJOCO = "mujoco"
+    SYMBOLIC = "symbolic"
+    OFFLINE = "offline"
+
+    @classmethod
+    def parse(cls, text: str) -> WorldKind:
+        if text not in tuple(cls):
+            raise TeachError(f"unknown world {text!r} (choose from {', '.join(cls)})")
+        return cls(text)
+
+
+@dataclass(frozen=True)
+class Settings:
+    session: str
+    domain: Path | None = None
+    """The domain file; None: the ball-in-bin domain."""
+    lang: str = "en"
+    questions: int = 5
+    seed: int = 0
+    world: WorldKind = WorldKind.MUJOCO
+    base: Path = Path(".")
+    """The folder holding demos/, trees/ and recordings/."""
+    record: bool = True
+    spawn: bool = False
+    viewer: bool = False
+    pace: float = 0.0
+    """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
+
+    def __post_init__(self) -> None:
+        if not SESSION_NAME.match(self.session):
+            raise TeachError(f"session name {self.session!r} must be letters, digits, '-' and '_' "
+                             "(it names folders under demos/ and trees/)")
+        if self.lang not in LANGUAGES:
+            raise TeachError(f"unknown language {self.lang!r} (choose en or de)")
+        if self.questions < 0:
+            raise TeachError("--questions must be 0 or more")
+        object.__setattr__(self, "world", WorldKind.parse(self.world))

@@ -1,0 +1,68 @@
+"""The one symbolic executor: actions make their ramifications true, a tree runs until it
+reaches its goal, fails or comes back to a state it was in (a loop)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from enum import Enum, auto
+
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import compile_tree
+from teach.domain import Domain, Literal, State
+
+
+def assign(state: State, values: Iterable[tuple[int, bool]]) -> State:
+    """``state`` with the conditions at the given indexes set to the given values."""
+    after = list(state)
+    for index, value in values:
+        after[index] = value
+    return tuple(after)
+
+
+def apply_action(domain: Domain, state: State, action: str) -> State:
+    """The state after ``action`` by ``domain``'s action model (preconditions not checked)."""
+    return assign(state, ((domain.index(lit.name), lit.value) for lit in domain.action(action).ram))
+
+
+def missing_preconditions(domain: Domain, state: State, action: str) -> list[Literal]:
+    return [lit for lit in domain.action(action).pre if not domain.holds(lit, state)]
+
+
+class RunEnd(Enum):
+    SUCCESS = auto()
+    FAILURE = auto()
+    LOOP = auto()
+    """The last action led back to an earlier state."""
+    LIMIT = auto()
+    """``max_steps`` actions ran without an end."""
+
+
+@dataclass
+class GoalRun:
+    end: RunEnd
+    state: State
+    """The last state ticked (for a loop: the state the repeating action led back to)."""
+    actions: list[str] = field(default_factory=list)
+
+
+def run_to_goal(domain: Domain, tree: Node, start: State, max_steps: int) -> GoalRun:
+    """Tick ``tree`` in the symbolic world of ``domain``'s action model from ``start``."""
+    compiled = compile_tree(tree, domain.condition_names)
+    state, seen = start, {start}
+    run = GoalRun(RunEnd.LIMIT, start)
+    for _ in range(max_steps):
+        status, action = compiled(state)
+        if status is Status.SUCCESS:
+            run.end = RunEnd.SUCCESS
+            return run
+        if status is Status.FAILURE or action is None:
+            run.end = RunEnd.FAILURE
+            return run
+        run.actions.append(action)
+        state = run.state = apply_action(domain, state, action)
+        if state in seen:
+            run.end = RunEnd.LOOP
+            return run
+        seen.add(state)
+    return run

@@ -1,0 +1,56 @@
+"""How replies look: pure functions from ``Reply`` to rich renderables, shared by the
+terminal and by scripted replays (so a transcript shows exactly what the terminal shows)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from rich.console import RenderableType
+from rich.panel import Panel
+from rich.text import Text
+
+from teach.domain import Domain
+from teach.session import messages as m
+from teach.session.replies import Reply, ReplyKind
+
+if TYPE_CHECKING:
+    from teach.session.machine import SessionManager
+
+STYLES = {ReplyKind.SAY: "bold cyan", ReplyKind.INFO: "white", ReplyKind.ERROR: "bold red",
+          ReplyKind.QUESTION: "bold magenta"}
+PREFIX = {ReplyKind.SAY: m.SAY_PREFIX, ReplyKind.QUESTION: m.QUESTION_PREFIX, ReplyKind.ERROR: m.ERROR_PREFIX}
+MODES = {"idle": m.MODE_IDLE, "demonstrating": m.MODE_DEMONSTRATING, "asking": m.MODE_ASKING}
+
+
+def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableType:
+    if reply.kind is ReplyKind.TREE and reply.tree is not None:
+        from teach.bt.render import render_tree
+
+        return Panel(render_tree(reply.tree, compact=True), title=m.TREE_TITLE(lang), expand=False)
+    if reply.kind is ReplyKind.STATE and reply.state is not None:
+        text = Text(m.STATE_PREFIX(lang), style="dim")
+        for name, value in reply.state.items():
+            text.append(f"{name}", style="green" if value else "red")
+            text.append("=1 " if value else "=0 ", style="dim")
+        return text
+    prefix = PREFIX[reply.kind](lang) if reply.kind in PREFIX else ""
+    return Text(prefix + reply.text, style=STYLES.get(reply.kind, ""))
+
+
+def prompt(mode: str, lang: str) -> str:
+    """The prompt the terminal shows: ``teach>``, or ``answer>`` while a question is open."""
+    return (m.ANSWER_PROMPT if mode == "asking" else m.PROMPT)(lang)
+
+
+def render_teacher(line: str, mode: str = "idle", lang: str = "en") -> Text:
+    """A typed line as it stands after the prompt (for transcripts of scripted dialogues)."""
+    text = Text(prompt(mode, lang), style="bold green")
+    text.append(line)
+    return text
+
+
+def toolbar(manager: SessionManager) -> str:
+    """The terminal's bottom line: mode, what holds, questions left, generation."""
+    holds = ", ".join(n for n, v in zip(manager.domain.condition_names, manager.world.state(), strict=True) if v)
+    return m.TOOLBAR(manager.lang, mode=MODES[manager.mode](manager.lang), holds=holds or "—",
+                     left=manager.budget.left, generation=manager.generation)

@@ -1,0 +1,1 @@
+"""The worlds a session teaches in, behind one protocol (``teach.world.protocol``)."""

@@ -1,0 +1,132 @@
+"""The MuJoCo ball-in-bin world behind the session's ``TeachingWorld`` interface.
+
+Demonstrated actions run as skills in physics and every state is read from physics; runs of
+the learned tree go through the simulation's executor. No mujoco call lives here: this only
+adapts ``teach.sim`` to the session.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import TickResult
+from teach.display import has_display
+from teach.domain import Domain, State
+from teach.errors import TeachError
+from teach.observe.hook import Observer
+from teach.sim.executor import run_tree
+from teach.sim.perturb import PERTURBATIONS
+from teach.sim.skills import FrameClock, run_skill
+from teach.sim.world import World
+from teach.world.protocol import ActResult, Outcome, RunResult
+
+TICK_HZ = 10.0
+SECONDS_PER_ACTION = 30.0
+
+
+class _RunLimit:
+    """Counts the actions a run starts (so ``run N`` can stop after N) and announces each."""
+
+    def __init__(self, on_action: Callable[[str], None] | None, stop_after: int | None) -> None:
+        self.started = 0
+        self._last: str | None = None
+        self._on_action = on_action
+        self._stop_after = stop_after
+
+    def after_tick(self, result: TickResult) -> None:
+        if result.action is not None and result.action != self._last:
+            self.started += 1
+            if self._on_action is not None and (self._stop_after is None or self.started <= self._stop_after):
+                self._on_action(result.action)
+        self._last = result.action
+
+    def reached(self) -> bool:
+        return self._stop_after is not None and self.started > self._stop_after
+
+
+class _Pacer:
+    """Holds simulated time to at most ``pace`` times wall time, so a person can watch a run
+    (and press Ctrl-C in time); scripted replays run unpaced."""
+
+    def __init__(self, world: World, pace: float):
+        self.world, self.pace = world, pace
+        self._origin: tuple[float, float] | None = None
+
+    def __call__(self) -> None:
+        now, sim = time.monotonic(), self.world.sim_time
+        if self._origin is None or now - self._origin[0] > 1.0 + (sim - self._origin[1]) / self.pace:
+            self._origin = (now, sim)  # first frame, or after a pause at the prompt: start afresh
+            return
+        ahead = (sim - self._origin[1]) / self.pace - (now - self._origin[0])
+        if ahead > 0:
+            time.sleep(ahead)
+
+
+class MujocoWorld:
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False,
+                 pace: float = 0.0):
+        self.world = World(seed, domain)
+        self.domain = self.world.domain
+        self.observer = observer or Observer()
+        self._frame_steps: list[Callable[[], None]] = []  # after each scene frame: pace, redraw
+        if pace > 0:
+            self._frame_steps.append(_Pacer(self.world, pace))
+        if viewer:
+            if not has_display():
+                raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
+            self._frame_steps.append(self.world.open_viewer().sync)
+        self._on_frame = self._after_frame if self._frame_steps else None
+        self.frames = FrameClock(self.world, self.observer, self._on_frame)
+        self.events = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}
+
+    def _after_frame(self) -> None:
+        for step in self._frame_steps:
+            step()
+
+    def state(self) -> State:
+        return self.world.state()
+
+    def arrange(self, state: State) -> None:
+        self.world.arrange(state)
+        self.frames(None)
+
+    def reset(self, seed: int | None = None) -> None:
+        self.world.reset(seed)
+        self.frames(None)
+
+    def act(self, action: str) -> ActResult:
+        before = self.world.state()
+        status = run_skill(self.world, action, self.observer, frames=self.frames)
+        after = self.world.state()
+        if status is Status.SUCCESS:
+            return ActResult(True, before, after)
+        return ActResult(False, before, after, "the robot could not finish it in the simulation")
+
+    def perturb(self, event: str) -> ActResult:
+        before = self.world.state()
+        PERTURBATIONS[event].apply(self.world, self.world.rng)
+        self.frames(None)
+        return ActResult(True, before, self.world.state())
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        limit = _RunLimit(on_action, stop_after)
+
+        def stop() -> bool:
+            return (interrupt is not None and interrupt()) or limit.reached()
+
+        trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
+                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame)
+        ticks = zip(trace.states, trace.actions, trace.started, strict=True)
+        steps = [(state, action) for state, action, fresh in ticks
+                 if fresh and action is not None]
+        if stop_after is not None and trace.outcome is Outcome.INTERRUPTED:
+            steps = steps[:stop_after]
+        if trace.outcome is Outcome.INTERRUPTED and steps and steps[-1][0] == self.world.state():
+            steps.pop()  # stopped before it changed anything: the teacher's next step replaces it
+        return RunResult(trace.outcome, steps, self.world.state())
+
+    def close(self) -> None:
+        self.world.close()

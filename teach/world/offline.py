@@ -1,0 +1,42 @@
+"""The world of a session without one: only a state, arranged by the session."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from teach.bt.nodes import Node
+from teach.domain import Domain, State
+from teach.world.protocol import ActResult, Outcome, RunResult
+
+
+class OfflineWorld:
+    """No world at all, only a state: the session learns from demonstration files and answers.
+    (``SymbolicWorld`` adds actions to it.)"""
+
+    events: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {}
+
+    def __init__(self, domain: Domain):
+        self.domain = domain
+        self._state: State = tuple(False for _ in domain.conditions)
+
+    def state(self) -> State:
+        return self._state
+
+    def arrange(self, state: State) -> None:
+        self._state = tuple(state)
+
+    def reset(self, seed: int | None = None) -> None:
+        self._state = tuple(False for _ in self.domain.conditions)
+
+    def act(self, action: str) -> ActResult:
+        return ActResult(False, self._state, self._state, "this session has no world to act in")
+
+    def perturb(self, event: str) -> ActResult:
+        return ActResult(False, self._state, self._state, "this session has no world to act in")
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        return RunResult(Outcome.FAILURE, [], self._state)
+
+    def close(self) -> None:
+        pass

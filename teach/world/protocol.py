@@ -1,0 +1,65 @@
+"""What a session needs from a world: read and arrange its state, act, perturb and run a tree.
+
+Three worlds implement it: ``OfflineWorld`` (no world, only a state), ``SymbolicWorld`` (an
+action model's pre/ram) and ``MujocoWorld`` (the ball-in-bin physics of ``teach.sim``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from enum import StrEnum
+from typing import Protocol
+
+from teach.bt.nodes import Node
+from teach.domain import Domain, State
+
+
+@dataclass(frozen=True)
+class ActResult:
+    ok: bool
+    before: State
+    after: State
+    message: str = ""
+
+
+class Outcome(StrEnum):
+    """How a run of the learned tree ended."""
+
+    SUCCESS = "success"
+    FAILURE = "failure"
+    TIMEOUT = "timeout"
+    INTERRUPTED = "interrupted"
+
+
+@dataclass
+class RunResult:
+    """A run of the learned tree: outcome and the (state, action) steps it executed."""
+
+    outcome: Outcome
+    steps: list[tuple[State, str]] = field(default_factory=list)
+    final_state: State = ()
+
+
+class TeachingWorld(Protocol):
+    domain: Domain
+
+    @property
+    def events(self) -> Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]:
+        """The events a teacher can cause, each with its English and German phrases."""
+
+    def state(self) -> State: ...
+
+    def arrange(self, state: State) -> None: ...
+
+    def reset(self, seed: int | None = None) -> None: ...
+
+    def act(self, action: str) -> ActResult: ...
+
+    def perturb(self, event: str) -> ActResult: ...
+
+    def run(self, tree: Node, max_actions: int, interrupt: Callable[[], bool] | None,
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        """Tick ``tree`` until it finishes; ``on_action`` hears of every action as it starts."""
+
+    def close(self) -> None: ...

@@ -1,0 +1,74 @@
+"""Any domain with an action model (``pre``/``ram`` in domain.toml), simulated symbolically:
+an action whose preconditions hold makes its ramifications true."""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable
+
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import tick
+from teach.domain import Domain
+from teach.observe.hook import Observer
+from teach.symbolic import apply_action, assign, missing_preconditions
+from teach.world.offline import OfflineWorld
+from teach.world.protocol import ActResult, Outcome, RunResult
+
+
+class SymbolicWorld(OfflineWorld):
+    """Any domain with an action model, simulated symbolically (no physics)."""
+
+    events = {
+        "toggle": (("change something",), ("etwas ändern",)),
+    }
+
+    def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None):
+        if not domain.has_model:
+            from teach.errors import DomainError
+            raise DomainError("the symbolic world needs an action model (pre/ram) in the domain file", domain.path)
+        super().__init__(domain)
+        self.observer = observer or Observer()
+        self._rng = random.Random(seed)
+
+    def reset(self, seed: int | None = None) -> None:
+        if seed is not None:
+            self._rng = random.Random(seed)
+        super().reset(seed)
+
+    def act(self, action: str) -> ActResult:
+        before = self._state
+        missing = missing_preconditions(self.domain, before, action)
+        if missing:
+            return ActResult(False, before, before, "not possible now: needs " + ", ".join(map(str, missing)))
+        self._state = apply_action(self.domain, before, action)
+        return ActResult(True, before, self._state)
+
+    def perturb(self, event: str) -> ActResult:
+        """Flip one random condition: something outside the robot changed the world."""
+        before = self._state
+        index = self._rng.randrange(len(before))
+        self._state = assign(before, [(index, not before[index])])
+        return ActResult(True, before, self._state, f"{self.domain.conditions[index].name} changed")
+
+    def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+        names = self.domain.condition_names
+        result = RunResult(Outcome.TIMEOUT)
+        for _ in range(max_actions):
+            ticked = tick(tree, dict(zip(names, self._state, strict=True)))
+            self.observer.on_tick(tree, ticked)
+            if ticked.status is not Status.RUNNING or ticked.action is None:
+                result.outcome = Outcome.SUCCESS if ticked.status is Status.SUCCESS else Outcome.FAILURE
+                break
+            if interrupt is not None and interrupt() or stop_after is not None and len(result.steps) >= stop_after:
+                result.outcome = Outcome.INTERRUPTED
+                break
+            before = self._state
+            if on_action is not None:
+                on_action(ticked.action)
+            if not self.act(ticked.action).ok:
+                result.outcome = Outcome.FAILURE
+                break
+            result.steps.append((before, ticked.action))
+        result.final_state = self._state
+        return result
