@@ -23,8 +23,8 @@ import traceback
 
 PRELOADED = ("teach.cli", "teach.bt.xml", "teach.bt.render", "teach.bt.tick", "teach.demos", "teach.domain",
              "teach.replay", "teach.learn.specialize", "teach.learn.model", "teach.learn.pabt", "teach.learn.prune",
-             "teach.learn.order", "teach.dialogue.session", "teach.dialogue.setup", "teach.dialogue.drive",
-             "teach.dialogue.oracle", "teach.dialogue.script", "teach.dialogue.model_repair", "teach.dialogue.terminal",
+             "teach.learn.order", "teach.session.machine", "teach.session.setup", "teach.terminal.scripted",
+             "teach.dialogue.oracle", "teach.dialogue.script", "teach.dialogue.model_repair", "teach.terminal.app",
              "rich.console",
              "rich.table")
 

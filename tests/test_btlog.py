@@ -28,7 +28,7 @@ from teach.bt.tick import TickResult, tick
 from teach.bt.xml import read_tree, tree_from_xml, tree_to_xml
 from teach.domain import load_domain
 from teach.errors import FormatError, TeachError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.executor import run_tree
 from teach.sim.world import World
 

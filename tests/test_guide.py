@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from teach.errors import FormatError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.guide import Guide, GuideCommand, is_guide_line, parse_guide_line
 from teach.sim.world import FINGER_CLOSED, World, _wrap
 

@@ -23,7 +23,7 @@ from teach.learn.recognise import question
 from teach.sim.executor import run_tree
 from teach.sim.guide import Guide, parse_guide_line
 from teach.sim.guided_skill import guided_skill, load_motion, motion_from_segment, motion_text, save_motion
-from teach.sim.recorder import Recorder
+from teach.sim.recorder import RecordedStep, Recorder
 from teach.sim.segment import Segmenter, explain_segments, guided_demonstration, segment
 from teach.sim.skills import SKILLS, register, run_skill
 from teach.sim.world import GRASP_OFFSET, LIFT_CARRY, LIFT_PLACE, World, _wrap
@@ -130,19 +130,17 @@ def _snake(name: str) -> str:
     return "".join(f"_{c.lower()}" if c.isupper() else c for c in name).lstrip("_")
 
 
-def named_recording(start: dict[str, bool], seed: int) -> Recorder:
+def named_recording(start: dict[str, bool], seed: int) -> tuple[Recorder, list[RecordedStep]]:
     """The teacher naming the skills instead: each step whose effect does not hold yet."""
     world = World(seed=0)
     world.arrange(start, seed=seed)
     recorder = Recorder(world)
-    for name, condition in STEPS:
-        if not world.conditions()[condition]:
-            recorder.step(name)
-    return recorder
+    steps = [recorder.step(name) for name, condition in STEPS if not world.conditions()[condition]]
+    return recorder, steps
 
 
 def named_demonstration(start: dict[str, bool], seed: int) -> list[tuple[tuple[bool, ...], str, tuple[bool, ...]]]:
-    return [(s.before, s.name, s.after) for s in named_recording(start, seed).recorded]
+    return [(s.before, s.name, s.after) for s in named_recording(start, seed)[1]]
 
 
 def guided(start: dict[str, bool], seed: int, teach: str = "demonstrate") -> tuple[World, Guide, Teacher, Segmenter]:
@@ -178,14 +176,14 @@ STARTS = [({}, 1), ({"BinClose": True}, 1), ({"BallClose": True}, 1), ({"BallClo
 def test_guided_demonstration_gives_the_named_transitions(start: dict[str, bool], seed: int) -> None:
     world, _, teacher, segmenter = guided(start, seed)
     assert all(line.startswith("guide ") for line in teacher.lines)
-    named = named_recording(start, seed)
-    assert labelled(world, segmenter) == [(s.before, s.name, s.after) for s in named.recorded]
+    recorder, named = named_recording(start, seed)
+    assert labelled(world, segmenter) == [(s.before, s.name, s.after) for s in named]
     assert world.conditions()["BallPlaced"]
     explained = explain_segments(world.domain, segmenter.segments)
     # every step is recognised without a labelling question, and the CSV lines are the same
     assert not any(r.needs_question for _, r in explained)
     demo = guided_demonstration(world.domain, [(s, r.best or "") for s, r in explained], world.state())
-    assert format_demonstration(demo) == format_demonstration(named.done())
+    assert format_demonstration(demo) == format_demonstration(recorder.done())
 
 
 def test_a_guided_script_replays_exactly() -> None:

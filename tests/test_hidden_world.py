@@ -1,4 +1,4 @@
-"""The hidden-state world (teach/hidden_world.py): variables, derived conditions, effects, events."""
+"""The hidden-state world (teach/world/hidden.py): variables, derived conditions, effects, events."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import pytest
 from conftest import BALL_DOMAIN, ROOT
 
 from teach.bt.nodes import Action, Condition, Fallback, Sequence
-from teach.dialogue.worlds import SymbolicWorld
+from teach.world.symbolic import SymbolicWorld
 from teach.domain import Domain, Literal, load_domain
 from teach.errors import DomainError, FormatError
-from teach.hidden_world import HiddenStateWorld, load_world, symbolic_world
+from teach.world.hidden import HiddenStateWorld, load_world, symbolic_world
 
 SNACKS = ROOT / "demos" / "snacks"
 

@@ -22,7 +22,7 @@ from teach.dialogue.phrases import (
     is_yes,
     normalize,
 )
-from teach.dialogue.session import COMMANDS
+from teach.session.commands import COMMANDS
 from teach.domain import load_domain
 from teach.sim.perturb import PERTURBATIONS
 

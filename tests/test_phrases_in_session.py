@@ -6,13 +6,14 @@ from __future__ import annotations
 import pytest
 
 from teach.demos import read_demo_set
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import SymbolicWorld
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings
+from teach.world.symbolic import SymbolicWorld
 
 
 def session(ball, tmp_path, lang):
-    config = SessionConfig("careless", ball, lang, 0, base=tmp_path, world="symbolic")
-    return SessionManager(config, SymbolicWorld(ball))
+    settings = Settings("careless", lang=lang, questions=0, base=tmp_path, world="symbolic", record=False)
+    return SessionManager(settings, ball, SymbolicWorld(ball))
 
 
 @pytest.mark.parametrize("lang,lines", [
@@ -30,10 +31,10 @@ def test_everyday_lines_teach_the_whole_task(ball, tmp_path, lang, lines):
 
 
 def test_in_mujoco_only_the_exact_phrase_perturbs(ball, tmp_path):
-    from teach.dialogue.mujoco_world import MujocoWorld
+    from teach.world.mujoco_world import MujocoWorld
 
-    config = SessionConfig("mujoco", ball, "en", 0, base=tmp_path, world="mujoco")
-    manager = SessionManager(config, MujocoWorld(ball, seed=3))
+    settings = Settings("mujoco", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, ball, MujocoWorld(ball, seed=3))
     replies = manager.handle("take the ball to the bin")  # carrying nothing, the robot just drives there
     assert not any(r.text.startswith("Event") for r in replies)
     replies = manager.handle("move the bin")

@@ -17,10 +17,11 @@ from teach.bt.xml import read_tree
 from teach.demos import Demonstration, read_demo_set
 from teach.dialogue.phrases import PhraseBook
 from teach.dialogue.script import read_script
-from teach.dialogue.session import SessionConfig, SessionManager
-from teach.dialogue.worlds import TeachingWorld
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings
+from teach.world.protocol import TeachingWorld
 from teach.domain import EXTERNAL_ACTION, Domain, load_domain
-from teach.hidden_world import HiddenStateWorld, load_world
+from teach.world.hidden import HiddenStateWorld, load_world
 from teach.replay import replay
 
 SNACKS = ROOT / "demos" / "snacks"
@@ -57,7 +58,7 @@ def world(domain: Domain, seed: int = 0) -> HiddenStateWorld:
 def session(name: str, domain: Domain, place: HiddenStateWorld, base: Path, lang: str = "en") -> SessionManager:
     """A real session in the hidden-state world (the cast: worlds.py's ``events`` is a ``dict`` where
     its protocol says ``Mapping``, which mypy counts as a mismatch for every world)."""
-    return SessionManager(SessionConfig(name, domain, lang, base=base, world="symbolic"), cast(TeachingWorld, place))
+    return SessionManager(Settings(name, lang=lang, base=base, world="symbolic", record=False), domain, cast(TeachingWorld, place))
 
 
 def test_the_generator_writes_the_committed_files_byte_for_byte(tmp_path):

@@ -6,7 +6,7 @@ Example:
 
 The thesis gives the behaviour (Fig. 3.3) but no demonstrations, so they are made here by
 running that behaviour, written as ``reference_tree()``, in the hidden-state world of
-``world.toml`` (teach/hidden_world.py): ``train/`` holds eleven demonstrations with repeated
+``world.toml`` (teach/world/hidden.py): ``train/`` holds eleven demonstrations with repeated
 actions, both orders of actions and external events; ``heldout/`` one demonstration from
 every other start state. Every choice is a named constant below and is explained in
 demos/snacks/README.md. The output is deterministic: running this twice gives the same bytes.
@@ -25,7 +25,7 @@ from teach.bt.tick import compile_tree
 from teach.demos import Demonstration, Step, format_demonstration
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, load_domain
 from teach.fsutil import atomic_write_text
-from teach.hidden_world import HiddenStateWorld, load_world
+from teach.world.hidden import HiddenStateWorld, load_world
 
 HERE = Path(__file__).resolve().parent
 MAX_STEPS = 40  # a reference behaviour that needs more steps than this is looping

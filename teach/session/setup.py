@@ -13,7 +13,7 @@ from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import TeachingWorld
-from teach.world.symbolic import SymbolicWorld
+from teach.world.hidden import symbolic_world
 
 DEFAULT_DOMAIN = Path("demos/ball/domain.toml")
 
@@ -34,7 +34,7 @@ def make_world(settings: Settings, domain: Domain, observer: Observer) -> Teachi
     if settings.viewer:
         raise TeachError("--viewer shows the MuJoCo world: use it with --world mujoco")
     if settings.world is WorldKind.SYMBOLIC:
-        return SymbolicWorld(domain, settings.seed, observer)
+        return symbolic_world(domain, settings.seed, observer)
     return OfflineWorld(domain)
 
 

@@ -25,7 +25,7 @@ from pathlib import Path
 
 from teach.domain import State
 from teach.errors import FormatError
-from teach.observe import Observer
+from teach.observe.hook import Observer
 from teach.sim.skills import FrameClock
 from teach.sim.world import CONTROL_STEPS, FINGER_CLOSED, FINGER_OPEN, LIFT_TOP, World, _wrap
 
