@@ -121,6 +121,8 @@ class Learner:
         self.goal = GoalLearner(self._n)
         self._weak = weak_last_resort
         self._situations: dict[int, Situation] = {}
+        self._restored: set[Lit] = set()
+        self._left_broken: set[Lit] = set()
         self._columns = _Columns(self._n)
         self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
         self._rank_sum: dict[Lit, int] = {}
@@ -160,17 +162,22 @@ class Learner:
         steps = demo.steps
         previous: tuple[int, int] | None = None
         position = 0
+        broken: list[Lit] = []
         for i, step in enumerate(steps):
             after = self._mask(steps[i + 1].state) if i + 1 < len(steps) else None
             mask = self._mask(step.state)
             src = f"{where}:{step.line}"
             if step.action == EXTERNAL_ACTION:
                 previous = None
+                if after is not None:
+                    broken += self._literals(mask ^ after, mask)
                 continue
             answer = None if step.action == GOAL_ACTION else self.domain.action(step.action).name
             if self._label(mask, step.state, answer, src):
                 new_conflicts.append(mask)
             touched.append(mask)
+            self._note_restored(broken, after if answer is not None else None)
+            broken = []
             if answer is None:
                 continue
             self.model.applied(answer, mask, src, previous)
@@ -197,6 +204,18 @@ class Learner:
             self.model.applied(answer, mask, source)
             self._guess_effect(mask, answer, source)
         return self._finish(source, [mask], [mask] if conflict else [])
+
+    def _note_restored(self, broken: list[Lit], after: int | None) -> None:
+        """Which literals an external event took away did the teacher's next action restore?"""
+        for literal in broken:
+            if after is not None and bool(after >> literal[0] & 1) == literal[1]:
+                self._restored.add(literal)
+            else:
+                self._left_broken.add(literal)
+
+    def _maintained(self, literal: Lit) -> bool:
+        """The teacher restored ``literal`` at once every time an event took it away (at least once)."""
+        return literal in self._restored and literal not in self._left_broken
 
     def _guess_effect(self, mask: int, answer: str, source: str) -> None:
         """An action never demonstrated, asked for in a state one literal away from where
@@ -430,6 +449,33 @@ class Learner:
             errors = best[0]
             knowledge.confirmed[best[2]] = situation.sources[-1]
             self._replan()
+            if self._maintained(best[2]):
+                errors = self._extend(best[2], situation.sources[-1], errors)
+
+    def _extend(self, literal: Lit, source: str, errors: int) -> int:
+        """A maintained literal just shown to be needed by one action is needed by every action
+        it held for each time that action was done: people keep what they care about. Kept only
+        if no more situations go wrong; returns how many are wrong now."""
+        index, value = literal
+        others = []
+        for knowledge in self.model.actions.values():
+            pos, neg = knowledge.possible
+            have_pos, have_neg = knowledge.assumed
+            if knowledge.demonstrated and ((pos & ~have_pos) if value else (neg & ~have_neg)) >> index & 1:
+                others.append(knowledge)
+        if not others:
+            return errors
+        kept = (self._view, self._plan, self._roles, self._compiled)
+        for knowledge in others:
+            knowledge.maintained[literal] = source
+        self._replan()
+        now = self._plan_errors()
+        if now <= errors:
+            return now
+        for knowledge in others:
+            del knowledge.maintained[literal]
+        self._view, self._plan, self._roles, self._compiled = kept
+        return errors
 
     def _rebuild_exceptions(self) -> None:
         """Exceptions for a new plan: one for each situation the plan gets wrong and no
