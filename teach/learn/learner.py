@@ -131,6 +131,7 @@ class Learner:
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
         self._compiled: CompiledTree | None = None
+        self._counted: tuple[CompiledTree, int] | None = None
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
@@ -308,6 +309,7 @@ class Learner:
         if situation is None:
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
             self._columns.add(mask, frozenset({answer}))
+            self._recount(state, frozenset(), frozenset({answer}))
             self._feed_goal(mask, frozenset({answer}), source)
             return False
         situation.sources.append(source)
@@ -327,6 +329,7 @@ class Learner:
         elif None not in old:
             self.goal.remove_acting_state(mask)
         self._columns.relabel(mask, old, allowed)
+        self._recount(situation.state, old, allowed)
         situation.allowed, situation.answer = allowed, answer
         self._feed_goal(mask, allowed, situation.sources[-1])
 
@@ -345,7 +348,7 @@ class Learner:
             self._replan()
         # after a replan every situation the plan gets wrong, else the new ones the tree gets wrong
         if self._view != view:
-            wrong = [m for m, s in self._situations.items() if self._plan_output(m) not in s.allowed]
+            wrong = [m for m, s in self._situations.items() if self._plan_does(s.state) not in s.allowed]
         else:
             wrong = [m for m in dict.fromkeys(touched) if self._output(m) not in self._situations[m].allowed]
         if wrong:
@@ -396,9 +399,12 @@ class Learner:
         self._tree = None
 
     def _plan_output(self, mask: int) -> Answer | str:
+        return self._plan_does(self._state(mask))
+
+    def _plan_does(self, state: State) -> Answer | str:
         if self._compiled is None:
             return _FAILED
-        status, action = self._compiled(self._state(mask))
+        status, action = self._compiled(state)
         if status is Status.RUNNING:
             return action
         return None if status is Status.SUCCESS else _FAILED
@@ -410,8 +416,35 @@ class Learner:
         result = self._plan_output(mask)
         return False if result == _FAILED else result
 
-    def _plan_errors(self) -> int:
-        return sum(self._plan_output(m) not in s.allowed for m, s in self._situations.items())
+    def _plan_errors(self, limit: int | None = None) -> int:
+        """How many situations the plan gets wrong; counting stops at ``limit`` (the caller
+        only needs to know whether it beats a count it has). A complete count is kept for the
+        plan and updated label by label, so an update that keeps the plan does not count again."""
+        compiled = self._compiled
+        if self._counted is not None and self._counted[0] is compiled:
+            return self._counted[1]
+        wrong = 0
+        for situation in self._situations.values():
+            if self._plan_does(situation.state) not in situation.allowed:
+                wrong += 1
+                if wrong == limit:
+                    return wrong
+        if compiled is not None:
+            self._counted = (compiled, wrong)
+        return wrong
+
+    def _recount(self, state: State, old: frozenset[Answer], new: frozenset[Answer]) -> None:
+        """Keep the plan's error count right after a situation's allowed answers changed."""
+        if self._counted is None:
+            return
+        compiled, wrong = self._counted
+        if compiled is not self._compiled:
+            self._counted = None
+            return
+        does = self._plan_does(state)
+        if old:
+            wrong -= does not in old
+        self._counted = (compiled, wrong + (does not in new))
 
     def _repair_model(self, wrong: list[int]) -> None:
         """Add back possible preconditions the prior left out where that reproduces more
@@ -439,7 +472,9 @@ class Learner:
                 trials += 1
                 knowledge.confirmed[literal] = situation.sources[-1]
                 self._replan()
-                score = (self._plan_errors(), tuple(-x for x in self._rank(literal)), literal)
+                # only a count that ties or beats the best so far matters exactly
+                limit = errors if best is None else best[0] + 1
+                score = (self._plan_errors(limit), tuple(-x for x in self._rank(literal)), literal)
                 del knowledge.confirmed[literal]
                 if score[0] < errors and (best is None or score < best):
                     best = score
@@ -469,7 +504,7 @@ class Learner:
         for knowledge in others:
             knowledge.maintained[literal] = source
         self._replan()
-        now = self._plan_errors()
+        now = self._plan_errors(errors + 1)
         if now <= errors:
             return now
         for knowledge in others:
@@ -486,7 +521,7 @@ class Learner:
         covered = 0
         position = self._columns.position
         for mask, situation in self._situations.items():
-            if covered >> position[mask] & 1 or self._plan_output(mask) in situation.allowed:
+            if covered >> position[mask] & 1 or self._plan_does(situation.state) in situation.allowed:
                 continue
             exception = self._exception(mask, situation)
             self._exceptions.insert(0, exception)
