@@ -269,6 +269,15 @@ class Learner:
                 shown.setdefault(situation.answer, situation.state)
         return shown
 
+    def planned_for_goal_bound(self) -> CompiledTree | None:
+        """The plan as it would be if the goal were its over-specific bound (every literal that
+        held in all goal states): where it acts otherwise than the tree, an answer tells which
+        of those literals the task needs."""
+        view = self._current_view()
+        goal = tuple(sorted(self.goal.candidates(), key=self._rank))
+        bound, _roles = plan(PlanView(goal, view.preconditions, view.achievers, view.weak_last_resort), self.names)
+        return None if bound is None else compile_tree(bound, self.names)
+
     def goal_holds(self, state: State) -> bool:
         """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
         return self.goal.holds(self._mask(state))
