@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from teach.demos import read_demo_set
+from teach.learn.inquiry import next_question
 from teach.learn.learner import learn_online
 from teach.replay import replay
 from tests.btcpp import assert_matches_btcpp
@@ -41,3 +42,14 @@ def test_a_condition_the_teacher_restores_after_every_event_is_kept_for_every_st
     assert "restores it at once" in back.reason(requested)
     without_request = (False, True, True, False, False)  # an empty tray carried, away, no request
     assert learner.answer_in(without_request) == "WaitForRequest"
+
+
+def test_precondition_questions_start_with_the_step_shown_most_often() -> None:
+    domain, train = read_demo_set(SNACKS / "train")
+    learner = learn_online(domain, train[:3])  # OfferSnack shown 7 times, WaitForRequest once
+    asked: list[tuple[bool, ...]] = []
+    question = next_question(learner, asked)
+    while question is not None and question.kind != "possible-precondition":
+        asked.append(question.state)
+        question = next_question(learner, asked)
+    assert question is not None and question.action == "OfferSnack"

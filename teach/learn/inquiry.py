@@ -107,12 +107,15 @@ def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
 
 def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Callable[[State, int], State],
                    kinds: tuple[str, ...]) -> Iterable[SituationQuestion]:
-    """A state where an action was shown, with one of its precondition literals flipped."""
+    """A state where an action was shown, with one of its precondition literals flipped; the
+    actions shown most often first (a literal that held every time an action was done is the
+    likelier to matter the more often it was done, so the answer likelier changes the tree)."""
     names = learner.names
     width = len(names)
     shown = learner.shown_states()
+    by_evidence = sorted(learner.model.actions.items(), key=lambda item: (-item[1].applied.count, item[1].order))
     for kind in kinds:
-        for name, knowledge in learner.model.actions.items():
+        for name, knowledge in by_evidence:
             if not knowledge.demonstrated or name not in shown:
                 continue
             pos, neg = knowledge.possible
