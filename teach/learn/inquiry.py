@@ -107,14 +107,20 @@ def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
 
 def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Callable[[State, int], State],
                    kinds: tuple[str, ...]) -> Iterable[SituationQuestion]:
-    """A state where an action was shown, with one of its precondition literals flipped; the
-    actions shown most often first (a literal that held every time an action was done is the
-    likelier to matter the more often it was done, so the answer likelier changes the tree)."""
+    """A state where an action was shown, with one of its precondition literals flipped. First
+    the literals already shown to matter to another action (a condition one step needs is the
+    first to check for the others), then by action, the actions shown most often first (a
+    literal that held every time an action was done is the likelier to matter the more often
+    it was done); either way the answer is the likelier to change the tree."""
     names = learner.names
     width = len(names)
     shown = learner.shown_states()
     by_evidence = sorted(learner.model.actions.items(), key=lambda item: (-item[1].applied.count, item[1].order))
+    mattered = {lit for knowledge in learner.model.actions.values()
+                for lit in (*knowledge.confirmed, *knowledge.maintained)}
     for kind in kinds:
+        first: list[SituationQuestion] = []
+        later: list[SituationQuestion] = []
         for name, knowledge in by_evidence:
             if not knowledge.demonstrated or name not in shown:
                 continue
@@ -130,9 +136,12 @@ def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Call
                 left_out = literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
                 wanted = kind == "possible-precondition"
                 literals = [lit for lit in left_out if bool(learner.model.achievers(lit)) == wanted]
-            for index, _value in literals:
+            for index, value in literals:
                 probe = flipped(shown[name], index)
-                yield SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
+                question = SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
+                (first if (index, value) in mattered else later).append(question)
+        yield from first
+        yield from later
 
 
 
