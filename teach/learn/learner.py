@@ -21,7 +21,9 @@ What it keeps (all updated in O(conditions) per step, never by replaying old dat
 The tree is ``Fallback(exception..., plan)``. The plan is backchained from the goal through
 the model (``teach.learn.backchain``) and rebuilt only when what the planner reads changed.
 Where the plan does not do a state's label, the learner first tries to repair the model (a
-possible precondition the prior left out is added back if that reproduces more situations),
+possible precondition the prior left out is added back if that reproduces more situations;
+if the teacher restored that literal at once after every external event that took it away,
+it is assumed for every other action it held for too, unless that gets more situations wrong),
 and otherwise adds an *exception* in front: the fewest literals of that state that hold in
 no situation labelled otherwise (and, for an action, a violated goal literal, so an
 exception never fires where the goal holds), then the label. So every consistent
