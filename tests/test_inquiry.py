@@ -43,10 +43,30 @@ def test_every_answer_but_what_the_tree_does_changes_the_tree() -> None:
 
 def test_the_first_question_fixes_the_accidental_precondition_of_delta4() -> None:
     # Δ4 never shows GraspBall without a found ball, so the learner drops BallFound as accidental
+    # (the goal's bound, every literal of the goal states, would find the ball first there)
     learner = ball_learner()
     question = next_question(learner)
-    assert question is not None and question.kind == "possible-precondition"
-    assert question.action is not None and question.condition is not None
+    assert question is not None and question.kind == "goal-bound"
+    assert question.state == (False, True, False, False, False) and question.tree_does == "GraspBall"
+    # afterwards the precondition questions follow: the goal's bound is asked about once
+    second = next_question(learner, [question.state])
+    assert second is not None and second.kind == "possible-precondition"
+    assert second.action is not None and second.condition is not None
+
+
+def test_the_goal_bound_question_finds_a_goal_literal_the_cover_left_out() -> None:
+    # one demonstration ending with X and Y, Y made first: the cover keeps only X, the last one missing
+    domain = Domain("bound", (ConditionDef("X"), ConditionDef("Y")), (ActionDef(1, "MakeX"), ActionDef(2, "MakeY")))
+    learner = Learner(domain)
+    learner.update(Demonstration("one", (Step((False, False), 2, 1), Step((False, True), 1, 2),
+                                         Step((True, True), 0, 3))))
+    assert learner.goal.cover == [(0, True)]
+    question = next_question(learner)
+    assert question is not None and question.kind == "goal-bound"
+    assert question.state == (True, False) and question.tree_does == "done"
+    learner.teach_step(question.state, "MakeY", "question 1")
+    assert learner.answer_in((True, False)) == "MakeY"
+    assert not learner.goal_holds((True, False))
 
 
 def test_a_conflict_is_asked_first() -> None:

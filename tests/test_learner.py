@@ -208,3 +208,17 @@ def test_random_messy_demonstrations_are_reproduced_except_where_they_conflict(s
         assert learner.answer_in(state) is not None or learner.goal_holds(state)
     assert_matches_btcpp(tree, domain)
     assert all(learner.explain(node.uid) for node in walk(tree))
+
+
+def test_the_kept_count_of_plan_errors_matches_a_fresh_count() -> None:
+    # the count is updated label by label instead of recounting every situation per update
+    domain, demos = read_demo_set(BALL / "delta4")
+    learner = learn_online(domain, demos)
+    for number, state in enumerate(s for s in all_states(domain) if s not in learner.situations):
+        learner._plan_errors()
+        does = learner.answer_in(state)
+        answer = None if isinstance(does, str) else domain.action_names[0]
+        learner._label(learner._mask(state), state, answer, f"question {number}")  # no replan
+        kept = learner._plan_errors()
+        learner._counted = None
+        assert kept == learner._plan_errors(), state

@@ -6,7 +6,10 @@ of masks (conditions that must be true, conditions that must be false).
 Per robot action (external events, -1, belong to nobody and teach no action anything):
 
 - **effects** (SAM-style, Juba et al. 2021): a literal that changed to its value in some
-  transition of the action and held after every transition of it (never contradicted);
+  transition of the action and never changed the other way in one (never contradicted). A
+  transition after which it still does not hold does not contradict it: where the world has
+  hidden state (snacks left on a tray) an action makes its effect hold only sometimes, and a
+  reactive tree simply does it again;
 - **possible preconditions** (the upper bound): the literals that held in every state where
   the action was applied; a precondition the model does not list here cannot be real;
 - **assumed preconditions** (what the planner uses): the possible ones that the data gives a
@@ -16,6 +19,8 @@ Per robot action (external events, -1, belong to nobody and teach no action anyt
   enable this action; a side effect that happened only sometimes does not count);
 - **confirmed preconditions** (the lower bound): possible ones the learner had to add back
   to reproduce a demonstration, or that an answer showed, with the situation behind each;
+  and **maintained** ones: a literal the teacher restored at once every time an event took it
+  away, once another action was shown to need it, is assumed for every action it held for;
 - **guessed effects** of an action never demonstrated, from an answer (until its first
   transition replaces them).
 
@@ -60,17 +65,16 @@ class ActionKnowledge:
     held_false: int = -1
     became_true: int = 0
     became_false: int = 0
-    after_true: int = -1
-    after_false: int = -1
     enabled_true: int = -1
     enabled_false: int = -1
     followed: int = 0
     made: dict[Lit, Evidence] = field(default_factory=dict)
     confirmed: dict[Lit, str] = field(default_factory=dict)
+    maintained: dict[Lit, str] = field(default_factory=dict)
     guessed: dict[Lit, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        self.held_true = self.held_false = self.after_true = self.after_false = self.full
+        self.held_true = self.held_false = self.full
         self.enabled_true = self.enabled_false = self.full
 
     @property
@@ -88,7 +92,7 @@ class ActionKnowledge:
                 else:
                     made_false |= 1 << index
             return made_true, made_false
-        return self.became_true & self.after_true, self.became_false & self.after_false
+        return self.became_true & ~self.became_false, self.became_false & ~self.became_true
 
     @property
     def possible(self) -> tuple[int, int]:
@@ -105,7 +109,7 @@ class ActionKnowledge:
         enabled_true, enabled_false = (self.enabled_true, self.enabled_false) if self.followed else (0, 0)
         keep_pos = pos & (made_false | enabled_true)
         keep_neg = neg & (made_true | enabled_false)
-        for (index, value) in self.confirmed:
+        for (index, value) in (*self.confirmed, *self.maintained):
             if value and pos >> index & 1:
                 keep_pos |= 1 << index
             elif not value and neg >> index & 1:
@@ -117,6 +121,9 @@ class ActionKnowledge:
         index, value = literal
         if literal in self.confirmed:
             return f"added back at {self.confirmed[literal]} to reproduce what was shown there"
+        if literal in self.maintained:
+            return (f"the teacher restores it at once whenever something takes it away, and another step "
+                    f"was shown to need it at {self.maintained[literal]}")
         made_true, made_false = self.effects
         if (made_false if value else made_true) >> index & 1:
             return "it runs only while its own effect does not hold yet"
@@ -153,8 +160,6 @@ class ActionModel:
         changed = before ^ after
         knowledge.became_true |= changed & after
         knowledge.became_false |= changed & ~after & self.full
-        knowledge.after_true &= after
-        knowledge.after_false &= ~after & self.full
         for index in range(self.width):
             if changed >> index & 1:
                 literal = (index, bool(after >> index & 1))

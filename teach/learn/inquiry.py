@@ -5,6 +5,10 @@ situations ("If <state>, what should I do?") in which the teacher's answer settl
 point of the model, most decisive first:
 
 1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it;
+   then, as the first question only, **the goal's bound**: a state next to a labelled one
+   where the tree would act otherwise if the goal were every literal that held in all goal
+   states; the answer shows whether those literals matter (asked once: most of them are
+   accidental, and on random domains a second such question costs more than it brings);
 2. **possible preconditions left out**: a state where an action was shown, with one literal
    made false that held every time the action was shown, that some known action can make
    hold, but that the learner dropped as probably accidental (the tree still does the action
@@ -31,11 +35,12 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
+from teach.bt.nodes import Status
 from teach.domain import State
 from teach.learn.action_model import literals_of
 from teach.learn.learner import Learner
 
-KINDS = ("conflict", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal")
+KINDS = ("conflict", "goal-bound", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal")
 
 
 @dataclass(frozen=True)
@@ -55,7 +60,7 @@ def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQue
     """The most decisive open situation, or None when nothing is left to ask."""
     skip = set(asked)
     labelled = learner.situations
-    for question in _candidates(learner):
+    for question in _candidates(learner, first=not skip):
         if question.state in skip:
             continue
         if question.kind != "conflict" and question.state in labelled:
@@ -64,7 +69,7 @@ def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQue
     return None
 
 
-def _candidates(learner: Learner) -> Iterable[SituationQuestion]:
+def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
     names = learner.names
     width = len(names)
 
@@ -78,6 +83,8 @@ def _candidates(learner: Learner) -> Iterable[SituationQuestion]:
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
 
+    if first:
+        yield from _goal_bound(learner, does, flipped)
     yield from _preconditions(learner, does, flipped, ("possible-precondition",))
     yield from _preconditions(learner, does, flipped, ("assumed-precondition",))
     yield from _preconditions(learner, does, flipped, ("unknown-achiever",))
@@ -100,12 +107,21 @@ def _candidates(learner: Learner) -> Iterable[SituationQuestion]:
 
 def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Callable[[State, int], State],
                    kinds: tuple[str, ...]) -> Iterable[SituationQuestion]:
-    """A state where an action was shown, with one of its precondition literals flipped."""
+    """A state where an action was shown, with one of its precondition literals flipped. First
+    the literals already shown to matter to another action (a condition one step needs is the
+    first to check for the others), then by action, the actions shown most often first (a
+    literal that held every time an action was done is the likelier to matter the more often
+    it was done); either way the answer is the likelier to change the tree."""
     names = learner.names
     width = len(names)
     shown = learner.shown_states()
+    by_evidence = sorted(learner.model.actions.items(), key=lambda item: (-item[1].applied.count, item[1].order))
+    mattered = {lit for knowledge in learner.model.actions.values()
+                for lit in (*knowledge.confirmed, *knowledge.maintained)}
     for kind in kinds:
-        for name, knowledge in learner.model.actions.items():
+        first: list[SituationQuestion] = []
+        later: list[SituationQuestion] = []
+        for name, knowledge in by_evidence:
             if not knowledge.demonstrated or name not in shown:
                 continue
             pos, neg = knowledge.possible
@@ -120,7 +136,33 @@ def _preconditions(learner: Learner, does: Callable[[State], str], flipped: Call
                 left_out = literals_of(pos & ~assumed[0], neg & ~assumed[1], width)
                 wanted = kind == "possible-precondition"
                 literals = [lit for lit in left_out if bool(learner.model.achievers(lit)) == wanted]
-            for index, _value in literals:
+            for index, value in literals:
                 probe = flipped(shown[name], index)
-                yield SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
+                question = SituationQuestion(probe, kind, action=name, condition=names[index], tree_does=does(probe))
+                (first if (index, value) in mattered else later).append(question)
+        yield from first
+        yield from later
 
+
+
+def _goal_bound(learner: Learner, does: Callable[[State], str],
+                flipped: Callable[[State, int], State]) -> Iterable[SituationQuestion]:
+    """States next to labelled ones where the plan for the goal's over-specific bound acts
+    otherwise than the tree (and the tree does something)."""
+    bound = learner.planned_for_goal_bound()
+    if bound is None:
+        return
+    seen: set[State] = set()
+    for state in learner.situations:
+        for index in range(len(learner.names)):
+            probe = flipped(state, index)
+            if probe in seen:
+                continue
+            seen.add(probe)
+            now = does(probe)
+            if now == "nothing":
+                continue
+            status, action = bound(probe)
+            there = action if status is Status.RUNNING else "done" if status is Status.SUCCESS else "nothing"
+            if there != now:
+                yield SituationQuestion(probe, "goal-bound", tree_does=now)

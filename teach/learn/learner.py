@@ -21,7 +21,9 @@ What it keeps (all updated in O(conditions) per step, never by replaying old dat
 The tree is ``Fallback(exception..., plan)``. The plan is backchained from the goal through
 the model (``teach.learn.backchain``) and rebuilt only when what the planner reads changed.
 Where the plan does not do a state's label, the learner first tries to repair the model (a
-possible precondition the prior left out is added back if that reproduces more situations),
+possible precondition the prior left out is added back if that reproduces more situations;
+if the teacher restored that literal at once after every external event that took it away,
+it is assumed for every other action it held for too, unless that gets more situations wrong),
 and otherwise adds an *exception* in front: the fewest literals of that state that hold in
 no situation labelled otherwise (and, for an action, a violated goal literal, so an
 exception never fires where the goal holds), then the label. So every consistent
@@ -121,6 +123,8 @@ class Learner:
         self.goal = GoalLearner(self._n)
         self._weak = weak_last_resort
         self._situations: dict[int, Situation] = {}
+        self._restored: set[Lit] = set()
+        self._left_broken: set[Lit] = set()
         self._columns = _Columns(self._n)
         self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
         self._rank_sum: dict[Lit, int] = {}
@@ -129,6 +133,7 @@ class Learner:
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
         self._compiled: CompiledTree | None = None
+        self._counted: tuple[CompiledTree, int] | None = None
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
@@ -160,17 +165,22 @@ class Learner:
         steps = demo.steps
         previous: tuple[int, int] | None = None
         position = 0
+        broken: list[Lit] = []
         for i, step in enumerate(steps):
             after = self._mask(steps[i + 1].state) if i + 1 < len(steps) else None
             mask = self._mask(step.state)
             src = f"{where}:{step.line}"
             if step.action == EXTERNAL_ACTION:
                 previous = None
+                if after is not None:
+                    broken += self._literals(mask ^ after, mask)
                 continue
             answer = None if step.action == GOAL_ACTION else self.domain.action(step.action).name
             if self._label(mask, step.state, answer, src):
                 new_conflicts.append(mask)
             touched.append(mask)
+            self._note_restored(broken, after if answer is not None else None)
+            broken = []
             if answer is None:
                 continue
             self.model.applied(answer, mask, src, previous)
@@ -197,6 +207,18 @@ class Learner:
             self.model.applied(answer, mask, source)
             self._guess_effect(mask, answer, source)
         return self._finish(source, [mask], [mask] if conflict else [])
+
+    def _note_restored(self, broken: list[Lit], after: int | None) -> None:
+        """Which literals an external event took away did the teacher's next action restore?"""
+        for literal in broken:
+            if after is not None and bool(after >> literal[0] & 1) == literal[1]:
+                self._restored.add(literal)
+            else:
+                self._left_broken.add(literal)
+
+    def _maintained(self, literal: Lit) -> bool:
+        """The teacher restored ``literal`` at once every time an event took it away (at least once)."""
+        return literal in self._restored and literal not in self._left_broken
 
     def _guess_effect(self, mask: int, answer: str, source: str) -> None:
         """An action never demonstrated, asked for in a state one literal away from where
@@ -249,6 +271,15 @@ class Learner:
                 shown.setdefault(situation.answer, situation.state)
         return shown
 
+    def planned_for_goal_bound(self) -> CompiledTree | None:
+        """The plan as it would be if the goal were its over-specific bound (every literal that
+        held in all goal states): where it acts otherwise than the tree, an answer tells which
+        of those literals the task needs."""
+        view = self._current_view()
+        goal = tuple(sorted(self.goal.candidates(), key=self._rank))
+        bound, _roles = plan(PlanView(goal, view.preconditions, view.achievers, view.weak_last_resort), self.names)
+        return None if bound is None else compile_tree(bound, self.names)
+
     def goal_holds(self, state: State) -> bool:
         """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
         return self.goal.holds(self._mask(state))
@@ -289,6 +320,7 @@ class Learner:
         if situation is None:
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
             self._columns.add(mask, frozenset({answer}))
+            self._recount(state, frozenset(), frozenset({answer}))
             self._feed_goal(mask, frozenset({answer}), source)
             return False
         situation.sources.append(source)
@@ -308,6 +340,7 @@ class Learner:
         elif None not in old:
             self.goal.remove_acting_state(mask)
         self._columns.relabel(mask, old, allowed)
+        self._recount(situation.state, old, allowed)
         situation.allowed, situation.answer = allowed, answer
         self._feed_goal(mask, allowed, situation.sources[-1])
 
@@ -326,7 +359,7 @@ class Learner:
             self._replan()
         # after a replan every situation the plan gets wrong, else the new ones the tree gets wrong
         if self._view != view:
-            wrong = [m for m, s in self._situations.items() if self._plan_output(m) not in s.allowed]
+            wrong = [m for m, s in self._situations.items() if self._plan_does(s.state) not in s.allowed]
         else:
             wrong = [m for m in dict.fromkeys(touched) if self._output(m) not in self._situations[m].allowed]
         if wrong:
@@ -377,9 +410,12 @@ class Learner:
         self._tree = None
 
     def _plan_output(self, mask: int) -> Answer | str:
+        return self._plan_does(self._state(mask))
+
+    def _plan_does(self, state: State) -> Answer | str:
         if self._compiled is None:
             return _FAILED
-        status, action = self._compiled(self._state(mask))
+        status, action = self._compiled(state)
         if status is Status.RUNNING:
             return action
         return None if status is Status.SUCCESS else _FAILED
@@ -391,8 +427,35 @@ class Learner:
         result = self._plan_output(mask)
         return False if result == _FAILED else result
 
-    def _plan_errors(self) -> int:
-        return sum(self._plan_output(m) not in s.allowed for m, s in self._situations.items())
+    def _plan_errors(self, limit: int | None = None) -> int:
+        """How many situations the plan gets wrong; counting stops at ``limit`` (the caller
+        only needs to know whether it beats a count it has). A complete count is kept for the
+        plan and updated label by label, so an update that keeps the plan does not count again."""
+        compiled = self._compiled
+        if self._counted is not None and self._counted[0] is compiled:
+            return self._counted[1]
+        wrong = 0
+        for situation in self._situations.values():
+            if self._plan_does(situation.state) not in situation.allowed:
+                wrong += 1
+                if wrong == limit:
+                    return wrong
+        if compiled is not None:
+            self._counted = (compiled, wrong)
+        return wrong
+
+    def _recount(self, state: State, old: frozenset[Answer], new: frozenset[Answer]) -> None:
+        """Keep the plan's error count right after a situation's allowed answers changed."""
+        if self._counted is None:
+            return
+        compiled, wrong = self._counted
+        if compiled is not self._compiled:
+            self._counted = None
+            return
+        does = self._plan_does(state)
+        if old:
+            wrong -= does not in old
+        self._counted = (compiled, wrong + (does not in new))
 
     def _repair_model(self, wrong: list[int]) -> None:
         """Add back possible preconditions the prior left out where that reproduces more
@@ -420,7 +483,9 @@ class Learner:
                 trials += 1
                 knowledge.confirmed[literal] = situation.sources[-1]
                 self._replan()
-                score = (self._plan_errors(), tuple(-x for x in self._rank(literal)), literal)
+                # only a count that ties or beats the best so far matters exactly
+                limit = errors if best is None else best[0] + 1
+                score = (self._plan_errors(limit), tuple(-x for x in self._rank(literal)), literal)
                 del knowledge.confirmed[literal]
                 if score[0] < errors and (best is None or score < best):
                     best = score
@@ -430,6 +495,33 @@ class Learner:
             errors = best[0]
             knowledge.confirmed[best[2]] = situation.sources[-1]
             self._replan()
+            if self._maintained(best[2]):
+                errors = self._extend(best[2], situation.sources[-1], errors)
+
+    def _extend(self, literal: Lit, source: str, errors: int) -> int:
+        """A maintained literal just shown to be needed by one action is needed by every action
+        it held for each time that action was done: people keep what they care about. Kept only
+        if no more situations go wrong; returns how many are wrong now."""
+        index, value = literal
+        others = []
+        for knowledge in self.model.actions.values():
+            pos, neg = knowledge.possible
+            have_pos, have_neg = knowledge.assumed
+            if knowledge.demonstrated and ((pos & ~have_pos) if value else (neg & ~have_neg)) >> index & 1:
+                others.append(knowledge)
+        if not others:
+            return errors
+        kept = (self._view, self._plan, self._roles, self._compiled)
+        for knowledge in others:
+            knowledge.maintained[literal] = source
+        self._replan()
+        now = self._plan_errors(errors + 1)
+        if now <= errors:
+            return now
+        for knowledge in others:
+            del knowledge.maintained[literal]
+        self._view, self._plan, self._roles, self._compiled = kept
+        return errors
 
     def _rebuild_exceptions(self) -> None:
         """Exceptions for a new plan: one for each situation the plan gets wrong and no
@@ -440,7 +532,7 @@ class Learner:
         covered = 0
         position = self._columns.position
         for mask, situation in self._situations.items():
-            if covered >> position[mask] & 1 or self._plan_output(mask) in situation.allowed:
+            if covered >> position[mask] & 1 or self._plan_does(situation.state) in situation.allowed:
                 continue
             exception = self._exception(mask, situation)
             self._exceptions.insert(0, exception)
