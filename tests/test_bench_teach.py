@@ -13,7 +13,7 @@ from teach.cli import main
 BALL = ROOT / "demos" / "ball"
 
 
-@pytest.mark.parametrize("train, at_least", [("delta4", 41), ("delta3", 43)])
+@pytest.mark.parametrize("train, at_least", [("delta4", 43), ("delta3", 43)])
 def test_few_demonstrations_and_five_questions(train, at_least, capsys):
     status = main(["bench-teach", str(BALL / train), str(BALL / "delta5"),
                    "--oracle", str(BALL / "reference" / "table61.xml"), "--questions", "5", "--json"])
@@ -28,5 +28,5 @@ def test_no_questions_means_the_plain_learner(capsys):
     main(["bench-teach", str(BALL / "delta4"), str(BALL / "delta5"),
           "--oracle", str(BALL / "reference" / "table61.xml"), "--questions", "0", "--json"])
     result = json.loads(capsys.readouterr().out)
-    # the thesis's specialization reproduced 35/43 from Δ4; ours without questions is in that range
-    assert result["questions"] == [] and result["reproduced"] < 41
+    # the thesis's specialization reproduced 35/43 from Δ4; the model-based learner must not do worse
+    assert result["questions"] == [] and result["reproduced"] >= 35

@@ -112,7 +112,8 @@ def test_an_answer_changes_the_tree(ball, tmp_path):
     before = session.learning.learner.tree
     question = session.pending
     state = question.state
-    answer = next(a for a, _ in question.expected if a != "done")
+    does = question.expected[0][0]  # what the robot would do there now: any other answer teaches it
+    answer = next(a for a in ball.action_names if a != does)
     replies = session.handle(ball.action(answer).label("en"))
     assert session.learning.learner.tree != before
     assert any(r.text.startswith("Thank you.") for r in replies)
@@ -262,7 +263,9 @@ def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
     assert result.returncode == 0 and "Hallo!" in result.stdout  # German, as it was started
 
 
-def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
+def test_another_order_is_learned_not_refused(ball, tmp_path):
+    """People correct the robot in another order than before: that is a demonstration like any
+    other (the thesis's topological order refused it)."""
     from teach.demos import Step, parse_demonstration
     from teach.session.machine import _OpenDemo
 
@@ -274,9 +277,30 @@ def test_refusals_are_explained_in_the_teachers_language(ball, tmp_path):
     session.world.arrange(ball.state(["BinClose"]))
     session.handle("Ball finden, zum Ball gehen, Ball greifen, Ball in den Eimer legen")
     replies = session.handle("fertig")
-    assert replies[0].kind == "error" and "in einer anderen Reihenfolge" in replies[0].text
-    assert "ApproachBin" in replies[1].text  # the details follow for the facilitator
-    assert session.mode == "demonstrating"  # kept open, to be mended with 'zurück'
+    assert not any(r.kind == "error" for r in replies)
+    assert session.mode == "asking"  # learned; the start was shown two ways, so the robot asks which
+    assert "zwei verschiedene Dinge" in session.pending.text(ball, "de")
+    session.handle("zum Eimer gehen")
+    assert not session.learning.learner.conflicts  # settled: the start now means going to the bin
+    assert session.learning.learner.answer_in(ball.state([])) == "ApproachBin"
+
+
+def test_a_situation_shown_two_ways_is_asked_about(ball, tmp_path):
+    """One state labelled with two actions cannot be held by a memoryless tree: the robot asks
+    which one it should do there, in the teacher's words, instead of refusing."""
+    from teach.demos import parse_demonstration
+
+    session = new_session(ball, tmp_path, questions=5)
+    first = parse_demonstration("1;1;0;0;0;3\n1;1;1;0;0;4\n1;1;1;1;0;5\n1;1;1;1;1;0\n", ball, "a.csv")
+    second = parse_demonstration("1;1;0;0;0;4\n1;1;0;1;0;3\n1;1;1;1;0;5\n1;1;1;1;1;0\n", ball, "b.csv")
+    session.import_demonstrations([first, second])
+    assert session.learning.learner.conflicts
+    replies = session.handle("ask")
+    question = next(r for r in replies if r.kind == "question")
+    assert "two different things" in question.text and "grasp the ball" in question.text
+    replies = session.handle("grasp the ball")
+    assert any(r.text.startswith("Thank you.") for r in replies)
+    assert not session.learning.learner.conflicts
 
 
 def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys):

@@ -1,9 +1,14 @@
-"""Learn a behaviour tree with one of the thesis's three approaches (§4.1-4.3).
+"""Learn a behaviour tree from demonstrations (by default the model-based learner the session
+uses) or with one of the thesis's three approaches (§4.1-4.3).
 
 Example:
+    teach learn demos/ball/delta4 --prune -o delta4.xml
     teach learn demos/ball/delta1 --approach specialize --prune -o delta1.xml
 
 Approaches:
+  model       (default) an action model and a goal learned from the transitions, a reactive tree
+              planned from them by backchaining and repaired until it reproduces every
+              demonstration; repeated steps, other orders and loops are fine
   pabt        PA-BT from the domain's own action model and goal (no demonstrations needed;
               DEMO_DIR may be a domain.toml or a folder holding one)
   detect      PA-BT on the preconditions, ramifications and goal detected in the demonstrations
@@ -29,8 +34,8 @@ ORDER = 15
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("source", type=Path, metavar="DEMO_DIR",
                         help="folder of CSV demonstrations (pabt: a domain.toml or a folder with one)")
-    parser.add_argument("--approach", choices=("pabt", "detect", "specialize"), default="specialize",
-                        help="which learner (default: specialize)")
+    parser.add_argument("--approach", choices=("model", "pabt", "detect", "specialize"), default="model",
+                        help="which learner (default: model)")
     parser.add_argument("--prune", action="store_true", help="remove redundant nodes (Alg. 4.1-4.4)")
     parser.add_argument("--domain", type=Path, help="domain.toml (default: in the folder or its parent)")
     parser.add_argument("--goal", nargs="+", metavar="LIT",
@@ -101,6 +106,7 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     """Generations (last = the learned tree) and the ramifications pruning may use."""
     from teach.errors import LearnError
     from teach.learn.model import detect_model, learn_detect
+    from teach.learn.prune import ramifications_of
     from teach.learn.order import action_order
     from teach.learn.pabt import expand
     from teach.learn.specialize import Specializer
@@ -112,8 +118,17 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     if approach == "detect":
         return learn_detect(domain, demos), ramifications
     if not any(demo.actions for demo in demos):
-        raise LearnError("no demonstration shows an action (only goal states), so there is no order to learn",
+        raise LearnError("no demonstration shows an action (only goal states), so there is no behaviour to learn",
                          demos[0].path.parent if demos and demos[0].path else None)
+    if approach == "model":
+        from teach.learn.learner import learn_online
+
+        model_learner = learn_online(domain, [])
+        model_generations = [model_learner.tree]
+        for demo in demos:
+            if model_learner.update(demo).changed:
+                model_generations.append(model_learner.tree)
+        return model_generations, ramifications_of(model)
     learner = Specializer(domain, action_order(domain, demos))
     generations = [learner.tree]
     for demo in demos:

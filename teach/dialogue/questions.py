@@ -23,7 +23,9 @@ Choosing the situation is active learning by *expected model change* over a comm
 4. The situation with the largest expected change is asked.
 
 It never looks at an answer before asking, and it works for any domain: nothing in it knows
-the ball task.
+the ball task. This selector serves the specialization learner (Approach 3; measured by
+``bench/bench_questions.py``); the session's default learner has its own, ``teach.learn.inquiry``.
+The budget, the wording and ``Question`` are shared by both.
 """
 
 from __future__ import annotations
@@ -44,7 +46,7 @@ from teach.session import messages as m
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
-    from teach.session.learning import Learner
+    from teach.learn.specialize import Specializer as Learner
 
 EXHAUSTIVE_UP_TO = 10
 STATE_SAMPLE = 512
@@ -91,9 +93,15 @@ class Question:
     state: State
     score: float
     expected: tuple[tuple[str, float], ...] = ()  # (answer or "done", committee share)
+    shown: tuple[str, ...] = ()
+    """For a conflict: the answers demonstrated here (action names, "" for "done")."""
 
     def text(self, domain: Domain, lang: str = "en") -> str:
-        return m.SITUATION_QUESTION(lang, situation=describe_situation(domain, self.state, lang))
+        situation = describe_situation(domain, self.state, lang)
+        if self.shown:
+            labels = [domain.action(a).label(lang) if a else m.DONE_WORD(lang) for a in self.shown]
+            return m.CONFLICT_QUESTION(lang, shown=m.OR(lang).join(labels), situation=situation)
+        return m.SITUATION_QUESTION(lang, situation=situation)
 
 
 def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:

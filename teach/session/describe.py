@@ -10,7 +10,7 @@ from teach.errors import LearnError
 from teach.session import messages as m
 
 if TYPE_CHECKING:
-    from teach.learn.specialize import Update
+    from teach.learn.learner import Explanation, Update
 
 _WHY = {"contradiction": m.WHY_CONTRADICTION, "repeated": m.WHY_REPEATED, "order": m.WHY_ORDER}
 
@@ -21,22 +21,37 @@ def why_refused(error: LearnError, lang: str) -> str:
     return reason(lang) if reason is not None else error.message
 
 
-def describe_update(update: Update, domain: Domain, lang: str) -> str:
-    """What an update changed, in the teacher's words."""
+def describe_update(update: Update, learned: list[str], domain: Domain, lang: str) -> str:
+    """What an update changed, in the teacher's words (``learned``: actions new in the tree)."""
     parts: list[str] = []
-    if update.inserted:
-        steps = " → ".join(domain.action(a).label(lang) for a in update.inserted)
-        parts.append(m.LEARNED_STEPS(lang, steps=steps))
-    for action in dict.fromkeys(c.action for c in update.removed if c.action not in update.inserted):
-        when = [literals_label(c.text, domain, lang) for c in update.removed if c.action == action]
-        parts.append(m.ALSO_WHEN(lang, action=domain.action(action).label(lang), when=m.OR(lang).join(when)))
-    for change in update.added:
-        parts.append(m.NOT_WHEN(lang, action=domain.action(change.action).label(lang),
-                                when=literals_label(change.text, domain, lang)))
+    if learned:
+        parts.append(m.LEARNED_STEPS(lang, steps=" → ".join(domain.action(a).label(lang) for a in learned)))
+    elif update.tree_changed:
+        parts.append(m.CHANGED(lang))
+    if update.new_conflicts:
+        parts.append(m.CONFLICT_NOTED(lang))
     if not parts:
         return m.ANYWAY(lang)
     text = "; ".join(parts)
     return text[0].upper() + text[1:] + "."
+
+
+def explain_node(why: Explanation, domain: Domain, lang: str) -> str:
+    """A node's reason in the teacher's words ("" for the tree's own structure)."""
+    sources = ", ".join(why.sources[:3]) + (" …" if len(why.sources) > 3 else "")
+    condition = domain.condition(why.literal.name).label(lang, why.literal.value) if why.literal is not None else ""
+    action = domain.action(why.action).label(lang) if why.action is not None else m.WHY_DONE_HERE(lang)
+    if why.kind == "goal":
+        return m.WHY_GOAL(lang, condition=condition, sources=sources)
+    if why.kind == "precondition":
+        return m.WHY_PRE(lang, action=action, condition=condition, sources=sources)
+    if why.kind == "exception":
+        return m.WHY_EXCEPTION(lang, action=action, sources=sources)
+    if why.kind == "last-resort":
+        return m.WHY_LAST_RESORT(lang, action=action, condition=condition)
+    if why.action is not None and why.literal is not None:
+        return m.WHY_EFFECT(lang, action=action, condition=condition, sources=sources)
+    return ""
 
 
 def literals_label(text: str, domain: Domain, lang: str) -> str:
@@ -53,8 +68,3 @@ def unmet_goal(domain: Domain, state: State, lang: str) -> str:
     """The domain's goal conditions that do not hold, in words ("" when the goal holds)."""
     missing = [lit for lit in domain.goal if not domain.holds(lit, state)]
     return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
-
-
-def removed_names(update: Update) -> list[str]:
-    """The guards an update removed, as the observer names them."""
-    return [change.text for change in update.removed]

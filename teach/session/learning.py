@@ -1,62 +1,30 @@
 """The session's learner, and everything the session does with what it learns: the tree pruned
 for display, the generation files, the next question, updates described in words.
 
-This is the one module to change to give the session another default learner. A learner is
-built by ``make_learner(domain)`` and must offer what ``Learner`` lists; its updates what
-``teach.session.describe.describe_update`` reads (``inserted``, ``removed``, ``added``).
+This is the one module that knows which learner the session uses: ``teach.learn.learner``'s
+model-based learner (an action model and a goal learned from the transitions, a reactive
+tree planned from them). It never refuses a demonstration: a situation shown two ways is a
+conflict the robot asks about.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Protocol
 
 from teach.bt.nodes import Action, Condition, Node, walk
 from teach.bt.xml import tree_to_xml
 from teach.demos import Demonstration
-from teach.dialogue.questions import Answer, Question, select_question
+from teach.dialogue.questions import Answer, Question
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
+from teach.learn.inquiry import next_question
+from teach.learn.learner import Learner, Update
 from teach.observe.hook import Observer
-from teach.session.describe import describe_update, literals_label, removed_names
+from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
-
-if TYPE_CHECKING:
-    from teach.learn.specialize import Update
-
-
-class Learner(Protocol):
-    """What the session needs from a learner (``teach.learn.specialize.Specializer`` today)."""
-
-    domain: Domain
-
-    @property
-    def tree(self) -> Node:
-        """The whole learned tree, as it runs."""
-
-    @property
-    def order(self) -> Sequence[str]:
-        """The actions learned so far; empty while there is no behaviour yet."""
-
-    def update(self, demo: Demonstration, source: str | None = None) -> Update:
-        """Learn one more demonstration; ``LearnError`` (with a ``kind``) when it cannot."""
-
-    def teach_step(self, state: State, action: str | None, source: str) -> Update:
-        """Learn one labelled situation (None: the task is done there)."""
-
-    def explain(self, uid: int) -> str:
-        """Why node ``uid`` is (or was) in the tree."""
-
-    def guards(self, action: str) -> Sequence:
-        """The guards in front of an action: each with a ``uid``, its ``literals``, the situations
-        that need it (``needed_by``) and ``str()`` as literals. The question selector also
-        deep-copies the learner to try each possible answer on the copy."""
 
 
 def make_learner(domain: Domain) -> Learner:
-    from teach.learn.specialize import Specializer
-
-    return Specializer(domain)
+    return Learner(domain)
 
 
 class Learning:
@@ -76,10 +44,12 @@ class Learning:
         self.asked: set[State] = set()
         self.pruned: Node | None = None
         self.generation = self.store.last_generation()
+        self._learned_actions: set[str] = set()
 
     @property
     def has_behaviour(self) -> bool:
-        return bool(self.learner.order)
+        """Whether the tree does anything yet (only goal states shown: it does not)."""
+        return any(isinstance(node, Action) for node in walk(self.learner.tree))
 
     @property
     def tree(self) -> Node:
@@ -89,8 +59,10 @@ class Learning:
     # --- learning -------------------------------------------------------------------------
 
     def learn_demonstration(self, demo: Demonstration, source: str | None) -> Update:
-        """Learn and keep a demonstration; ``LearnError`` leaves everything as it was."""
+        """Learn and keep a demonstration (never refused: contradictions become conflicts)."""
+        before = self._actions()
         update = self.learner.update(demo, source=source)
+        self._learned_actions = self._actions() - before
         self.demos.append(demo)
         for step in demo.steps:
             if step.action == GOAL_ACTION:
@@ -100,13 +72,30 @@ class Learning:
         return update
 
     def learn_answer(self, state: State, answer: str | None, source: str) -> Update:
-        """Learn what to do in an asked-about situation; ``LearnError`` when it contradicts."""
-        update = self.learner.teach_step(state, answer, source=source)
+        """Learn what to do in an asked-about situation; an answer about a conflict settles it."""
+        before = self._actions()
+        if any(conflict.state == state for conflict in self.learner.conflicts):
+            update = self.learner.resolve(state, answer, source)
+        else:
+            update = self.learner.teach_step(state, answer, source=source)
+        self._learned_actions = self._actions() - before
         self.labels[state] = answer
         return update
 
     def next_question(self, seed: int) -> Question | None:
-        return select_question(self.learner, self.demos, self.labels, self.asked, seed)
+        """The learner's most decisive open situation not asked about yet (``seed``: unused, the
+        choice is a pure function of what was learned)."""
+        question = next_question(self.learner, self.asked)
+        if question is None:
+            return None
+        shown: tuple[str, ...] = ()
+        if question.kind == "conflict":
+            conflict = next(c for c in self.learner.conflicts if c.state == question.state)
+            shown = tuple(dict.fromkeys("" if answer is None else answer for answer, _ in conflict.labels))
+        return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown)
+
+    def _actions(self) -> set[str]:
+        return {node.name for node in walk(self.learner.tree) if isinstance(node, Action)}
 
     # --- results --------------------------------------------------------------------------
 
@@ -127,21 +116,16 @@ class Learning:
         return path
 
     def describe(self, update: Update, lang: str) -> str:
-        return describe_update(update, self.domain, lang)
+        return describe_update(update, sorted(self._learned_actions), self.domain, lang)
 
     def report(self, event: str, update: Update, lang: str) -> str:
         """Tell the observer what an update changed; returns it in words."""
         change = self.describe(update, lang)
-        self.observer.on_learner(event, change, removed_names(update))
+        self.observer.on_learner(event, change, [])
         return change
 
     def why(self, name: str, lang: str) -> list[str] | None:
         """Why an action or condition is in the tree, one line per reason (None: it is not)."""
-        if self.domain.has_action(name) and name in self.learner.order:
-            action = next(n for n in walk(self.learner.tree) if isinstance(n, Action) and n.name == name)
-            lines = [self.learner.explain(action.uid)]
-            for guard in self.learner.guards(name):
-                lines.append(f"({literals_label(str(guard), self.domain, lang)}): {self.learner.explain(guard.uid)}")
-            return lines
-        matches = [n for n in walk(self.learner.tree) if isinstance(n, Condition) and n.name == name]
-        return [self.learner.explain(n.uid) for n in matches] or None
+        nodes = [n for n in walk(self.learner.tree) if isinstance(n, Action | Condition) and n.name == name]
+        lines = [explain_node(self.learner.why(node.uid), self.domain, lang) for node in nodes]
+        return list(dict.fromkeys(line for line in lines if line)) or None

@@ -96,6 +96,30 @@ LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {step
 ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
 ANYWAY = Text("That is what I would have done anyway.", "Das hätte ich sowieso getan.")
+CHANGED = Text("I changed what I do in some situations", "ich mache jetzt in manchen Lagen etwas anderes")
+CONFLICT_NOTED = Text("in one situation you have shown me two different things; for now I do the last one, "
+                      "and I will ask you which is right",
+                      "in einer Lage hast du mir zwei verschiedene Dinge gezeigt; vorerst mache ich das letzte, "
+                      "und ich frage dich, was richtig ist")
+CONFLICT_QUESTION = Text("Here you have shown me two different things ({shown}). If {situation}, what should I do?",
+                         "Hier hast du mir zwei verschiedene Dinge gezeigt ({shown}). Angenommen, {situation}. "
+                         "Was soll ich dann tun?")
+# why a node is in the tree, from the learner's explanation
+WHY_GOAL = Text("“{condition}” is part of the task: it held at the end of every demonstration, "
+                "and you kept going while it did not ({sources})",
+                "„{condition}“ gehört zur Aufgabe: es galt am Ende jeder Vorführung, und du hast "
+                "weitergemacht, solange es nicht galt ({sources})")
+WHY_PRE = Text("I {action} only when {condition}: that held every time you showed it ({sources})",
+               "Ich mache „{action}“ nur, wenn gilt: {condition}; das galt jedes Mal, als du es gezeigt hast "
+               "({sources})")
+WHY_EFFECT = Text("I {action} to make “{condition}” true: that is what it did when it was shown or named ({sources})",
+                  "Ich mache „{action}“, damit gilt: {condition}; das hat es getan, als es gezeigt oder genannt wurde "
+                  "({sources})")
+WHY_LAST_RESORT = Text("if nothing else works, I still try to {action} to make “{condition}” true",
+                       "wenn nichts anderes geht, versuche ich trotzdem „{action}“, damit gilt: {condition}")
+WHY_EXCEPTION = Text("in one situation you showed me something else, so there I {action} ({sources})",
+                     "in einer Lage hast du mir etwas anderes gezeigt, deshalb mache ich dort „{action}“ ({sources})")
+WHY_DONE_HERE = Text("the task is done", "die Aufgabe ist erledigt")
 WHY_CONTRADICTION = Text("in the same situation you once showed one thing and once another.",
                          "in derselben Lage hast du einmal das eine und einmal etwas anderes gezeigt.")
 WHY_REPEATED = Text("it does the same step twice; I can only learn each step once in a task.",
