@@ -30,8 +30,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from teach.domain import Domain, load_domain  # noqa: E402
 from teach.learn.recognise import recognise  # noqa: E402
-from teach.observe.rerun_writer import RerunLogger  # noqa: E402
 from teach.observe.hook import Observer  # noqa: E402
+from teach.observe.rerun_writer import RerunLogger  # noqa: E402
 from teach.sim.guide import Guide, Sample, parse_guide_line  # noqa: E402
 from teach.sim.segment import Segmenter  # noqa: E402
 from teach.sim.world import DOMAIN_FILE, World  # noqa: E402

@@ -8,10 +8,10 @@ import pytest
 from conftest import BALL_DOMAIN, ROOT
 
 from teach.bt.nodes import Action, Condition, Fallback, Sequence
-from teach.world.symbolic import SymbolicWorld
 from teach.domain import Domain, Literal, load_domain
 from teach.errors import DomainError, FormatError
 from teach.world.hidden import HiddenStateWorld, load_world, symbolic_world
+from teach.world.symbolic import SymbolicWorld
 
 SNACKS = ROOT / "demos" / "snacks"
 

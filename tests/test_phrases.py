@@ -22,8 +22,8 @@ from teach.dialogue.phrases import (
     is_yes,
     normalize,
 )
-from teach.session.commands import COMMANDS
 from teach.domain import load_domain
+from teach.session.commands import COMMANDS
 from teach.sim.perturb import PERTURBATIONS
 
 EVENTS = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}  # what the MuJoCo world offers

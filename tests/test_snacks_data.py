@@ -17,12 +17,12 @@ from teach.bt.xml import read_tree
 from teach.demos import Demonstration, read_demo_set
 from teach.dialogue.phrases import PhraseBook
 from teach.dialogue.script import read_script
+from teach.domain import EXTERNAL_ACTION, Domain, load_domain
+from teach.replay import replay
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings
-from teach.world.protocol import TeachingWorld
-from teach.domain import EXTERNAL_ACTION, Domain, load_domain
 from teach.world.hidden import HiddenStateWorld, load_world
-from teach.replay import replay
+from teach.world.protocol import TeachingWorld
 
 SNACKS = ROOT / "demos" / "snacks"
 DIALOGUES = [ROOT / "dialogues" / "snacks.dialogue", ROOT / "dialogues" / "snacks_de.dialogue"]
@@ -56,9 +56,9 @@ def world(domain: Domain, seed: int = 0) -> HiddenStateWorld:
 
 
 def session(name: str, domain: Domain, place: HiddenStateWorld, base: Path, lang: str = "en") -> SessionManager:
-    """A real session in the hidden-state world (the cast: worlds.py's ``events`` is a ``dict`` where
-    its protocol says ``Mapping``, which mypy counts as a mismatch for every world)."""
-    return SessionManager(Settings(name, lang=lang, base=base, world="symbolic", record=False), domain, cast(TeachingWorld, place))
+    """A real session in the hidden-state world."""
+    settings = Settings(name, lang=lang, base=base, world="symbolic", record=False)
+    return SessionManager(settings, domain, cast(TeachingWorld, place))
 
 
 def test_the_generator_writes_the_committed_files_byte_for_byte(tmp_path):

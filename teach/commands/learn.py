@@ -106,9 +106,9 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     """Generations (last = the learned tree) and the ramifications pruning may use."""
     from teach.errors import LearnError
     from teach.learn.model import detect_model, learn_detect
-    from teach.learn.prune import ramifications_of
     from teach.learn.order import action_order
     from teach.learn.pabt import expand
+    from teach.learn.prune import ramifications_of
     from teach.learn.specialize import Specializer
 
     if approach == "pabt":

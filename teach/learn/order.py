@@ -1,17 +1,19 @@
 """The action order of Approach 3 (thesis §4.3.1): a topological order of demonstrated sequences.
 
 Every demonstration gives edges a_i -> a_(i+1) between its consecutive robot actions. An
-external action (-1) ends the chain: it may undo what the robot did (a dropped ball is
-grasped again), so the actions after it start a new sequence rather than follow the ones
-before it; this is what lets Δ5's perturbed demonstrations keep the order of Δ2 (§6.4). Ties are broken by first appearance (demonstrations in the order given,
-steps in file order), so the same demonstrations always give the same order. When no order
-exists (a cycle, or an action repeated), the error names the actions and, for each direction,
-the demonstration file and line that shows it.
+external action (-1) ends the chain: it may undo what the robot did (a dropped ball is grasped
+again), so the actions after it start a new sequence rather than follow the ones before it;
+this is what lets Δ5's perturbed demonstrations keep the order of Δ2 (§6.4). Ties are broken by
+first appearance (demonstrations in the order given, steps in file order), so the same
+demonstrations always give the same order. When no order exists (a cycle, or an action
+repeated), the error names the actions and, for each direction, the demonstration file and line
+that shows it.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence as Seq
+from collections.abc import Iterator
+from collections.abc import Sequence as Seq
 
 import networkx as nx
 
@@ -47,7 +49,7 @@ class OrderGraph:
         self.first_seen: dict[str, int] = {}
         self.evidence: dict[tuple[str, str], str] = {}
 
-    def copy(self) -> "OrderGraph":
+    def copy(self) -> OrderGraph:
         other = OrderGraph()
         other.graph = self.graph.copy()
         other.first_seen = dict(self.first_seen)
@@ -91,7 +93,7 @@ class OrderGraph:
         if not nx.has_path(self.graph, b, a):
             return
         path = nx.shortest_path(self.graph, b, a)
-        cycle = [*zip(path, path[1:]), (a, b)]
+        cycle = [*zip(path, path[1:], strict=False), (a, b)]
         shown = ", ".join(f"{u} before {v} ({self.evidence[(u, v)]})" for u, v in cycle)
         names = sorted({u for u, _v in cycle})
         raise LearnError(f"no action order fits the demonstrations: {', '.join(names)} appear in "

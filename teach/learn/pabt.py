@@ -86,10 +86,13 @@ def expand(domain: Domain, goal: Seq[Literal] | None = None) -> list[Node]:
                              f"but {needed_by[uid]}{hint}", domain.path)
         leaf = next(n for n in walk(tree) if n.uid == uid)
         atomic = atomic_bt(leaf, achievers)
-        for branch in atomic.children[1:]:
-            action = branch if isinstance(branch, Action) else branch.children[-1]  # type: ignore[union-attr]
-            for pre in (branch.children[:-1] if isinstance(branch, Sequence) else ()):
-                needed_by[pre.uid] = f"{action.name} needs it as a precondition"  # type: ignore[union-attr]
+        assert isinstance(atomic, Fallback)
+        for branch in atomic.children[1:]:  # each achiever: the action, or Sequence(pre..., action)
+            steps = branch.children if isinstance(branch, Sequence) else (branch,)
+            action = steps[-1]
+            assert isinstance(action, Action)
+            for pre in steps[:-1]:
+                needed_by[pre.uid] = f"{action.name} needs it as a precondition"
         expanded.add(literal)
         tree = replace_node(tree, uid, atomic)  # type: ignore[assignment]
         generations.append(tree)
@@ -134,7 +137,7 @@ def _execute(domain: Domain, tree: Node, start: State) -> tuple[Status, list[tup
     state, seen = start, {start}
     failing: list[tuple[int, Literal]] = []
     while True:
-        result = tick(tree, dict(zip(names, state)))
+        result = tick(tree, dict(zip(names, state, strict=True)))
         failing[:0] = [leaves[uid] for uid, status in reversed(result.trace)
                        if status is Status.FAILURE and uid in leaves]
         if result.status is not Status.RUNNING or result.action is None:
@@ -151,7 +154,7 @@ def _execute(domain: Domain, tree: Node, start: State) -> tuple[Status, list[tup
 
 
 def _true(domain: Domain, state: State) -> str:
-    names = [n for n, v in zip(domain.condition_names, state) if v]
+    names = [n for n, v in zip(domain.condition_names, state, strict=True) if v]
     return "{" + ", ".join(names) + "}" if names else "the state where nothing holds"
 
 

@@ -26,13 +26,25 @@ printed pseudo-code and why.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence as Seq
+from collections.abc import Mapping
+from collections.abc import Sequence as Seq
 from dataclasses import replace
 from functools import reduce
 from types import MappingProxyType
 
-from teach.bt.nodes import (Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status,
-                            action_names, condition_names, walk)
+from teach.bt.nodes import (
+    Action,
+    Condition,
+    Fallback,
+    Inverter,
+    Node,
+    Parallel,
+    Sequence,
+    Status,
+    action_names,
+    condition_names,
+    walk,
+)
 from teach.domain import Domain, Literal
 from teach.errors import LearnError
 
@@ -262,10 +274,12 @@ class _Pruner:
         failure: Facts | None = {}
         if not acts:  # all N succeed (M = N) or all fail (M = 1), else at least one of them
             everyone = len(outcomes)
-            success = reduce(_join if node.success_threshold == everyone else _meet,
-                             (o.success for o in outcomes), {} if node.success_threshold == everyone else None)
-            failure = reduce(_join if node.success_threshold == 1 else _meet,
-                             (o.failure for o in outcomes), {} if node.success_threshold == 1 else None)
+            nothing_known: Facts | None = {}
+            all_succeed, all_fail = node.success_threshold == everyone, node.success_threshold == 1
+            success = reduce(_join if all_succeed else _meet, (o.success for o in outcomes),
+                             nothing_known if all_succeed else None)
+            failure = reduce(_join if all_fail else _meet, (o.failure for o in outcomes),
+                             nothing_known if all_fail else None)
         rebuilt = self.rebuilt(node, node.children, kept, m)
         return _Outcome(rebuilt, known, success, failure, acts)
 
@@ -275,9 +289,10 @@ class _Pruner:
         if len(kept) == 1:
             self.removed.append(label(node))
             return kept[0]
-        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids)):
+        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids, strict=True)):
             return node
         if isinstance(node, Parallel):
+            assert threshold is not None, "a Parallel is rebuilt with its new threshold"
             return replace(node, children=tuple(kept), success_threshold=threshold)
         return replace(node, children=tuple(kept))
 
@@ -434,7 +449,7 @@ class _Exact:
         if len(kept) == 1:
             self.removed.append(label(node))
             return kept[0], success, failure
-        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids)):
+        if len(kept) == len(kids) and all(a is b for a, b in zip(kept, kids, strict=True)):
             return node, success, failure
         return replace(node, children=tuple(kept)), success, failure
 
@@ -446,7 +461,8 @@ class _Exact:
             rebuilt, _, _ = self.visit(kid, s.all if acts else reach, frozen)
             kids.append(rebuilt)
             acts = acts or any(isinstance(n, Action) for n in walk(kid))
-        rebuilt_node = node if all(a is b for a, b in zip(kids, node.children)) else replace(node, children=tuple(kids))
+        unchanged = all(a is b for a, b in zip(kids, node.children, strict=True))
+        rebuilt_node = node if unchanged else replace(node, children=tuple(kids))
         if acts:
             return rebuilt_node, s.all, s.all
         success, failure = self.purity(node)  # exact: no child ticks an action

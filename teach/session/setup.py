@@ -11,9 +11,9 @@ from teach.observe.hook import Observer, Observers
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
+from teach.world.hidden import symbolic_world
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import TeachingWorld
-from teach.world.hidden import symbolic_world
 
 DEFAULT_DOMAIN = Path("demos/ball/domain.toml")
 

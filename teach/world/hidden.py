@@ -45,12 +45,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from teach.bt.nodes import Node
-from teach.world.protocol import ActResult, RunResult
-from teach.world.symbolic import SymbolicWorld
 from teach.domain import Domain, Literal, State
 from teach.errors import DomainError, FormatError
 from teach.fsutil import read_text
 from teach.observe.hook import Observer
+from teach.world.protocol import ActResult, RunResult
+from teach.world.symbolic import SymbolicWorld
 
 WORLD_FILE = "world.toml"
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
