@@ -35,6 +35,9 @@ CASES: dict[str, list[str]] = {
     "quickstart-symbolic": ["dialogues/quickstart.dialogue", "--world", "symbolic"],
     "deutsch-mujoco": ["dialogues/deutsch.dialogue"],
     "deutsch-symbolic": ["dialogues/deutsch.dialogue", "--world", "symbolic"],
+    "messy-mujoco": ["dialogues/messy.dialogue"],
+    "snacks": ["dialogues/snacks.dialogue"],
+    "snacks-de": ["dialogues/snacks_de.dialogue"],
     **{name: [f"dialogues/study/{name}.dialogue"] for name in STUDY},
     **{f"{name}-oracle": [f"dialogues/study/{name}.dialogue", "--oracle-model", TRUE_MODEL] for name in STUDY},
 }
@@ -43,7 +46,8 @@ CASES: dict[str, list[str]] = {
 def _scratch(tmp_path: Path) -> Path:
     """A working folder with the repository's inputs linked in and nothing else."""
     (tmp_path / "demos").mkdir()
-    (tmp_path / "demos" / "ball").symlink_to(ROOT / "demos" / "ball", target_is_directory=True)
+    for domain in ("ball", "snacks"):
+        (tmp_path / "demos" / domain).symlink_to(ROOT / "demos" / domain, target_is_directory=True)
     (tmp_path / "dialogues").symlink_to(ROOT / "dialogues", target_is_directory=True)
     return tmp_path
 
