@@ -296,3 +296,63 @@ def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys)
     resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
                                              record=False), ball, SymbolicWorld(ball))
     assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again
+
+
+# --- the careless teacher (issue 11) ---------------------------------------------------------------
+
+
+def steps_of(session):
+    return [s.action for s in session.open.steps] if session.open is not None else []
+
+
+@pytest.mark.parametrize(("lang", "typo", "reply"), [("en", "chnge smthing", "yes"), ("de", "etwas andrn", "ja"),
+                                                     ("en", "chnge smthing", "y"), ("en", "chnge smthing", "ok"),
+                                                     ("de", "etwas andrn", "")])
+def test_a_suggestion_is_confirmed_by_yes_or_enter(ball, tmp_path, lang, typo, reply):
+    session = new_session(ball, tmp_path, lang=lang)
+    replies = session.handle(typo)
+    assert replies[0].text.endswith(("“change something”?", "„etwas ändern“?")) and session.open is None
+    session.handle(reply)
+    assert steps_of(session) == [-1]  # the event, acted on only once the teacher said yes
+
+
+def test_a_suggestion_declined_or_ignored_is_dropped(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("chnge smthing")
+    replies = session.handle("no")
+    assert [r.text for r in replies] == ["Say it another way, please."] and session.open is None
+    session.handle("chnge smthing")
+    session.handle("find the ball")  # anything else: the guess is dropped, the line handled as usual
+    assert steps_of(session) == [1]
+    assert session.handle("") == [] and steps_of(session) == [1]
+
+
+def test_conversational_commands(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    assert session.handle("?")[0].text.startswith(session.handle("help")[0].text[:20])
+    assert session.open is None  # "?" never starts a demonstration
+    session.handle(SEQUENCE)
+    replies = session.handle("ok done")
+    assert len(session.demos) == 1, [r.text for r in replies]
+
+
+def test_perturb_reads_events_loosely(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("perturb chnge smthing")
+    assert steps_of(session) == [-1]
+
+
+def test_a_pronoun_means_the_object_named_last(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    session.handle("go to it")
+    assert steps_of(session) == [1, 2]
+
+
+def test_an_overlong_line_is_one_short_error_never_logged(ball, tmp_path):
+    events = Events()
+    session = new_session(ball, tmp_path, observer=events)
+    line = "find the ball " * 300
+    replies = session.handle(line)
+    assert len(replies) == 1 and replies[0].kind.name == "ERROR" and len(replies[0].text) < 200
+    assert session.open is None and all(line.strip() not in text for _, text in events.dialogue)

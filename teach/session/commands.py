@@ -64,6 +64,9 @@ COMMANDS: tuple[Command, ...] = (
     Command(Verb.QUIT, ("quit", "exit", "beenden", "tschuss"), "quit / Ctrl-D", m.HELP_QUIT),
 )
 
+COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names)
+"""Every word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
+
 BLOCKED_WHILE_ASKING = frozenset({Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB, Verb.MODEL,
                                   Verb.ASK})
 """Commands that would change what an open question is about."""

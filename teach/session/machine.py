@@ -20,7 +20,18 @@ from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step
-from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.phrases import (
+    LineTooLong,
+    PhraseBook,
+    Suggestion,
+    Token,
+    UnknownPhrase,
+    check_length,
+    command_hint,
+    is_no,
+    is_yes,
+    normalize,
+)
 from teach.dialogue.questions import Question, QuestionBudget, describe_situation
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain
 from teach.errors import FormatError, LearnError, TeachError
@@ -29,6 +40,7 @@ from teach.session import messages as m
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
+    COMMAND_WORDS,
     COMMANDS,
     DONE_WORDS,
     SKIP_WORDS,
@@ -98,6 +110,8 @@ class SessionManager:
         self.pending_model: ModelQuestion | None = None
         self.planned: Node | None = None
         self.open: _OpenDemo | None = None
+        self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
+        self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.finished = False
         self.step = 0
         self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
@@ -148,15 +162,24 @@ class SessionManager:
         """One teacher line in, every reply to it out, in order. Never raises for bad input.
         ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
         line = line.strip()
-        if not line:
+        if not line and self.suggestion is None:
             return []
         self._turn = []
         self._interrupt = interrupt
         self._tick_clock()
-        self.observer.on_dialogue("teacher", line, self.budget.left)
         try:
-            replies = self._dispatch(line)
+            check_length(line, self.lang)
+        except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
+            self.suggestion = None
+            return self._end_turn([Reply(ReplyKind.ERROR, too_long.message)])
+        self.observer.on_dialogue("teacher", line, self.budget.left)
+        suggestion, self.suggestion = self.suggestion, None
+        asking = self.mode is Mode.ASKING
+        try:
+            replies = self._dispatch(line, suggestion)
         except UnknownPhrase as unknown:
+            # a guess during a question is not kept: confirming it would have to answer the question
+            self.suggestion = None if asking else unknown.suggestion
             replies = [Reply(ReplyKind.ERROR, unknown.message)]
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
@@ -175,7 +198,13 @@ class SessionManager:
         self.world.close()
         self.observer.close()
 
-    def _dispatch(self, line: str) -> list[Reply]:
+    def _dispatch(self, line: str, suggestion: Suggestion | None = None) -> list[Reply]:
+        if suggestion is not None:
+            if is_yes(line, self.lang):
+                return self._act(self.phrases.confirm(suggestion))
+            if is_no(line, self.lang):
+                return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+        line = command_hint(line, self.lang, COMMAND_WORDS) or line
         command, rest = parse_command(line)
         answering = command is None or command.verb in ANSWERING
         if self.pending_model is not None and answering:
@@ -235,11 +264,11 @@ class SessionManager:
         return head + self._after_learning(ask=False)
 
     def cmd_perturb(self, rest: str) -> list[Reply]:
-        tokens = self.phrases.parse(rest, self.lang) if rest.strip() else []
+        tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
         if not any(t.kind == "event" for t in tokens):
             names = ", ".join(en[0] for en, _ in self.world.events.values())
             return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=names))]
-        return self._teach_actions(rest)
+        return self._act(tokens)
 
     def cmd_run(self, rest: str) -> list[Reply]:
         # the unpruned tree runs: pruning assumes actions have only the effects seen so far
@@ -402,7 +431,11 @@ class SessionManager:
     # --- demonstrations ---------------------------------------------------------------------
 
     def _teach_actions(self, text: str) -> list[Reply]:
-        tokens = self.phrases.parse(text, self.lang)
+        return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
+
+    def _act(self, tokens: list[Token]) -> list[Reply]:
+        """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
+        self.topic = self.phrases.topic(tokens) or self.topic
         replies: list[Reply] = []
         if self.open is None:
             replies += self._flush(self.cmd_demonstrate(""))

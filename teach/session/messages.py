@@ -215,3 +215,6 @@ WORD_NOTHING = Text("nothing", "nichts")
 WORD_YES = Text("yes", "ja")
 WORD_NO = Text("no", "nein")
 WORD_EITHER = Text("either", "egal")
+
+# --- the careless teacher (issue 11) ----------------------------------------------------------------
+SAY_IT_ANOTHER_WAY = Text("Say it another way, please.", "Sag es bitte anders.")
