@@ -356,3 +356,31 @@ def test_an_overlong_line_is_one_short_error_never_logged(ball, tmp_path):
     replies = session.handle(line)
     assert len(replies) == 1 and replies[0].kind.name == "ERROR" and len(replies[0].text) < 200
     assert session.open is None and all(line.strip() not in text for _, text in events.dialogue)
+
+
+def test_steps_lists_the_open_demonstration_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    assert "no steps yet" in session.handle("steps")[0].text
+    session.handle("find the ball, go to the ball, change something")
+    text = session.handle("steps")[0].text
+    assert text.splitlines()[1:] == ["  1. find the ball", "  2. go to the ball",
+                                     "  3. something happened: change something"]
+
+
+@pytest.mark.parametrize("line", ["undo 2", "undo to step 2", "undo step 2"])
+def test_undo_to_step_n_goes_back_to_the_state_before_it(ball, tmp_path, line):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball, grasp the ball")
+    replies = session.handle(line)
+    assert replies[0].text == "Undone: steps 2 to 3 (go to the ball; grasp the ball)."
+    assert steps_of(session) == [1] and session.world.state() == ball.state(["BallFound"])
+    assert session.handle("undo")[0].text == "Undone: step 1 (find the ball)." and session.open is None
+
+
+def test_undo_of_a_step_that_is_not_there_says_which_there_are(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    assert session.handle("undo 5")[0].text == "There is no step 5: the steps so far are 1 to 2."
+    assert steps_of(session) == [1, 2]
+    german = new_session(ball, tmp_path / "de", lang="de")
+    assert german.handle("zurück 1")[0].text.startswith("Keine Vorführung ist offen")

@@ -30,6 +30,7 @@ class Verb(Enum):
     WHY = auto()
     SAVE = auto()
     QUIT = auto()
+    STEPS = auto()
 
 
 @dataclass(frozen=True)
@@ -47,7 +48,8 @@ COMMANDS: tuple[Command, ...] = (
             m.HELP_DEMONSTRATE),
     Command(Verb.DONE, ("done", "fertig"), "done", m.HELP_DONE),
     Command(Verb.CANCEL, ("cancel", "abbrechen"), "cancel", m.HELP_CANCEL),
-    Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), "undo", m.HELP_UNDO),
+    Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), "undo [N]", m.HELP_UNDO_TO_STEP),
+    Command(Verb.STEPS, ("steps", "schritte"), "steps", m.HELP_STEPS),
     Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), "perturb EVENT", m.HELP_PERTURB),
     Command(Verb.RUN, ("run", "los", "ausfuhren"), "run [N]", m.HELP_RUN),
     Command(Verb.STOP, ("stop", "halt"), "stop / Ctrl-C", m.HELP_STOP),

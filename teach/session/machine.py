@@ -89,6 +89,17 @@ class _OpenDemo:
     """The demonstration being shown (or a run's steps, to be continued as a correction)."""
 
     steps: list[Step] = field(default_factory=list)
+    words: list[str] = field(default_factory=list)  # each step as the teacher saw it, for 'steps' and 'undo'
+
+    def add(self, step: Step, words: str) -> None:
+        self.steps.append(step)
+        self.words.append(words)
+
+    def take_back(self, first: int) -> Step:
+        """Remove steps ``first``.. (numbered from 1); the first removed, whose state was before them all."""
+        removed = self.steps[first - 1]
+        del self.steps[first - 1:], self.words[first - 1:]
+        return removed
 
 
 class SessionManager:
@@ -250,11 +261,9 @@ class SessionManager:
 
     def cmd_undo(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
-            last = self.open.steps.pop()
-            self.world.arrange(last.state)
-            if not self.open.steps:
-                self.open = None
-            return [Reply(ReplyKind.INFO, m.UNDONE_STEP(self.lang)), self._state_reply()]
+            return self._undo_steps(rest)
+        if rest.strip():
+            return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
@@ -262,6 +271,29 @@ class SessionManager:
         self._rebuild_from_journal()
         head = self._flush([Reply(ReplyKind.INFO, m.UNDONE_LEARNING(self.lang))])
         return head + self._after_learning(ask=False)
+
+    def _undo_steps(self, rest: str) -> list[Reply]:
+        """Take back steps N.. of the open demonstration (the last one without N): the world goes
+        back to the state before step N."""
+        assert self.open is not None
+        count = len(self.open.steps)
+        first = _step_number(rest, self.lang)
+        if first is None:
+            first = count
+        if not 1 <= first <= count:
+            raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
+        undone = "; ".join(self.open.words[first - 1:])
+        self.world.arrange(self.open.take_back(first).state)
+        if not self.open.steps:
+            self.open = None
+        text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
+        return [Reply(ReplyKind.INFO, text(self.lang, first=first, last=count, steps=undone)), self._state_reply()]
+
+    def cmd_steps(self, rest: str) -> list[Reply]:
+        if self.open is None or not self.open.steps:
+            return [Reply(ReplyKind.INFO, m.NO_OPEN_STEPS(self.lang))]
+        lines = [f"  {number}. {words}" for number, words in enumerate(self.open.words, 1)]
+        return [Reply(ReplyKind.INFO, m.OPEN_STEPS(self.lang) + "\n" + "\n".join(lines))]
 
     def cmd_perturb(self, rest: str) -> list[Reply]:
         tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
@@ -301,7 +333,10 @@ class SessionManager:
         else:
             message = m.STUCK(self.lang, outcome=result.outcome)
         # what the robot did so far and what the teacher shows next become one corrective demonstration
-        self.open = _OpenDemo([Step(s, self.domain.action(a).id, i + 1) for i, (s, a) in enumerate(result.steps)])
+        self.open = _OpenDemo()
+        for state, action in result.steps:
+            self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
+                          m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
         return replies + [Reply(ReplyKind.SAY, message), self._state_reply()]
 
     def cmd_stop(self, rest: str) -> list[Reply]:
@@ -443,7 +478,8 @@ class SessionManager:
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                self.open.steps.append(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1))
+                self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
+                              m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
@@ -456,7 +492,7 @@ class SessionManager:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
-            self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
+            self.open.add(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1), label)
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
@@ -694,8 +730,17 @@ SessionManager._handlers = {
     Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
     Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
     Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
-    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit,
+    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
 }
+
+
+_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
+
+
+def _step_number(text: str, lang: str) -> int | None:
+    """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
+    words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
+    return _number(" ".join(words), lang)
 
 
 def _number(text: str, lang: str) -> int | None:

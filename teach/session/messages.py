@@ -218,3 +218,17 @@ WORD_EITHER = Text("either", "egal")
 
 # --- the careless teacher (issue 11) ----------------------------------------------------------------
 SAY_IT_ANOTHER_WAY = Text("Say it another way, please.", "Sag es bitte anders.")
+HELP_UNDO_TO_STEP = Text("undo the last step (N: steps N to the end), demonstration or answer",
+                         "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen")
+HELP_STEPS = Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen")
+OPEN_STEPS = Text("The steps so far:", "Die Schritte bisher:")
+NO_OPEN_STEPS = Text("No demonstration is open: there are no steps yet.",
+                     "Keine Vorführung ist offen: es gibt noch keine Schritte.")
+EVENT_STEP = Text("something happened: {event}", "etwas ist passiert: {event}")
+ROBOT_DID_STEP = Text("{action} (the robot did it)", "{action} (hat der Roboter gemacht)")
+UNDONE_ONE_STEP = Text("Undone: step {last} ({steps}).", "Rückgängig: Schritt {last} ({steps}).")
+UNDONE_STEPS = Text("Undone: steps {first} to {last} ({steps}).", "Rückgängig: Schritte {first} bis {last} ({steps}).")
+NO_SUCH_STEP = Text("There is no step {number}: the steps so far are 1 to {count}.",
+                    "Es gibt keinen Schritt {number}: die Schritte bisher sind 1 bis {count}.")
+NO_STEPS_TO_UNDO = Text("No demonstration is open, so there are no steps to take back.",
+                        "Keine Vorführung ist offen, also gibt es keine Schritte zurückzunehmen.")
