@@ -384,3 +384,32 @@ def test_undo_of_a_step_that_is_not_there_says_which_there_are(ball, tmp_path):
     assert steps_of(session) == [1, 2]
     german = new_session(ball, tmp_path / "de", lang="de")
     assert german.handle("zurück 1")[0].text.startswith("Keine Vorführung ist offen")
+
+
+def test_a_run_that_does_nothing_says_so_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallClose")
+    texts = [r.text for r in session.handle("run")]
+    assert "I did nothing." in texts and not any("I did: " in t for t in texts)
+
+
+def test_cancel_with_nothing_open_says_so(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    assert session.handle("abbrechen")[0].text == "Keine Vorführung ist offen: es gibt nichts abzubrechen."
+    session.handle("Ball finden")
+    assert session.handle("abbrechen")[0].text == "Vorführung verworfen." and session.open is None
+
+
+def test_the_greeting_names_the_session(ball, tmp_path):
+    assert "--resume t" in new_session(ball, tmp_path).greet()[0].text
+
+
+@pytest.mark.parametrize("pace", ["-3", "nan"])
+def test_a_negative_pace_is_refused_in_one_line(tmp_path, capsys, pace):
+    from teach.cli import main
+
+    assert main(["session", "--pace", pace, "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--pace" in err and not (tmp_path / "demos").exists()

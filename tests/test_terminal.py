@@ -96,3 +96,16 @@ def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(b
     assert steps == sorted(set(steps)) and run_step == steps[-2]
     journal = json.loads((tmp_path / "recordings" / "term.journal.json").read_text())
     assert journal["step"] == manager.step == steps[-1]
+
+
+def test_run_before_learning_is_refused_without_the_running_notice(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "run\rquit\r", lang="en")
+    assert "I have not learned anything yet" in out and "robot running" not in out
+
+
+def test_question_mark_and_ok_done_are_commands(ball, tmp_path):
+    keys = ("?\rfind the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "ok done\rquit\r")
+    out, manager = drive(ball, tmp_path, keys, lang="en")
+    assert "demonstrate" in out and "Generation 1" in out and len(manager.demos) == 1
+    assert out.index("demonstrate") < out.index("New demonstration")  # "?" started nothing

@@ -15,6 +15,8 @@ import argparse
 import time
 from pathlib import Path
 
+from teach.errors import TeachError
+
 NAME = "session"
 HELP = "teach the robot live in the terminal"
 ORDER = 10
@@ -43,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
     from teach.session.setup import open_session
     from teach.terminal.app import Terminal
 
+    if not args.pace >= 0 or args.pace == float("inf"):  # also refuses nan
+        raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,

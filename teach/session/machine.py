@@ -143,6 +143,14 @@ class SessionManager:
         return Mode.DEMONSTRATING if self.open is not None else Mode.IDLE
 
     @property
+    def runnable(self) -> Node | None:
+        """The tree 'run' would start now (the unpruned one: pruning assumes actions have only the
+        effects seen so far), or None when a run would be refused."""
+        if self.open is not None and self.open.steps:
+            return None
+        return self.learning.tree if self.learning.has_behaviour else self.planned
+
+    @property
     def generation(self) -> int:
         return self.learning.generation
 
@@ -159,6 +167,8 @@ class SessionManager:
     def greet(self) -> list[Reply]:
         actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
         replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=actions))]
+        if not self.demos:  # a resumed session names itself in RESUMED
+            replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
         if self.demos:
             replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED(self.lang, session=self.settings.session,
                                                               demos=len(self.demos), asked=self.budget.used,
@@ -256,6 +266,8 @@ class SessionManager:
         return self._finish_demo()
 
     def cmd_cancel(self, rest: str) -> list[Reply]:
+        if self.open is None:
+            return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
         self.open = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
@@ -303,13 +315,12 @@ class SessionManager:
         return self._act(tokens)
 
     def cmd_run(self, rest: str) -> list[Reply]:
-        # the unpruned tree runs: pruning assumes actions have only the effects seen so far
-        tree = self.learning.tree if self.learning.has_behaviour else self.planned
+        if self.open is not None and self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
+        tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         stop_after = _number(rest, self.lang)
-        if self.open is not None and self.open.steps:
-            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
         self.open = None
 
         def announce(action: str) -> None:
@@ -321,8 +332,8 @@ class SessionManager:
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
-        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
-        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done))]
+        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
+        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
         if result.outcome is Outcome.SUCCESS and not unmet:
             replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
             return replies + [self._state_reply()]

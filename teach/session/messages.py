@@ -232,3 +232,8 @@ NO_SUCH_STEP = Text("There is no step {number}: the steps so far are 1 to {count
                     "Es gibt keinen Schritt {number}: die Schritte bisher sind 1 bis {count}.")
 NO_STEPS_TO_UNDO = Text("No demonstration is open, so there are no steps to take back.",
                         "Keine Vorführung ist offen, also gibt es keine Schritte zurückzunehmen.")
+I_DID_NOTHING = Text("I did nothing.", "Ich habe nichts gemacht.")
+NOTHING_TO_CANCEL = Text("No demonstration is open: there is nothing to cancel.",
+                         "Keine Vorführung ist offen: es gibt nichts abzubrechen.")
+SESSION_ID = Text("Session {session} (continue it later with: teach session --resume {session}).",
+                  "Sitzung {session} (später weitermachen mit: teach session --resume {session}).")

@@ -57,7 +57,8 @@ class Terminal:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
         command, _ = parse_command(line)
-        if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING:
+        if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING \
+                or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
             return
         self._interrupt.clear()
