@@ -413,3 +413,28 @@ def test_a_negative_pace_is_refused_in_one_line(tmp_path, capsys, pace):
     assert main(["session", "--pace", pace, "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--pace" in err and not (tmp_path / "demos").exists()
+
+
+@pytest.mark.parametrize("line", ["start BallFound BinClose", "start ballfound binclose",
+                                  "start you can see the ball and the bin is within reach",
+                                  "start du siehst den Ball, der Eimer ist in Reichweite",
+                                  "start ball found, bin close"])
+def test_start_accepts_labels_and_names_in_any_case(ball, tmp_path, line):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(line)
+    assert session.world.state() == ball.state(["BallFound", "BinClose"])
+
+
+def test_start_with_an_unknown_condition_lists_the_known_ones_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    text = session.handle("start BallFound Regen")[0].text
+    assert "'Regen'" in text and "du siehst den Ball" in text and "BallClose" not in text
+
+
+@pytest.mark.parametrize("name", ["FindBall", "findball", "find ball", "Ball finden", "ball finden",
+                                  "du siehst den Ball", "ballfound"])
+def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
+    session = new_session(ball, tmp_path, lang="de")
+    teach_two_demonstrations(session)
+    replies = session.handle(f"warum {name}")
+    assert replies[0].kind.name == "INFO", replies[0].text

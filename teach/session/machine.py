@@ -11,6 +11,7 @@ produced. Files are read and written only through the ``SessionStore``.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -367,13 +368,47 @@ class SessionManager:
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
-        names = [w for w in rest.replace(",", " ").split() if w]
-        for name in names:
-            if not self.domain.has_condition(name):
-                known = ", ".join(self.domain.condition_names)
-                raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=name, known=known))
+        names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
         return [self._state_reply()]
+
+    def _condition_names(self, text: str) -> list[str]:
+        """The conditions a teacher names, as labels in either language ("the bin is within reach,
+        du siehst den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+        names: list[str] = []
+        for part in (p for p in _PARTS.split(text) if p.strip()):
+            whole = self._condition_named(part)
+            for word in [part] if whole is not None else part.split():  # else names side by side
+                found = self._condition_named(word)
+                if found is None:
+                    known = ", ".join(c.label(self.lang) for c in self.domain.conditions)
+                    raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=word.strip(), known=known))
+                names.append(found)
+        return names
+
+    def _condition_named(self, text: str) -> str | None:
+        key = normalize(text)
+        for condition in self.domain.conditions:
+            if key in {normalize(condition.name), normalize(_spelled(condition.name)), normalize(condition.en),
+                       normalize(condition.de)}:
+                return condition.name
+        return None
+
+    def _node_named(self, text: str) -> str:
+        """The action or condition ``why`` asks about, named by its label, a phrase or its name in any case."""
+        condition = self._condition_named(text)
+        if condition is not None:
+            return condition
+        key = normalize(text)
+        for action in self.domain.actions:
+            if key in {normalize(action.name), normalize(_spelled(action.name))}:
+                return action.name
+        try:
+            tokens = self.phrases.parse(text, self.lang)
+        except UnknownPhrase:
+            return text.strip()
+        actions = [t for t in tokens if t.kind == "action" and not t.guessed]
+        return actions[0].name if len(actions) == 1 and len(tokens) == 1 else text.strip()
 
     def cmd_reset(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
@@ -392,12 +427,12 @@ class SessionManager:
         return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
 
     def cmd_why(self, rest: str) -> list[Reply]:
-        name = rest.strip()
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
+        name = self._node_named(rest)
         lines = self.learning.why(name, self.lang)
         if lines is None:
-            return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=name))]
+            return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=rest.strip()))]
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
 
     def cmd_save(self, rest: str) -> list[Reply]:
@@ -743,6 +778,14 @@ SessionManager._handlers = {
     Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
     Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
 }
+
+
+_PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+
+
+def _spelled(name: str) -> str:
+    """An identifier as words: BallFound → "Ball Found"."""
+    return re.sub(r"(?<!^)(?=[A-Z])", " ", name)
 
 
 _STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
