@@ -43,7 +43,7 @@ def test_tab_completion_and_help(ball, tmp_path):
     keys = "Ball fi\t\rhilfe\rquit\r"
     out, manager = drive(ball, tmp_path, keys)
     assert "✓ Ball finden" in out
-    assert "demonstrate" in out  # the help lists the commands
+    assert "zeigen [Schritte]" in out  # the help lists the commands, in German
     assert manager.finished
 
 
@@ -109,3 +109,15 @@ def test_question_mark_and_ok_done_are_commands(ball, tmp_path):
     out, manager = drive(ball, tmp_path, keys, lang="en")
     assert "demonstrate" in out and "Generation 1" in out and len(manager.demos) == 1
     assert out.index("demonstrate") < out.index("New demonstration")  # "?" started nothing
+
+
+def test_the_state_line_is_plain_words_unless_asked_for_in_full(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "Ball finden\rzustand ganz\rquit\r")
+    before_full = out.split("Zustand: BallFound=1", 1)[0]
+    assert "Zustand: du siehst den Ball" in before_full and "BallFound=" not in before_full
+    assert "Zustand: BallFound=1" in out
+
+
+def test_help_lists_german_usage_in_a_german_session(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "hilfe\rquit\r")
+    assert "zurück [N]" in out and "warum NAME" in out and "undo [N]" not in out

@@ -37,6 +37,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pace", type=float, default=1.0,
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
                              "(default 1: real time; 0 = as fast as possible)")
+    parser.add_argument("--facilitator", action="store_true",
+                        help="show conditions by their names as well (default: the situation in plain words)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -52,6 +54,7 @@ def run(args: argparse.Namespace) -> int:
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace)
     manager = open_session(settings, resume=bool(args.resume))
+    manager.facilitator = args.facilitator
     history = args.base / "recordings" / ".teach_history"
     history.parent.mkdir(parents=True, exist_ok=True)
     try:

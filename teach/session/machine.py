@@ -124,6 +124,7 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
+        self.facilitator = False  # show conditions by name too (the facilitator's view, --facilitator)
         self.finished = False
         self.step = 0
         self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
@@ -243,7 +244,7 @@ class SessionManager:
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
-        lines = [f"  {c.usage:<28} {c.help(self.lang)}" for c in COMMANDS]
+        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
         examples = "; ".join(self.phrases.phrases(self.lang)[:12])
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
@@ -359,11 +360,11 @@ class SessionManager:
             return [Reply(ReplyKind.TREE, tree=self.planned)]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
-        tree = self.learning.tree if normalize(rest) in ("full", "ganz", "all") else self.pruned
+        tree = self.learning.tree if normalize(rest) in _FULL_WORDS else self.pruned
         return [Reply(ReplyKind.TREE, tree=tree)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
-        return [self._state_reply()]
+        return [self._state_reply(full=normalize(rest) in _FULL_WORDS)]
 
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
@@ -737,10 +738,11 @@ class SessionManager:
 
     # --- helpers ---------------------------------------------------------------------------
 
-    def _state_reply(self) -> Reply:
+    def _state_reply(self, full: bool = False) -> Reply:
+        """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""
         state = self.world.state()
-        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang),
-                     state=dict(zip(self.domain.condition_names, state, strict=True)))
+        values = dict(zip(self.domain.condition_names, state, strict=True)) if full or self.facilitator else None
+        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang), state=values)
 
     def _tick_clock(self) -> None:
         self.step += 1
@@ -780,6 +782,7 @@ SessionManager._handlers = {
 }
 
 
+_FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
 
 

@@ -30,7 +30,8 @@ class Terminal:
                  input: Input | None = None, output: Output | None = None, history: Path | None = None):
         self.manager = manager
         self.console = console or Console(highlight=False)
-        words = command_words(c.usage for c in COMMANDS) + [n for c in COMMANDS for n in c.names if n.isalpha()]
+        words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
+                                                                           if n.isalpha()]
         self.prompt: PromptSession[str] = PromptSession(
             completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),

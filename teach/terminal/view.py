@@ -27,9 +27,11 @@ def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableTy
         from teach.bt.render import render_tree
 
         return Panel(render_tree(reply.tree, compact=True), title=m.TREE_TITLE(lang), expand=False)
-    if reply.kind is ReplyKind.STATE and reply.state is not None:
+    if reply.kind is ReplyKind.STATE:
         text = Text(m.STATE_PREFIX(lang), style="dim")
-        for name, value in reply.state.items():
+        if reply.state is None:  # the caregiver's view: the situation in words
+            text.append(reply.text)
+        for name, value in (reply.state or {}).items():
             text.append(f"{name}", style="green" if value else "red")
             text.append("=1 " if value else "=0 ", style="dim")
         return text
