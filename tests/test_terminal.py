@@ -121,3 +121,22 @@ def test_the_state_line_is_plain_words_unless_asked_for_in_full(ball, tmp_path):
 def test_help_lists_german_usage_in_a_german_session(ball, tmp_path):
     out, _ = drive(ball, tmp_path, "hilfe\rquit\r")
     assert "zurück [N]" in out and "warum NAME" in out and "undo [N]" not in out
+
+
+def test_tab_completes_labels_after_why_and_start(ball, tmp_path):
+    from prompt_toolkit.completion import CompleteEvent
+    from prompt_toolkit.document import Document
+
+    settings = Settings("tab", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    with create_pipe_input() as pipe:
+        terminal = Terminal(SessionManager(settings, ball, SymbolicWorld(ball)), input=pipe, output=DummyOutput())
+    completer = terminal.prompt.completer
+    assert completer is not None
+
+    def offered(text):
+        return [c.text for c in completer.get_completions(Document(text), CompleteEvent(completion_requested=True))]
+
+    assert offered("warum Ball g") == ["Ball greifen"]
+    assert offered("start du s") == ["du siehst den Ball"]
+    assert offered("start du siehst den Ball, der E") == ["der Eimer ist in Reichweite"]
+    assert offered("warum der Ball ist i") == ["der Ball ist in Reichweite", "der Ball ist im Eimer"]

@@ -33,7 +33,8 @@ class Terminal:
         words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
                                                                            if n.isalpha()]
         self.prompt: PromptSession[str] = PromptSession(
-            completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang)),
+            completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang),
+                                     _argument_names(manager)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
             bottom_toolbar=lambda: toolbar(self.manager), input=input, output=output, complete_while_typing=True)
         self._interrupt = threading.Event()
@@ -71,3 +72,11 @@ class Terminal:
         finally:
             if in_main:
                 signal.signal(signal.SIGINT, previous)
+
+
+def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
+    """What Tab offers after 'start' (conditions) and 'why' (actions and conditions), in the session's language."""
+    conditions = [c.label(manager.lang) for c in manager.domain.conditions]
+    actions = [a.label(manager.lang) for a in manager.domain.actions]
+    return {name: conditions if command.verb is Verb.START else actions + conditions
+            for command in COMMANDS if command.verb in (Verb.START, Verb.WHY) for name in command.names}
