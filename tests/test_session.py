@@ -438,3 +438,20 @@ def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
     teach_two_demonstrations(session)
     replies = session.handle(f"warum {name}")
     assert replies[0].kind.name == "INFO", replies[0].text
+
+
+def test_a_failed_step_is_explained_in_the_sessions_language_only(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    texts = [r.text for r in session.handle("Ball greifen")]
+    assert texts[1].startswith("„Ball greifen“ ging nicht: dafür muss erst gelten: ")
+    assert "needs" not in " ".join(texts) and "BallClose" not in " ".join(texts)
+    session.facilitator = True
+    assert any("BallClose" in t for t in (r.text for r in session.handle("Ball greifen")))
+
+
+def test_a_resumed_session_counts_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(SEQUENCE)
+    session.handle("fertig")
+    resumed = SessionManager.resume(settings(tmp_path, lang="de"), ball, SymbolicWorld(ball))
+    assert resumed.greet()[0].text == "Sitzung t fortgesetzt: 1 Vorführung, keine Fragen gestellt, Generation 1."

@@ -172,9 +172,12 @@ class SessionManager:
         if not self.demos:  # a resumed session names itself in RESUMED
             replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
         if self.demos:
-            replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED(self.lang, session=self.settings.session,
-                                                              demos=len(self.demos), asked=self.budget.used,
-                                                              generation=self.generation)))
+            demos = _counted(len(self.demos), m.NO_DEMOS, m.ONE_DEMO, m.DEMOS)(self.lang, count=len(self.demos))
+            asked = _counted(self.budget.used, m.NO_QUESTIONS_ASKED, m.ONE_QUESTION_ASKED,
+                             m.QUESTIONS_ASKED)(self.lang, count=self.budget.used)
+            replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED_COUNTED(self.lang, session=self.settings.session,
+                                                                      demos=demos, asked=asked,
+                                                                      generation=self.generation)))
             if self.pruned is not None:
                 replies.append(Reply(ReplyKind.TREE, tree=self.pruned))
         replies.append(self._state_reply())
@@ -344,7 +347,7 @@ class SessionManager:
         elif result.outcome is Outcome.SUCCESS:
             message = m.THOUGHT_DONE(self.lang, unmet=unmet)
         else:
-            message = m.STUCK(self.lang, outcome=result.outcome)
+            message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         # what the robot did so far and what the teacher shows next become one corrective demonstration
         self.open = _OpenDemo()
         for state, action in result.steps:
@@ -533,7 +536,10 @@ class SessionManager:
             result = self.world.act(token.name)
             label = self.domain.action(token.name).label(self.lang)
             if not result.ok:
-                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=result.message)))
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
+                                                                  reason=self._why_not(token.name, result.before))))
+                if self.facilitator and result.message:  # the world's own words are for the facilitator
+                    replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
@@ -543,6 +549,13 @@ class SessionManager:
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
+
+    def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
+        """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
+        values = dict(zip(self.domain.condition_names, state, strict=True))
+        missing = [self.domain.condition(p.name).label(self.lang, p.value)
+                   for p in self.domain.action(action).pre if values[p.name] != p.value]
+        return m.IT_NEEDS(self.lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(self.lang)
 
     def _finish_demo(self) -> list[Reply]:
         assert self.open is not None
@@ -782,8 +795,15 @@ SessionManager._handlers = {
 }
 
 
+_OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,
+                  Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
 _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+
+
+def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
+    """The text for ``count`` things: "no questions", "1 question", "2 questions"."""
+    return none if count == 0 else one if count == 1 else many
 
 
 def _spelled(name: str) -> str:
