@@ -140,3 +140,22 @@ def test_tab_completes_labels_after_why_and_start(ball, tmp_path):
     assert offered("start du s") == ["du siehst den Ball"]
     assert offered("start du siehst den Ball, der E") == ["der Eimer ist in Reichweite"]
     assert offered("warum der Ball ist i") == ["der Ball ist in Reichweite", "der Ball ist im Eimer"]
+
+
+def test_ctrl_c_during_a_run_starts_what_follows_on_a_new_line(ball, tmp_path):
+    settings = Settings("intr", lang="en", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    buffer = io.StringIO()
+    with create_pipe_input() as pipe:
+        terminal = Terminal(SessionManager(settings, ball, SymbolicWorld(ball)),
+                            console=Console(file=buffer, width=100, color_system=None), input=pipe,
+                            output=DummyOutput())
+    terminal._on_interrupt()
+    terminal._on_interrupt()  # a second Ctrl-C adds no second empty line
+    assert buffer.getvalue() == "\n" and terminal._interrupt.is_set()
+
+
+def test_a_chatty_run_is_recognised_as_a_run(ball, tmp_path):
+    keys = ("find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "done\rstart\rok run\rquit\r")
+    out, _ = drive(ball, tmp_path, keys, lang="en")
+    assert "robot running" in out and "Done! The task is finished." in out

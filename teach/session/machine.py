@@ -217,7 +217,11 @@ class SessionManager:
         return turn
 
     def command(self, line: str) -> tuple[Command | None, str]:
-        return parse_command(line)
+        """The command ``handle`` would read in a line ("ok run" is 'run'), and its argument."""
+        try:
+            return parse_command(command_hint(line, self.lang, COMMAND_WORDS) or line)
+        except LineTooLong:
+            return None, line
 
     def close(self) -> None:
         self.store.save_journal(self.journal)

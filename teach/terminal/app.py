@@ -19,7 +19,7 @@ from rich.console import Console
 
 from teach.dialogue.completion import TeachCompleter, command_words
 from teach.session import messages as m
-from teach.session.commands import COMMANDS, Verb, parse_command
+from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply
 from teach.terminal.view import prompt, render_reply, toolbar
@@ -55,10 +55,16 @@ class Terminal:
     def _show(self, reply: Reply) -> None:
         self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
 
+    def _on_interrupt(self) -> None:
+        """Ctrl-C during a run: stop the robot; what follows starts on a line of its own, not after "^C"."""
+        if not self._interrupt.is_set():
+            self.console.line()
+        self._interrupt.set()
+
     def _handle(self, line: str) -> None:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
-        command, _ = parse_command(line)
+        command, _ = self.manager.command(line)
         if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING \
                 or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
@@ -66,7 +72,7 @@ class Terminal:
         self._interrupt.clear()
         self.console.print(f"[dim]{m.ROBOT_RUNNING(self.manager.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
-        previous = signal.signal(signal.SIGINT, lambda *_: self._interrupt.set()) if in_main else None
+        previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
         try:
             self.manager.handle(line, interrupt=self._interrupt.is_set)
         finally:
