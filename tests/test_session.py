@@ -455,3 +455,8 @@ def test_a_resumed_session_counts_in_words(ball, tmp_path):
     session.handle("fertig")
     resumed = SessionManager.resume(settings(tmp_path, lang="de"), ball, SymbolicWorld(ball))
     assert resumed.greet()[0].text == "Sitzung t fortgesetzt: 1 Vorführung, keine Fragen gestellt, Generation 1."
+
+
+def test_which_event_names_the_events_in_the_sessions_language(ball, tmp_path):
+    replies = new_session(ball, tmp_path, lang="de").handle("stören")
+    assert replies[0].text == "Welches Ereignis? Ich kenne: etwas ändern."

@@ -319,7 +319,7 @@ class SessionManager:
     def cmd_perturb(self, rest: str) -> list[Reply]:
         tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
         if not any(t.kind == "event" for t in tokens):
-            names = ", ".join(en[0] for en, _ in self.world.events.values())
+            names = ", ".join(m.Text(en[0], next(iter(de), en[0]))(self.lang) for en, de in self.world.events.values())
             return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=names))]
         return self._act(tokens)
 
