@@ -159,3 +159,14 @@ def test_a_chatty_run_is_recognised_as_a_run(ball, tmp_path):
             "done\rstart\rok run\rquit\r")
     out, _ = drive(ball, tmp_path, keys, lang="en")
     assert "robot running" in out and "Done! The task is finished." in out
+
+
+def test_the_toolbar_fits_80_columns_and_names_conditions_only_for_a_facilitator(ball, tmp_path):
+    from teach.terminal.view import toolbar
+
+    settings = Settings("bar", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball))
+    manager.handle("start BallFound BallClose BallGrasped BinClose")
+    assert "BallFound" not in toolbar(manager) and len(toolbar(manager)) <= 80
+    manager.facilitator = True
+    assert "BallFound, BallClose" in toolbar(manager)

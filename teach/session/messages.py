@@ -271,3 +271,5 @@ DEMOS = Text("{count} demonstrations", "{count} Vorführungen")
 NO_QUESTIONS_ASKED = Text("no questions asked", "keine Fragen gestellt")
 ONE_QUESTION_ASKED = Text("{count} question asked", "{count} Frage gestellt")
 QUESTIONS_ASKED = Text("{count} questions asked", "{count} Fragen gestellt")
+TOOLBAR_PLAIN = Text(" {mode} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
+                     " {mode} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
