@@ -460,3 +460,15 @@ def test_a_resumed_session_counts_in_words(ball, tmp_path):
 def test_which_event_names_the_events_in_the_sessions_language(ball, tmp_path):
     replies = new_session(ball, tmp_path, lang="de").handle("stören")
     assert replies[0].text == "Welches Ereignis? Ich kenne: etwas ändern."
+
+
+def test_a_guessed_answer_to_a_question_is_confirmed_by_yes(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    teach_two_demonstrations(session)
+    question = session.pending
+    assert question is not None
+    replies = session.handle("hide it")  # a guess: "find the ball"?
+    assert replies[0].text.endswith("Did you mean “find the ball”?") and session.pending is question
+    replies = session.handle("yes")
+    assert any(r.text.startswith("Thank you.") for r in replies)
+    assert session.learning.labels[question.state] == "FindBall"

@@ -204,8 +204,10 @@ class SessionManager:
         try:
             replies = self._dispatch(line, suggestion)
         except UnknownPhrase as unknown:
-            # a guess during a question is not kept: confirming it would have to answer the question
-            self.suggestion = None if asking else unknown.suggestion
+            # during a situation question only a guessed action is kept: confirming it answers the question
+            keep = not asking or (self.pending is not None and unknown.suggestion is not None
+                                  and unknown.suggestion.candidate.kind == "action")
+            self.suggestion = unknown.suggestion if keep else None
             replies = [Reply(ReplyKind.ERROR, unknown.message)]
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
@@ -231,7 +233,12 @@ class SessionManager:
     def _dispatch(self, line: str, suggestion: Suggestion | None = None) -> list[Reply]:
         if suggestion is not None:
             if is_yes(line, self.lang):
-                return self._act(self.phrases.confirm(suggestion))
+                tokens = self.phrases.confirm(suggestion)
+                if self.pending is None:
+                    return self._act(tokens)
+                if len(tokens) != 1 or tokens[0].kind != "action":
+                    return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
+                return self.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         line = command_hint(line, self.lang, COMMAND_WORDS) or line
