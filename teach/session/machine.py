@@ -169,9 +169,9 @@ class SessionManager:
     def greet(self) -> list[Reply]:
         actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
         replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=actions))]
-        if not self.demos:  # a resumed session names itself in RESUMED
+        if not self.demos:  # a resumed session names itself in RESUMED_COUNTED
             replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
-        if self.demos:
+        else:
             demos = _counted(len(self.demos), m.NO_DEMOS, m.ONE_DEMO, m.DEMOS)(self.lang, count=len(self.demos))
             asked = _counted(self.budget.used, m.NO_QUESTIONS_ASKED, m.ONE_QUESTION_ASKED,
                              m.QUESTIONS_ASKED)(self.lang, count=self.budget.used)
