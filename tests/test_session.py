@@ -320,3 +320,179 @@ def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys)
     resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
                                              record=False), ball, SymbolicWorld(ball))
     assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again
+
+
+# --- the careless teacher (issue 11) ---------------------------------------------------------------
+
+
+def steps_of(session):
+    return [s.action for s in session.open.steps] if session.open is not None else []
+
+
+@pytest.mark.parametrize(("lang", "typo", "reply"), [("en", "chnge smthing", "yes"), ("de", "etwas andrn", "ja"),
+                                                     ("en", "chnge smthing", "y"), ("en", "chnge smthing", "ok"),
+                                                     ("de", "etwas andrn", "")])
+def test_a_suggestion_is_confirmed_by_yes_or_enter(ball, tmp_path, lang, typo, reply):
+    session = new_session(ball, tmp_path, lang=lang)
+    replies = session.handle(typo)
+    assert replies[0].text.endswith(("“change something”?", "„etwas ändern“?")) and session.open is None
+    session.handle(reply)
+    assert steps_of(session) == [-1]  # the event, acted on only once the teacher said yes
+
+
+def test_a_suggestion_declined_or_ignored_is_dropped(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("chnge smthing")
+    replies = session.handle("no")
+    assert [r.text for r in replies] == ["Say it another way, please."] and session.open is None
+    session.handle("chnge smthing")
+    session.handle("find the ball")  # anything else: the guess is dropped, the line handled as usual
+    assert steps_of(session) == [1]
+    assert session.handle("") == [] and steps_of(session) == [1]
+
+
+def test_conversational_commands(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    assert session.handle("?")[0].text.startswith(session.handle("help")[0].text[:20])
+    assert session.open is None  # "?" never starts a demonstration
+    session.handle(SEQUENCE)
+    replies = session.handle("ok done")
+    assert len(session.demos) == 1, [r.text for r in replies]
+
+
+def test_perturb_reads_events_loosely(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("perturb chnge smthing")
+    assert steps_of(session) == [-1]
+
+
+def test_a_pronoun_means_the_object_named_last(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    session.handle("go to it")
+    assert steps_of(session) == [1, 2]
+
+
+def test_an_overlong_line_is_one_short_error_never_logged(ball, tmp_path):
+    events = Events()
+    session = new_session(ball, tmp_path, observer=events)
+    line = "find the ball " * 300
+    replies = session.handle(line)
+    assert len(replies) == 1 and replies[0].kind.name == "ERROR" and len(replies[0].text) < 200
+    assert session.open is None and all(line.strip() not in text for _, text in events.dialogue)
+
+
+def test_steps_lists_the_open_demonstration_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    assert "no steps yet" in session.handle("steps")[0].text
+    session.handle("find the ball, go to the ball, change something")
+    text = session.handle("steps")[0].text
+    assert text.splitlines()[1:] == ["  1. find the ball", "  2. go to the ball",
+                                     "  3. something happened: change something"]
+
+
+@pytest.mark.parametrize("line", ["undo 2", "undo to step 2", "undo step 2"])
+def test_undo_to_step_n_goes_back_to_the_state_before_it(ball, tmp_path, line):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball, grasp the ball")
+    replies = session.handle(line)
+    assert replies[0].text == "Undone: steps 2 to 3 (go to the ball; grasp the ball)."
+    assert steps_of(session) == [1] and session.world.state() == ball.state(["BallFound"])
+    assert session.handle("undo")[0].text == "Undone: step 1 (find the ball)." and session.open is None
+
+
+def test_undo_of_a_step_that_is_not_there_says_which_there_are(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    assert session.handle("undo 5")[0].text == "There is no step 5: the steps so far are 1 to 2."
+    assert steps_of(session) == [1, 2]
+    german = new_session(ball, tmp_path / "de", lang="de")
+    assert german.handle("zurück 1")[0].text.startswith("Keine Vorführung ist offen")
+
+
+def test_a_run_that_does_nothing_says_so_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BallClose")
+    texts = [r.text for r in session.handle("run")]
+    assert "I did nothing." in texts and not any("I did: " in t for t in texts)
+
+
+def test_cancel_with_nothing_open_says_so(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    assert session.handle("abbrechen")[0].text == "Keine Vorführung ist offen: es gibt nichts abzubrechen."
+    session.handle("Ball finden")
+    assert session.handle("abbrechen")[0].text == "Vorführung verworfen." and session.open is None
+
+
+def test_the_greeting_names_the_session(ball, tmp_path):
+    assert "--resume t" in new_session(ball, tmp_path).greet()[0].text
+
+
+@pytest.mark.parametrize("pace", ["-3", "nan"])
+def test_a_negative_pace_is_refused_in_one_line(tmp_path, capsys, pace):
+    from teach.cli import main
+
+    assert main(["session", "--pace", pace, "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--pace" in err and not (tmp_path / "demos").exists()
+
+
+@pytest.mark.parametrize("line", ["start BallFound BinClose", "start ballfound binclose",
+                                  "start you can see the ball and the bin is within reach",
+                                  "start du siehst den Ball, der Eimer ist in Reichweite",
+                                  "start ball found, bin close"])
+def test_start_accepts_labels_and_names_in_any_case(ball, tmp_path, line):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(line)
+    assert session.world.state() == ball.state(["BallFound", "BinClose"])
+
+
+def test_start_with_an_unknown_condition_lists_the_known_ones_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    text = session.handle("start BallFound Regen")[0].text
+    assert "'Regen'" in text and "du siehst den Ball" in text and "BallClose" not in text
+
+
+@pytest.mark.parametrize("name", ["FindBall", "findball", "find ball", "Ball finden", "ball finden",
+                                  "du siehst den Ball", "ballfound"])
+def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
+    session = new_session(ball, tmp_path, lang="de")
+    teach_two_demonstrations(session)
+    replies = session.handle(f"warum {name}")
+    assert replies[0].kind.name == "INFO", replies[0].text
+
+
+def test_a_failed_step_is_explained_in_the_sessions_language_only(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    texts = [r.text for r in session.handle("Ball greifen")]
+    assert texts[1].startswith("„Ball greifen“ ging nicht: dafür muss erst gelten: ")
+    assert "needs" not in " ".join(texts) and "BallClose" not in " ".join(texts)
+    session.facilitator = True
+    assert any("BallClose" in t for t in (r.text for r in session.handle("Ball greifen")))
+
+
+def test_a_resumed_session_counts_in_words(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(SEQUENCE)
+    session.handle("fertig")
+    resumed = SessionManager.resume(settings(tmp_path, lang="de"), ball, SymbolicWorld(ball))
+    assert resumed.greet()[0].text == "Sitzung t fortgesetzt: 1 Vorführung, keine Fragen gestellt, Generation 1."
+
+
+def test_which_event_names_the_events_in_the_sessions_language(ball, tmp_path):
+    replies = new_session(ball, tmp_path, lang="de").handle("stören")
+    assert replies[0].text == "Welches Ereignis? Ich kenne: etwas ändern."
+
+
+def test_a_guessed_answer_to_a_question_is_confirmed_by_yes(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    teach_two_demonstrations(session)
+    question = session.pending
+    assert question is not None
+    replies = session.handle("hide it")  # a guess: "find the ball"?
+    assert replies[0].text.endswith("Did you mean “find the ball”?") and session.pending is question
+    replies = session.handle("yes")
+    assert any(r.text.startswith("Thank you.") for r in replies)
+    assert session.learning.labels[question.state] == "FindBall"

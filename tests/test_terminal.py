@@ -43,7 +43,7 @@ def test_tab_completion_and_help(ball, tmp_path):
     keys = "Ball fi\t\rhilfe\rquit\r"
     out, manager = drive(ball, tmp_path, keys)
     assert "✓ Ball finden" in out
-    assert "demonstrate" in out  # the help lists the commands
+    assert "zeigen [Schritte]" in out  # the help lists the commands, in German
     assert manager.finished
 
 
@@ -96,3 +96,77 @@ def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(b
     assert steps == sorted(set(steps)) and run_step == steps[-2]
     journal = json.loads((tmp_path / "recordings" / "term.journal.json").read_text())
     assert journal["step"] == manager.step == steps[-1]
+
+
+def test_run_before_learning_is_refused_without_the_running_notice(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "run\rquit\r", lang="en")
+    assert "I have not learned anything yet" in out and "robot running" not in out
+
+
+def test_question_mark_and_ok_done_are_commands(ball, tmp_path):
+    keys = ("?\rfind the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "ok done\rquit\r")
+    out, manager = drive(ball, tmp_path, keys, lang="en")
+    assert "demonstrate" in out and "Generation 1" in out and len(manager.demos) == 1
+    assert out.index("demonstrate") < out.index("New demonstration")  # "?" started nothing
+
+
+def test_the_state_line_is_plain_words_unless_asked_for_in_full(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "Ball finden\rzustand ganz\rquit\r")
+    before_full = out.split("Zustand: BallFound=1", 1)[0]
+    assert "Zustand: du siehst den Ball" in before_full and "BallFound=" not in before_full
+    assert "Zustand: BallFound=1" in out
+
+
+def test_help_lists_german_usage_in_a_german_session(ball, tmp_path):
+    out, _ = drive(ball, tmp_path, "hilfe\rquit\r")
+    assert "zurück [N]" in out and "warum NAME" in out and "undo [N]" not in out
+
+
+def test_tab_completes_labels_after_why_and_start(ball, tmp_path):
+    from prompt_toolkit.completion import CompleteEvent
+    from prompt_toolkit.document import Document
+
+    settings = Settings("tab", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    with create_pipe_input() as pipe:
+        terminal = Terminal(SessionManager(settings, ball, SymbolicWorld(ball)), input=pipe, output=DummyOutput())
+    completer = terminal.prompt.completer
+    assert completer is not None
+
+    def offered(text):
+        return [c.text for c in completer.get_completions(Document(text), CompleteEvent(completion_requested=True))]
+
+    assert offered("warum Ball g") == ["Ball greifen"]
+    assert offered("start du s") == ["du siehst den Ball"]
+    assert offered("start du siehst den Ball, der E") == ["der Eimer ist in Reichweite"]
+    assert offered("warum der Ball ist i") == ["der Ball ist in Reichweite", "der Ball ist im Eimer"]
+
+
+def test_ctrl_c_during_a_run_starts_what_follows_on_a_new_line(ball, tmp_path):
+    settings = Settings("intr", lang="en", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    buffer = io.StringIO()
+    with create_pipe_input() as pipe:
+        terminal = Terminal(SessionManager(settings, ball, SymbolicWorld(ball)),
+                            console=Console(file=buffer, width=100, color_system=None), input=pipe,
+                            output=DummyOutput())
+    terminal._on_interrupt()
+    terminal._on_interrupt()  # a second Ctrl-C adds no second empty line
+    assert buffer.getvalue() == "\n" and terminal._interrupt.is_set()
+
+
+def test_a_chatty_run_is_recognised_as_a_run(ball, tmp_path):
+    keys = ("find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "done\rstart\rok run\rquit\r")
+    out, _ = drive(ball, tmp_path, keys, lang="en")
+    assert "robot running" in out and "Done! The task is finished." in out
+
+
+def test_the_toolbar_fits_80_columns_and_names_conditions_only_for_a_facilitator(ball, tmp_path):
+    from teach.terminal.view import toolbar
+
+    settings = Settings("bar", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball))
+    manager.handle("start BallFound BallClose BallGrasped BinClose")
+    assert "BallFound" not in toolbar(manager) and len(toolbar(manager)) <= 80
+    manager.facilitator = True
+    assert "BallFound, BallClose" in toolbar(manager)

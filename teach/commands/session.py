@@ -15,6 +15,8 @@ import argparse
 import time
 from pathlib import Path
 
+from teach.errors import TeachError
+
 NAME = "session"
 HELP = "teach the robot live in the terminal"
 ORDER = 10
@@ -35,6 +37,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pace", type=float, default=1.0,
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
                              "(default 1: real time; 0 = as fast as possible)")
+    parser.add_argument("--facilitator", action="store_true",
+                        help="show conditions by their names as well (default: the situation in plain words)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -43,11 +47,14 @@ def run(args: argparse.Namespace) -> int:
     from teach.session.setup import open_session
     from teach.terminal.app import Terminal
 
+    if not args.pace >= 0 or args.pace == float("inf"):  # also refuses nan
+        raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace)
     manager = open_session(settings, resume=bool(args.resume))
+    manager.facilitator = args.facilitator
     history = args.base / "recordings" / ".teach_history"
     history.parent.mkdir(parents=True, exist_ok=True)
     try:

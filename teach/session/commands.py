@@ -30,6 +30,7 @@ class Verb(Enum):
     WHY = auto()
     SAVE = auto()
     QUIT = auto()
+    STEPS = auto()
 
 
 @dataclass(frozen=True)
@@ -37,32 +38,36 @@ class Command:
     verb: Verb
     names: tuple[str, ...]
     """The words that name it, normalized (see ``teach.dialogue.phrases.normalize``)."""
-    usage: str
+    usage: Text
     help: Text
 
 
 COMMANDS: tuple[Command, ...] = (
-    Command(Verb.HELP, ("help", "hilfe", "h"), "help", m.HELP_HELP),
-    Command(Verb.DEMONSTRATE, ("demonstrate", "demo", "zeigen", "vorfuhren"), "demonstrate [steps]",
+    Command(Verb.HELP, ("help", "hilfe", "h"), m.USAGE_HELP, m.HELP_HELP),
+    Command(Verb.DEMONSTRATE, ("demonstrate", "demo", "zeigen", "vorfuhren"), m.USAGE_DEMONSTRATE,
             m.HELP_DEMONSTRATE),
-    Command(Verb.DONE, ("done", "fertig"), "done", m.HELP_DONE),
-    Command(Verb.CANCEL, ("cancel", "abbrechen"), "cancel", m.HELP_CANCEL),
-    Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), "undo", m.HELP_UNDO),
-    Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), "perturb EVENT", m.HELP_PERTURB),
-    Command(Verb.RUN, ("run", "los", "ausfuhren"), "run [N]", m.HELP_RUN),
-    Command(Verb.STOP, ("stop", "halt"), "stop / Ctrl-C", m.HELP_STOP),
-    Command(Verb.SHOW, ("show", "zeige", "baum"), "show [full]", m.HELP_SHOW),
-    Command(Verb.STATE, ("state", "zustand"), "state", m.HELP_STATE),
-    Command(Verb.START, ("start", "situation"), "start COND ...", m.HELP_START),
-    Command(Verb.RESET, ("reset", "neu"), "reset [SEED]", m.HELP_RESET),
-    Command(Verb.ASK, ("ask", "frag", "frage"), "ask", m.HELP_ASK),
-    Command(Verb.MODEL, ("model", "modell"), "model FILE", m.HELP_MODEL),
-    Command(Verb.PLAN, ("plan", "planen"), "plan", m.HELP_PLAN),
-    Command(Verb.SKIP, ("skip", "weiter"), "skip", m.HELP_SKIP),
-    Command(Verb.WHY, ("why", "warum"), "why NAME", m.HELP_WHY),
-    Command(Verb.SAVE, ("save", "speichern"), "save", m.HELP_SAVE),
-    Command(Verb.QUIT, ("quit", "exit", "beenden", "tschuss"), "quit / Ctrl-D", m.HELP_QUIT),
+    Command(Verb.DONE, ("done", "fertig"), m.USAGE_DONE, m.HELP_DONE),
+    Command(Verb.CANCEL, ("cancel", "abbrechen"), m.USAGE_CANCEL, m.HELP_CANCEL),
+    Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), m.USAGE_UNDO, m.HELP_UNDO_TO_STEP),
+    Command(Verb.STEPS, ("steps", "schritte"), m.USAGE_STEPS, m.HELP_STEPS),
+    Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), m.USAGE_PERTURB, m.HELP_PERTURB),
+    Command(Verb.RUN, ("run", "los", "ausfuhren"), m.USAGE_RUN, m.HELP_RUN),
+    Command(Verb.STOP, ("stop", "halt"), m.USAGE_STOP, m.HELP_STOP),
+    Command(Verb.SHOW, ("show", "zeige", "baum"), m.USAGE_SHOW, m.HELP_SHOW),
+    Command(Verb.STATE, ("state", "zustand"), m.USAGE_STATE, m.HELP_STATE),
+    Command(Verb.START, ("start", "situation"), m.USAGE_START, m.HELP_START),
+    Command(Verb.RESET, ("reset", "neu"), m.USAGE_RESET, m.HELP_RESET),
+    Command(Verb.ASK, ("ask", "frag", "frage"), m.USAGE_ASK, m.HELP_ASK),
+    Command(Verb.MODEL, ("model", "modell"), m.USAGE_MODEL, m.HELP_MODEL),
+    Command(Verb.PLAN, ("plan", "planen"), m.USAGE_PLAN, m.HELP_PLAN),
+    Command(Verb.SKIP, ("skip", "weiter"), m.USAGE_SKIP, m.HELP_SKIP),
+    Command(Verb.WHY, ("why", "warum"), m.USAGE_WHY, m.HELP_WHY),
+    Command(Verb.SAVE, ("save", "speichern"), m.USAGE_SAVE, m.HELP_SAVE),
+    Command(Verb.QUIT, ("quit", "exit", "beenden", "tschuss"), m.USAGE_QUIT, m.HELP_QUIT),
 )
+
+COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names)
+"""Every word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
 
 BLOCKED_WHILE_ASKING = frozenset({Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB, Verb.MODEL,
                                   Verb.ASK})

@@ -11,6 +11,7 @@ produced. Files are read and written only through the ``SessionStore``.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -20,7 +21,18 @@ from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step
-from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.phrases import (
+    LineTooLong,
+    PhraseBook,
+    Suggestion,
+    Token,
+    UnknownPhrase,
+    check_length,
+    command_hint,
+    is_no,
+    is_yes,
+    normalize,
+)
 from teach.dialogue.questions import Question, QuestionBudget, describe_situation
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain
 from teach.errors import FormatError, LearnError, TeachError
@@ -29,6 +41,7 @@ from teach.session import messages as m
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
+    COMMAND_WORDS,
     COMMANDS,
     DONE_WORDS,
     SKIP_WORDS,
@@ -77,6 +90,17 @@ class _OpenDemo:
     """The demonstration being shown (or a run's steps, to be continued as a correction)."""
 
     steps: list[Step] = field(default_factory=list)
+    words: list[str] = field(default_factory=list)  # each step as the teacher saw it, for 'steps' and 'undo'
+
+    def add(self, step: Step, words: str) -> None:
+        self.steps.append(step)
+        self.words.append(words)
+
+    def take_back(self, first: int) -> Step:
+        """Remove steps ``first``.. (numbered from 1); the first removed, whose state was before them all."""
+        removed = self.steps[first - 1]
+        del self.steps[first - 1:], self.words[first - 1:]
+        return removed
 
 
 class SessionManager:
@@ -98,6 +122,9 @@ class SessionManager:
         self.pending_model: ModelQuestion | None = None
         self.planned: Node | None = None
         self.open: _OpenDemo | None = None
+        self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
+        self.topic: str | None = None  # the object named last: what "it" means in the next line
+        self.facilitator = False  # show conditions by name too (the facilitator's view, --facilitator)
         self.finished = False
         self.step = 0
         self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
@@ -118,6 +145,14 @@ class SessionManager:
         return Mode.DEMONSTRATING if self.open is not None else Mode.IDLE
 
     @property
+    def runnable(self) -> Node | None:
+        """The tree 'run' would start now (the unpruned one: pruning assumes actions have only the
+        effects seen so far), or None when a run would be refused."""
+        if self.open is not None and self.open.steps:
+            return None
+        return self.learning.tree if self.learning.has_behaviour else self.planned
+
+    @property
     def generation(self) -> int:
         return self.learning.generation
 
@@ -134,10 +169,15 @@ class SessionManager:
     def greet(self) -> list[Reply]:
         actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
         replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=actions))]
-        if self.demos:
-            replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED(self.lang, session=self.settings.session,
-                                                              demos=len(self.demos), asked=self.budget.used,
-                                                              generation=self.generation)))
+        if not self.demos:  # a resumed session names itself in RESUMED_COUNTED
+            replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
+        else:
+            demos = _counted(len(self.demos), m.NO_DEMOS, m.ONE_DEMO, m.DEMOS)(self.lang, count=len(self.demos))
+            asked = _counted(self.budget.used, m.NO_QUESTIONS_ASKED, m.ONE_QUESTION_ASKED,
+                             m.QUESTIONS_ASKED)(self.lang, count=self.budget.used)
+            replies.insert(0, Reply(ReplyKind.INFO, m.RESUMED_COUNTED(self.lang, session=self.settings.session,
+                                                                      demos=demos, asked=asked,
+                                                                      generation=self.generation)))
             if self.pruned is not None:
                 replies.append(Reply(ReplyKind.TREE, tree=self.pruned))
         replies.append(self._state_reply())
@@ -148,15 +188,26 @@ class SessionManager:
         """One teacher line in, every reply to it out, in order. Never raises for bad input.
         ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
         line = line.strip()
-        if not line:
+        if not line and self.suggestion is None:
             return []
         self._turn = []
         self._interrupt = interrupt
         self._tick_clock()
-        self.observer.on_dialogue("teacher", line, self.budget.left)
         try:
-            replies = self._dispatch(line)
+            check_length(line, self.lang)
+        except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
+            self.suggestion = None
+            return self._end_turn([Reply(ReplyKind.ERROR, too_long.message)])
+        self.observer.on_dialogue("teacher", line, self.budget.left)
+        suggestion, self.suggestion = self.suggestion, None
+        asking = self.mode is Mode.ASKING
+        try:
+            replies = self._dispatch(line, suggestion)
         except UnknownPhrase as unknown:
+            # during a situation question only a guessed action is kept: confirming it answers the question
+            keep = not asking or (self.pending is not None and unknown.suggestion is not None
+                                  and unknown.suggestion.candidate.kind == "action")
+            self.suggestion = unknown.suggestion if keep else None
             replies = [Reply(ReplyKind.ERROR, unknown.message)]
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
@@ -168,14 +219,29 @@ class SessionManager:
         return turn
 
     def command(self, line: str) -> tuple[Command | None, str]:
-        return parse_command(line)
+        """The command ``handle`` would read in a line ("ok run" is 'run'), and its argument."""
+        try:
+            return parse_command(command_hint(line, self.lang, COMMAND_WORDS) or line)
+        except LineTooLong:
+            return None, line
 
     def close(self) -> None:
         self.store.save_journal(self.journal)
         self.world.close()
         self.observer.close()
 
-    def _dispatch(self, line: str) -> list[Reply]:
+    def _dispatch(self, line: str, suggestion: Suggestion | None = None) -> list[Reply]:
+        if suggestion is not None:
+            if is_yes(line, self.lang):
+                tokens = self.phrases.confirm(suggestion)
+                if self.pending is None:
+                    return self._act(tokens)
+                if len(tokens) != 1 or tokens[0].kind != "action":
+                    return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
+                return self.apply_answer(tokens[0].name, tokens[0].text)
+            if is_no(line, self.lang):
+                return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+        line = command_hint(line, self.lang, COMMAND_WORDS) or line
         command, rest = parse_command(line)
         answering = command is None or command.verb in ANSWERING
         if self.pending_model is not None and answering:
@@ -192,7 +258,7 @@ class SessionManager:
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
-        lines = [f"  {c.usage:<28} {c.help(self.lang)}" for c in COMMANDS]
+        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
         examples = "; ".join(self.phrases.phrases(self.lang)[:12])
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
@@ -216,16 +282,16 @@ class SessionManager:
         return self._finish_demo()
 
     def cmd_cancel(self, rest: str) -> list[Reply]:
+        if self.open is None:
+            return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
         self.open = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
-            last = self.open.steps.pop()
-            self.world.arrange(last.state)
-            if not self.open.steps:
-                self.open = None
-            return [Reply(ReplyKind.INFO, m.UNDONE_STEP(self.lang)), self._state_reply()]
+            return self._undo_steps(rest)
+        if rest.strip():
+            return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
@@ -234,21 +300,43 @@ class SessionManager:
         head = self._flush([Reply(ReplyKind.INFO, m.UNDONE_LEARNING(self.lang))])
         return head + self._after_learning(ask=False)
 
+    def _undo_steps(self, rest: str) -> list[Reply]:
+        """Take back steps N.. of the open demonstration (the last one without N): the world goes
+        back to the state before step N."""
+        assert self.open is not None
+        count = len(self.open.steps)
+        first = _step_number(rest, self.lang)
+        if first is None:
+            first = count
+        if not 1 <= first <= count:
+            raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
+        undone = "; ".join(self.open.words[first - 1:])
+        self.world.arrange(self.open.take_back(first).state)
+        if not self.open.steps:
+            self.open = None
+        text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
+        return [Reply(ReplyKind.INFO, text(self.lang, first=first, last=count, steps=undone)), self._state_reply()]
+
+    def cmd_steps(self, rest: str) -> list[Reply]:
+        if self.open is None or not self.open.steps:
+            return [Reply(ReplyKind.INFO, m.NO_OPEN_STEPS(self.lang))]
+        lines = [f"  {number}. {words}" for number, words in enumerate(self.open.words, 1)]
+        return [Reply(ReplyKind.INFO, m.OPEN_STEPS(self.lang) + "\n" + "\n".join(lines))]
+
     def cmd_perturb(self, rest: str) -> list[Reply]:
-        tokens = self.phrases.parse(rest, self.lang) if rest.strip() else []
+        tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
         if not any(t.kind == "event" for t in tokens):
-            names = ", ".join(en[0] for en, _ in self.world.events.values())
+            names = ", ".join(m.Text(en[0], next(iter(de), en[0]))(self.lang) for en, de in self.world.events.values())
             return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=names))]
-        return self._teach_actions(rest)
+        return self._act(tokens)
 
     def cmd_run(self, rest: str) -> list[Reply]:
-        # the unpruned tree runs: pruning assumes actions have only the effects seen so far
-        tree = self.learning.tree if self.learning.has_behaviour else self.planned
+        if self.open is not None and self.open.steps:
+            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
+        tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         stop_after = _number(rest, self.lang)
-        if self.open is not None and self.open.steps:
-            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
         self.open = None
 
         def announce(action: str) -> None:
@@ -260,8 +348,8 @@ class SessionManager:
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
-        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps) or "-"
-        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done))]
+        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
+        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
         if result.outcome is Outcome.SUCCESS and not unmet:
             replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
             return replies + [self._state_reply()]
@@ -270,9 +358,12 @@ class SessionManager:
         elif result.outcome is Outcome.SUCCESS:
             message = m.THOUGHT_DONE(self.lang, unmet=unmet)
         else:
-            message = m.STUCK(self.lang, outcome=result.outcome)
+            message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         # what the robot did so far and what the teacher shows next become one corrective demonstration
-        self.open = _OpenDemo([Step(s, self.domain.action(a).id, i + 1) for i, (s, a) in enumerate(result.steps)])
+        self.open = _OpenDemo()
+        for state, action in result.steps:
+            self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
+                          m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
         return replies + [Reply(ReplyKind.SAY, message), self._state_reply()]
 
     def cmd_stop(self, rest: str) -> list[Reply]:
@@ -283,22 +374,56 @@ class SessionManager:
             return [Reply(ReplyKind.TREE, tree=self.planned)]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
-        tree = self.learning.tree if normalize(rest) in ("full", "ganz", "all") else self.pruned
+        tree = self.learning.tree if normalize(rest) in _FULL_WORDS else self.pruned
         return [Reply(ReplyKind.TREE, tree=tree)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
-        return [self._state_reply()]
+        return [self._state_reply(full=normalize(rest) in _FULL_WORDS)]
 
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
-        names = [w for w in rest.replace(",", " ").split() if w]
-        for name in names:
-            if not self.domain.has_condition(name):
-                known = ", ".join(self.domain.condition_names)
-                raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=name, known=known))
+        names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
         return [self._state_reply()]
+
+    def _condition_names(self, text: str) -> list[str]:
+        """The conditions a teacher names, as labels in either language ("the bin is within reach,
+        du siehst den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+        names: list[str] = []
+        for part in (p for p in _PARTS.split(text) if p.strip()):
+            whole = self._condition_named(part)
+            for word in [part] if whole is not None else part.split():  # else names side by side
+                found = self._condition_named(word)
+                if found is None:
+                    known = ", ".join(c.label(self.lang) for c in self.domain.conditions)
+                    raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=word.strip(), known=known))
+                names.append(found)
+        return names
+
+    def _condition_named(self, text: str) -> str | None:
+        key = normalize(text)
+        for condition in self.domain.conditions:
+            if key in {normalize(condition.name), normalize(_spelled(condition.name)), normalize(condition.en),
+                       normalize(condition.de)}:
+                return condition.name
+        return None
+
+    def _node_named(self, text: str) -> str:
+        """The action or condition ``why`` asks about, named by its label, a phrase or its name in any case."""
+        condition = self._condition_named(text)
+        if condition is not None:
+            return condition
+        key = normalize(text)
+        for action in self.domain.actions:
+            if key in {normalize(action.name), normalize(_spelled(action.name))}:
+                return action.name
+        try:
+            tokens = self.phrases.parse(text, self.lang)
+        except UnknownPhrase:
+            return text.strip()
+        actions = [t for t in tokens if t.kind == "action" and not t.guessed]
+        return actions[0].name if len(actions) == 1 and len(tokens) == 1 else text.strip()
 
     def cmd_reset(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
@@ -317,12 +442,12 @@ class SessionManager:
         return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
 
     def cmd_why(self, rest: str) -> list[Reply]:
-        name = rest.strip()
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
+        name = self._node_named(rest)
         lines = self.learning.why(name, self.lang)
         if lines is None:
-            return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=name))]
+            return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=rest.strip()))]
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
 
     def cmd_save(self, rest: str) -> list[Reply]:
@@ -402,7 +527,11 @@ class SessionManager:
     # --- demonstrations ---------------------------------------------------------------------
 
     def _teach_actions(self, text: str) -> list[Reply]:
-        tokens = self.phrases.parse(text, self.lang)
+        return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
+
+    def _act(self, tokens: list[Token]) -> list[Reply]:
+        """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
+        self.topic = self.phrases.topic(tokens) or self.topic
         replies: list[Reply] = []
         if self.open is None:
             replies += self._flush(self.cmd_demonstrate(""))
@@ -410,23 +539,34 @@ class SessionManager:
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                self.open.steps.append(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1))
+                self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
+                              m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
             result = self.world.act(token.name)
             label = self.domain.action(token.name).label(self.lang)
             if not result.ok:
-                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=result.message)))
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
+                                                                  reason=self._why_not(token.name, result.before))))
+                if self.facilitator and result.message:  # the world's own words are for the facilitator
+                    replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
-            self.open.steps.append(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1))
+            self.open.add(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1), label)
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
+
+    def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
+        """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
+        values = dict(zip(self.domain.condition_names, state, strict=True))
+        missing = [self.domain.condition(p.name).label(self.lang, p.value)
+                   for p in self.domain.action(action).pre if values[p.name] != p.value]
+        return m.IT_NEEDS(self.lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(self.lang)
 
     def _finish_demo(self) -> list[Reply]:
         assert self.open is not None
@@ -622,10 +762,11 @@ class SessionManager:
 
     # --- helpers ---------------------------------------------------------------------------
 
-    def _state_reply(self) -> Reply:
+    def _state_reply(self, full: bool = False) -> Reply:
+        """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""
         state = self.world.state()
-        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang),
-                     state=dict(zip(self.domain.condition_names, state, strict=True)))
+        values = dict(zip(self.domain.condition_names, state, strict=True)) if full or self.facilitator else None
+        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang), state=values)
 
     def _tick_clock(self) -> None:
         self.step += 1
@@ -661,8 +802,33 @@ SessionManager._handlers = {
     Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
     Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
     Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
-    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit,
+    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
 }
+
+
+_OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,
+                  Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
+_FULL_WORDS = ("full", "ganz", "all", "alles")
+_PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+
+
+def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
+    """The text for ``count`` things: "no questions", "1 question", "2 questions"."""
+    return none if count == 0 else one if count == 1 else many
+
+
+def _spelled(name: str) -> str:
+    """An identifier as words: BallFound → "Ball Found"."""
+    return re.sub(r"(?<!^)(?=[A-Z])", " ", name)
+
+
+_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
+
+
+def _step_number(text: str, lang: str) -> int | None:
+    """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
+    words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
+    return _number(" ".join(words), lang)
 
 
 def _number(text: str, lang: str) -> int | None:

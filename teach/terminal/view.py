@@ -27,9 +27,11 @@ def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableTy
         from teach.bt.render import render_tree
 
         return Panel(render_tree(reply.tree, compact=True), title=m.TREE_TITLE(lang), expand=False)
-    if reply.kind is ReplyKind.STATE and reply.state is not None:
+    if reply.kind is ReplyKind.STATE:
         text = Text(m.STATE_PREFIX(lang), style="dim")
-        for name, value in reply.state.items():
+        if reply.state is None:  # the caregiver's view: the situation in words
+            text.append(reply.text)
+        for name, value in (reply.state or {}).items():
             text.append(f"{name}", style="green" if value else "red")
             text.append("=1 " if value else "=0 ", style="dim")
         return text
@@ -50,7 +52,11 @@ def render_teacher(line: str, mode: str = "idle", lang: str = "en") -> Text:
 
 
 def toolbar(manager: SessionManager) -> str:
-    """The terminal's bottom line: mode, what holds, questions left, generation."""
+    """The terminal's bottom line: mode, questions left, generation; what holds (by name) for a
+    facilitator only, since the state line already says it in words and names are long."""
+    mode = MODES[manager.mode](manager.lang)
+    if not manager.facilitator:
+        return m.TOOLBAR_PLAIN(manager.lang, mode=mode, left=manager.budget.left, generation=manager.generation)
     holds = ", ".join(n for n, v in zip(manager.domain.condition_names, manager.world.state(), strict=True) if v)
-    return m.TOOLBAR(manager.lang, mode=MODES[manager.mode](manager.lang), holds=holds or "—",
-                     left=manager.budget.left, generation=manager.generation)
+    return m.TOOLBAR(manager.lang, mode=mode, holds=holds or "—", left=manager.budget.left,
+                     generation=manager.generation)
