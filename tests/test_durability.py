@@ -265,3 +265,39 @@ def test_a_damaged_earlier_recording_is_kept_aside_not_merged(tmp_path, capsys):
     assert "damaged" in result.stderr and "rec.damaged.rrd" in result.stderr
     assert (tmp_path / "recordings" / "rec.damaged.rrd").read_bytes() == damaged
     assert recording.is_file()
+
+
+# --- 6. a full disk ---------------------------------------------------------------------------
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 300 KiB tmpfs (needs root; skipped otherwise, with the reason)."""
+    if os.geteuid() != 0:
+        pytest.skip("the disk-full test mounts a small tmpfs, which needs root")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=300k", "tmpfs", str(disk)], capture_output=True,
+                             text=True)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mounted.stderr.strip()}")
+    yield disk
+    subprocess.run(["umount", str(disk)], check=True)
+
+
+def test_a_full_disk_ends_a_live_session_in_one_line_and_it_resumes(small_disk):
+    lines = [SEQUENCE, "done", "start BallFound", SECOND, "done"] * 60 + ["quit"]
+    command = [sys.executable, "-m", "teach.cli", "session", "--world", "symbolic", "--questions", "0",
+               "--no-record", "--base", str(small_disk)]
+    full = subprocess.run([*command, "--session", "full"], input="\n".join(lines) + "\n", capture_output=True,
+                          text=True, timeout=300)
+    assert full.returncode == 2 and "Traceback" not in full.stderr
+    last = full.stderr.strip().splitlines()[-1]
+    assert last.startswith(f"teach: {small_disk}/") and last.endswith("No space left on device"), full.stderr
+    subprocess.run(["mount", "-o", "remount,size=8m", str(small_disk)], check=True)
+    resumed = subprocess.run([*command, "--resume", "full"], input="quit\n", capture_output=True, text=True,
+                             timeout=300)
+    assert resumed.returncode == 0, resumed.stderr
+    journal = json.loads((small_disk / "recordings" / "full.journal.json").read_text())
+    journalled = {e["file"] for e in journal["events"] if e["kind"] == "demo"}
+    assert f"Resumed session full: {len(journalled)} demonstrations" in resumed.stdout
+    assert {p.name for p in (small_disk / "demos" / "full").glob("demo-*.csv")} == journalled
