@@ -93,32 +93,33 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         journal = store.load_journal()
         settings = resumed_settings(settings, journal)
     domain = domain or session_domain(settings)
-    if resume:
-        for moved in store.set_aside_orphans(journal):
-            note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
-    elif fresh:
+    if fresh and not resume:
         store.clear()
-    elif store.has_journal():
+    elif not resume and store.has_journal():
         raise TeachError(f"session {settings.session!r} exists already: resume it with --resume {settings.session}",
                          store.journal_path)
     missing = store.folders_missing()
     observer = Observers()
     world = make_world(settings, domain, observer)
     recorder = None
-    if store.recording is not None:
-        from teach.observe.rerun_writer import RerunLogger
-
-        recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
-        observer.observers.append(recorder)
     try:
+        if store.recording is not None:
+            from teach.observe.rerun_writer import RerunLogger
+
+            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
+            observer.observers.append(recorder)
         if resume:
-            return SessionManager.resume(settings, domain, world, observer)
-        manager = SessionManager(settings, domain, world, observer)
+            manager = SessionManager.resume(settings, domain, world, observer)
+        else:
+            manager = SessionManager(settings, domain, world, observer)
+            manager.journal.origin = origin
     except BaseException:
         if recorder is not None:
             recorder.abandon()  # a session that did not open adds nothing to its recording
         world.close()
         store.forget_folders(missing)
         raise
-    manager.journal.origin = origin
+    if resume:  # only once the journal has been learned again: a failed resume moves nothing
+        for moved in store.set_aside_orphans(manager.journal):
+            note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
     return manager
