@@ -149,3 +149,38 @@ def test_twenty_kills_at_random_moments_lose_nothing_acknowledged(tmp_path):
     print(f"{checked} kills resumed, up to {most_thanked} answers thanked for, {set_aside} demonstrations set aside")
     assert most_thanked > 0  # some kills came after answers were thanked for
     assert checked >= KILLS // 2  # most kills hit a running session, not its start-up
+
+
+def test_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
+    """The same promise in the MuJoCo world, at two seeded moments of the quickstart dialogue."""
+    import random
+
+    from conftest import BALL_DOMAIN, ROOT
+
+    from teach.session.setup import opened_session
+
+    for trial, moment in enumerate(random.Random(15).sample(range(4000, 12000, 100), 2)):
+        base = tmp_path / f"trial-{trial}"
+        base.mkdir()
+        out = base / "transcript.txt"
+        with out.open("w") as transcript:
+            process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay",
+                                        str(ROOT / "dialogues" / "quickstart.dialogue"), "--session", "mj",
+                                        "--no-record", "--base", str(base), "--oracle-model", str(BALL_DOMAIN)],
+                                       stdout=transcript, stderr=subprocess.DEVNULL,
+                                       env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
+            time.sleep(moment / 1000)
+            os.kill(process.pid, signal.SIGKILL)
+            process.wait()
+        thanked, generation = _acknowledged(out.read_text(encoding="utf-8"))
+        if not (base / "recordings" / "mj.journal.json").exists():
+            assert generation == 0
+            continue
+        settings = Settings("mj", base=base, record=False)
+        with opened_session(settings, resume=True, note=lambda _: None) as resumed:
+            events = resumed.journal.events
+        assert sum(e.kind == "answer" for e in events) >= thanked
+        assert sum(e.kind in ("demo", "answer") for e in events) >= generation
+        journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
+        assert {p.name for p in (base / "demos" / "mj").glob("demo-*.csv")} == journalled
+        print(f"MuJoCo kill at {moment} ms: {generation} generations and {thanked} answers acknowledged, kept")
