@@ -83,3 +83,104 @@ def test_recording_survives_a_kill_and_a_resume(tmp_path):
     assert SEQUENCE in said and said[-2:] == ["state", "quit"]
     steps = [line.step for line in contents.dialogue]
     assert steps == sorted(steps)
+
+
+KILLS = 20
+
+
+def _acknowledged(transcript: str) -> tuple[int, int]:
+    """What the killed process told the teacher was taken: answers thanked for, and the last generation."""
+    thanked = sum(line.startswith("Thank you.") for line in transcript.splitlines())
+    generations = [int(line.split()[1].rstrip(":")) for line in transcript.splitlines()
+                   if line.startswith("Generation ") and line.split()[1].rstrip(":").isdigit()]
+    return thanked, max(generations, default=0)
+
+
+def test_twenty_kills_at_random_moments_lose_nothing_acknowledged(tmp_path):
+    """A scripted session answered by an oracle is killed at 20 seeded random moments; each is
+    resumed. Every answer it thanked for and every generation it announced is in the resumed
+    journal, and the demonstrations folder holds exactly the journalled demonstrations."""
+    import random
+
+    from teach.session.setup import opened_session
+
+    script = tmp_path / "kill.dialogue"
+    lines = ["@world symbolic", "@questions 5", SEQUENCE, "done"]
+    for start in ["BallFound", "BinClose", "BallFound BallClose", ""] * 100:
+        lines += [f"start {start}" if start else "reset", SEQUENCE if "BallFound" not in start else
+                  "go to the ball, grasp the ball, go to the bin, put the ball in the bin", "done"]
+    script.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    from conftest import BALL_DOMAIN
+
+    moments = random.Random(14).sample(range(1500, 6000, 50), KILLS)
+    checked, most_thanked, set_aside = 0, 0, 0
+    for trial, moment in enumerate(moments):
+        base = tmp_path / f"trial-{trial}"
+        out = base / "transcript.txt"
+        base.mkdir()
+        with out.open("w") as transcript:
+            process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay", str(script), "--no-record",
+                                        "--base", str(base), "--oracle-model", str(BALL_DOMAIN)],
+                                       stdout=transcript, stderr=subprocess.DEVNULL,
+                                       env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
+            time.sleep(moment / 1000)
+            os.kill(process.pid, signal.SIGKILL)
+            process.wait()
+        thanked, generation = _acknowledged(out.read_text(encoding="utf-8"))
+        journal = base / "recordings" / "kill.journal.json"
+        if not journal.exists():
+            assert generation == 0  # killed before the session opened: nothing was acknowledged
+            continue
+        notes: list[str] = []
+        settings = Settings("kill", world=WorldKind.SYMBOLIC, base=base, record=False)
+        with opened_session(settings, resume=True, note=notes.append) as resumed:
+            events = resumed.journal.events
+            answers = [e for e in events if e.kind == "answer" and getattr(e, "answer", "") != "skip"]
+            learned = [e for e in events if e.kind in ("demo", "answer")]
+            assert len(answers) >= thanked, (trial, moment)
+            assert len(learned) >= generation, (trial, moment)
+            assert resumed.budget.used >= len(answers)
+        demos = base / "demos" / "kill"
+        journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
+        assert {p.name for p in demos.glob("demo-*.csv")} == journalled, (trial, moment, notes)
+        checked += 1
+        most_thanked = max(most_thanked, thanked)
+        set_aside += len(notes)
+    print(f"{checked} kills resumed, up to {most_thanked} answers thanked for, {set_aside} demonstrations set aside")
+    assert most_thanked > 0  # some kills came after answers were thanked for
+    assert checked >= KILLS // 2  # most kills hit a running session, not its start-up
+
+
+def test_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
+    """The same promise in the MuJoCo world, at two seeded moments of the quickstart dialogue."""
+    import random
+
+    from conftest import BALL_DOMAIN, ROOT
+
+    from teach.session.setup import opened_session
+
+    for trial, moment in enumerate(random.Random(15).sample(range(4000, 12000, 100), 2)):
+        base = tmp_path / f"trial-{trial}"
+        base.mkdir()
+        out = base / "transcript.txt"
+        with out.open("w") as transcript:
+            process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay",
+                                        str(ROOT / "dialogues" / "quickstart.dialogue"), "--session", "mj",
+                                        "--no-record", "--base", str(base), "--oracle-model", str(BALL_DOMAIN)],
+                                       stdout=transcript, stderr=subprocess.DEVNULL,
+                                       env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
+            time.sleep(moment / 1000)
+            os.kill(process.pid, signal.SIGKILL)
+            process.wait()
+        thanked, generation = _acknowledged(out.read_text(encoding="utf-8"))
+        if not (base / "recordings" / "mj.journal.json").exists():
+            assert generation == 0
+            continue
+        settings = Settings("mj", base=base, record=False)
+        with opened_session(settings, resume=True, note=lambda _: None) as resumed:
+            events = resumed.journal.events
+        assert sum(e.kind == "answer" for e in events) >= thanked
+        assert sum(e.kind in ("demo", "answer") for e in events) >= generation
+        journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
+        assert {p.name for p in (base / "demos" / "mj").glob("demo-*.csv")} == journalled
+        print(f"MuJoCo kill at {moment} ms: {generation} generations and {thanked} answers acknowledged, kept")

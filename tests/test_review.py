@@ -76,3 +76,21 @@ def test_open_without_display_is_a_clear_error(recording: Path, monkeypatch: pyt
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     assert main(["review", str(recording), "--open"]) == 2
     assert "no display" in capsys.readouterr().err
+
+
+def test_a_recording_with_wrong_value_types_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A recording whose values have the wrong types (here a replay result logged as text) is
+    refused in one line, never summarised as "reproduced many/None" or a TypeError. It is
+    written in a process of its own: rerun keeps the first type logged under a name for the
+    rest of a process."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "typed.rrd"
+    writer = ("import sys\nfrom teach.domain import load_domain\nfrom teach.observe.rerun_writer import RerunLogger\n"
+              "logger = RerunLogger(sys.argv[1], 'typed')\nlogger.on_domain(load_domain(sys.argv[2]))\n"
+              "logger.set_time(1)\nlogger.on_replay('many', 3)\nlogger.close()\n")
+    subprocess.run([sys.executable, "-c", writer, str(path), str(BALL_DOMAIN)], check=True, timeout=120)
+    assert main(["review", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and err.startswith(f"teach: {path}: ") and "reproduced is 'many', not int" in err

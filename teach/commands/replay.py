@@ -6,7 +6,10 @@ Example:
 
 The transcript is printed as the terminal would show it. Demonstrations go to
 demos/<session>/, tree generations to trees/<session>/, the recording and the journal to
-recordings/. The session is named after the dialogue file; replaying it again starts afresh.
+recordings/. The session is named after the dialogue file; replaying the same dialogue again
+starts afresh. Everything is read and checked (dialogue, domain, oracles) before anything of an
+earlier session is touched, and a session that was not made by replaying this dialogue is only
+replaced with --overwrite.
 """
 
 from __future__ import annotations
@@ -34,6 +37,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="answer questions from this true action model")
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="replace a session of the same name that was not made by replaying this dialogue")
+    parser.add_argument("--lenient", action="store_true",
+                        help="type lines the session does not know at the prompt anyway (default: refuse the file)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -41,32 +48,52 @@ def run(args: argparse.Namespace) -> int:
 
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
-    from teach.dialogue.script import read_script
+    from teach.dialogue.phrases import PhraseBook
+    from teach.dialogue.script import check_lines, read_script
     from teach.domain import load_domain
+    from teach.errors import TeachError
+    from teach.session import messages as m
     from teach.session.settings import Settings, WorldKind
-    from teach.session.setup import open_session
+    from teach.session.setup import dialogue_events, opened_session, session_domain
+    from teach.session.store import SessionStore
     from teach.terminal.scripted import run_script
 
+    # everything the replay needs is read and checked first: a bad input leaves the session as it was
     script = read_script(args.dialogue)
     chosen = script.settings
-    domain = args.domain or (Path(str(chosen["domain"])) if "domain" in chosen else None)
+    domain_path = args.domain or (Path(str(chosen["domain"])) if "domain" in chosen else None)
     settings = Settings(
-        session=args.session or args.dialogue.stem, domain=domain,
+        session=args.session or args.dialogue.stem, domain=domain_path,
         lang=args.lang or str(chosen.get("lang", "en")),
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record)
-    manager = open_session(settings, fresh=True)
+    domain = session_domain(settings)
+    if not args.lenient:
+        check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)
     oracle, model_oracle = None, None
     if args.oracle:
-        oracle = oracle_from_tree(args.oracle, manager.domain)
+        oracle = oracle_from_tree(args.oracle, domain)
     elif args.oracle_model:
-        oracle = oracle_from_model(args.oracle_model, manager.domain)
+        oracle = oracle_from_model(args.oracle_model, domain)
         model_oracle = ModelOracle(load_domain(args.oracle_model))
+    origin = f"replay:{args.dialogue.resolve()}"
+
+    def replaceable(store: SessionStore) -> None:
+        """A replay replaces an earlier session of its name only when that session was a replay
+        of the same dialogue, or when asked to with ``--overwrite``."""
+        if args.overwrite or not store.exists():
+            return
+        try:
+            same = store.load_journal().origin == origin
+        except TeachError:
+            same = False
+        if not same:
+            raise TeachError(m.REPLAY_NEEDS_OVERWRITE("en", session=settings.session, dialogue=args.dialogue),
+                             store.journal_path if store.has_journal() else store.demo_dir)
+
     console = Console(highlight=False)
-    try:
+    with opened_session(settings, fresh=True, domain=domain, origin=origin, before_clearing=replaceable) as manager:
         run_script(script, manager, console, oracle, model_oracle)
-    finally:
-        manager.close()
     return 0

@@ -12,6 +12,9 @@ is finished, `help` for all commands. Ctrl-C interrupts a robot run, Ctrl-D save
 from __future__ import annotations
 
 import argparse
+import os
+import stat
+import sys
 import time
 from pathlib import Path
 
@@ -43,22 +46,29 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from teach.session import messages as m
     from teach.session.settings import Settings
-    from teach.session.setup import open_session
+    from teach.session.setup import opened_session
     from teach.terminal.app import Terminal
 
     if not args.pace >= 0 or args.pace == float("inf"):  # also refuses nan
         raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
+    if _stdin_is_a_file():  # the terminal would read nothing from it and quit as if all was done
+        raise TeachError(m.STDIN_IS_A_FILE(args.lang), "<stdin>")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace)
-    manager = open_session(settings, resume=bool(args.resume))
-    manager.facilitator = args.facilitator
-    history = args.base / "recordings" / ".teach_history"
-    history.parent.mkdir(parents=True, exist_ok=True)
-    try:
+    with opened_session(settings, resume=bool(args.resume)) as manager:
+        manager.facilitator = args.facilitator
+        history = args.base / "recordings" / ".teach_history"
+        history.parent.mkdir(parents=True, exist_ok=True)
         Terminal(manager, history=history).run()
-    finally:
-        manager.close()
     return 0
+
+
+def _stdin_is_a_file() -> bool:
+    try:
+        return stat.S_ISREG(os.fstat(sys.stdin.fileno()).st_mode)
+    except (OSError, ValueError):  # no standard input at all
+        return False

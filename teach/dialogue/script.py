@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from teach import limits
-from teach.errors import FormatError
+from teach.dialogue.phrases import PhraseBook, is_no, is_yes, normalize
+from teach.errors import FormatError, TeachError
 from teach.fsutil import read_text
 
 SETTINGS = {"lang": str, "questions": int, "seed": int, "world": str, "domain": str}
@@ -81,3 +82,31 @@ def _setting(key: str, value: str, path: Path, line: int) -> object:
     if not value:
         raise FormatError(f"@{key} needs a value", path, line)
     return value
+
+
+def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
+    """Refuse a file that is not a dialogue (XML, a README, a CSV): every input line must be a
+    command, something the robot can do or the world can undergo, or an answer word; the
+    first line that is none of these is named with its number."""
+    from teach.session import messages as m
+    from teach.session.commands import DONE_WORDS, SKIP_WORDS, parse_command
+
+    answers = DONE_WORDS | SKIP_WORDS | {normalize(word(language)) for word in m.ANSWER_WORDS
+                                         for language in ("en", "de")}
+    for number, line in script.lines:
+        if parse_command(line)[0] is not None or normalize(line) in answers or is_yes(line, lang) or is_no(line, lang):
+            continue
+        if not _names_actions_or_events(line, phrases, lang):
+            shown = repr(line) if len(line) <= 40 else repr(line[:37]) + "..."
+            raise FormatError(f"{shown} is neither a command nor something the robot can do or the world can undergo "
+                              "(is this a dialogue? --lenient types such lines anyway)", script.path, number)
+
+
+def _names_actions_or_events(line: str, phrases: PhraseBook, lang: str) -> bool:
+    for perturb in (False, True):
+        try:
+            phrases.parse(line, lang, perturb=perturb)
+        except TeachError:
+            continue
+        return True
+    return False

@@ -7,13 +7,37 @@ import os
 import shutil
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 
-def keep_earlier(path: Path, part: Path) -> list[Path]:
+def print_note(message: str) -> None:
+    """A note to the teacher on standard error, beside the session's own output."""
+    print(f"teach: note: {message}", file=sys.stderr)
+
+
+def _rerun() -> str:
+    return shutil.which("rerun") or str(Path(sys.executable).with_name("rerun"))
+
+
+def is_readable_recording(path: Path) -> bool:
+    """Whether rerun loads the whole of a finished recording."""
+    result = subprocess.run([_rerun(), "rrd", "verify", str(path)], capture_output=True, text=True)
+    return result.returncode == 0
+
+
+def keep_earlier(path: Path, part: Path, note: Callable[[str], None]) -> list[Path]:
     """Before a resumed session writes: what the session recorded so far, including the
-    unfinished part file a killed process left behind."""
-    earlier = [path] if path.exists() else []
+    unfinished part file a killed process left behind. A finished recording that rerun cannot
+    read is kept aside (and said so) rather than merged, which would drop what it cannot read."""
+    earlier = []
+    if path.exists():
+        if is_readable_recording(path):
+            earlier.append(path)
+        else:
+            aside = path.with_name(path.stem + ".damaged.rrd")
+            os.replace(path, aside)
+            note(f"{path}: the earlier recording is damaged: kept aside as {aside.name}, not merged")
     if part.exists():
         crashed = path.with_name(path.name + ".crashed")
         os.replace(part, crashed)
@@ -23,7 +47,7 @@ def keep_earlier(path: Path, part: Path) -> list[Path]:
 
 def merge_into_place(path: Path, part: Path, earlier: list[Path]) -> None:
     """One recording of the whole session at ``path``: the earlier parts and ``part``, merged."""
-    rerun = shutil.which("rerun") or str(Path(sys.executable).with_name("rerun"))
+    rerun = _rerun()
     merged = path.with_name(path.name + ".merged")
     result = subprocess.run([rerun, "rrd", "merge", "--continue-on-error", *map(str, earlier),
                              str(part), "-o", str(merged)], capture_output=True, text=True)
@@ -35,3 +59,10 @@ def merge_into_place(path: Path, part: Path, earlier: list[Path]) -> None:
     for piece in (part, *earlier):
         if piece != path:
             piece.unlink(missing_ok=True)
+
+
+def put_back(path: Path, part: Path, earlier: list[Path]) -> None:
+    """Undo ``keep_earlier`` for a session that did not open: the recording is as it was."""
+    crashed = path.with_name(path.name + ".crashed")
+    if crashed in earlier:
+        os.replace(crashed, part)

@@ -163,7 +163,10 @@ def read_recording(path: str | Path) -> RecordingContents:
             rows.extend(_rows(chunk))
     contents.scene_frames = len(frames)
     rows.sort(key=lambda row: row[0])
-    _fill(contents, rows)
+    try:
+        _fill(contents, rows)
+    except _WrongValue as wrong:
+        raise FormatError(f"damaged rerun recording: {wrong}", path) from None
     return contents
 
 
@@ -180,16 +183,38 @@ def _rows(chunk: Any, only: tuple[str, ...] | None = None) -> list[tuple[bytes, 
             for i, rid in enumerate(row_ids)]
 
 
-def _one(row: Mapping[str, Any], name: str, default: Any = None) -> Any:
+class _WrongValue(ValueError):
+    """A recorded value of the wrong type (turned into a one-line ``FormatError`` by the reader)."""
+
+
+Kind = type | tuple[type, ...]
+
+
+def _typed(value: Any, kind: Kind, name: str) -> Any:
+    """``value`` when it has the ``kind`` the writer logs (a bool is not an integer)."""
+    kinds = kind if isinstance(kind, tuple) else (kind,)
+    if isinstance(value, bool) and bool not in kinds:
+        raise _WrongValue(f"{name} is {value!r}, not {' or '.join(k.__name__ for k in kinds)}")
+    if not isinstance(value, kinds):
+        shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+        raise _WrongValue(f"{name} is {shown}, not {' or '.join(k.__name__ for k in kinds)}")
+    return value
+
+
+def _one(row: Mapping[str, Any], name: str, default: Any, kind: Kind) -> Any:
     value = row.get(name)
     if isinstance(value, list):
-        return value[0] if value else default
-    return default if value is None else value
+        value = value[0] if value else None
+    return default if value is None else _typed(value, kind, name)
 
 
-def _many(row: Mapping[str, Any], name: str) -> list[Any]:
+def _many(row: Mapping[str, Any], name: str, kind: Kind) -> list[Any]:
     value = row.get(name)
-    return list(value) if isinstance(value, list) else []
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise _WrongValue(f"{name} is {value!r}, not a list")
+    return [_typed(item, kind, name) for item in value]
 
 
 def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, Any]]]) -> None:
@@ -197,39 +222,43 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
     open_questions: list[QuestionRecord] = []
     for _rid, entity, row in rows:
         step = row.get("step")
+        if step is not None:
+            _typed(step, int, f"{entity} step")
         if step is None and entity != "/domain":
             continue  # static display settings
         if step is not None and len(first) < 8 and (not first or first[-1] != entity):
             first.append(entity)
         if entity == "/domain" and "conditions" in row:
-            contents.domain_name = _one(row, "name")
-            contents.conditions = tuple(_many(row, "conditions"))
-            contents.actions = tuple(_many(row, "actions"))
-            contents.goal = tuple(_many(row, "goal"))
+            contents.domain_name = _one(row, "name", None, str)
+            contents.conditions = tuple(_many(row, "conditions", str))
+            contents.actions = tuple(_many(row, "actions", str))
+            contents.goal = tuple(_many(row, "goal", str))
         elif entity == "/learner/generations":
-            contents.generations.append(GenerationRecord(_one(row, "generation", -1), _one(row, "reason", ""),
-                                                         _one(row, "nodes", 0), _one(row, "xml", ""), step))
+            contents.generations.append(GenerationRecord(_one(row, "generation", -1, int), _one(row, "reason", "", str),
+                                                         _one(row, "nodes", 0, int), _one(row, "xml", "", str), step))
         elif entity == "/learner/events":
-            contents.learner_events.append(LearnerRecord(_one(row, "event", ""), _one(row, "detail", ""),
-                                                         tuple(_many(row, "removed")), step))
+            contents.learner_events.append(LearnerRecord(_one(row, "event", "", str), _one(row, "detail", "", str),
+                                                         tuple(_many(row, "removed", str)), step))
         elif entity == "/learner/replay":
-            contents.replays.append(ReplayRecord(_one(row, "reproduced", 0), _one(row, "total", 0),
-                                                 bool(_one(row, "lenient", False)), step))
+            contents.replays.append(ReplayRecord(_one(row, "reproduced", 0, int), _one(row, "total", 0, int),
+                                                 _one(row, "lenient", False, bool), step))
         elif entity == "/tree/graph" and "status" in row:
-            trace = tuple(zip(_many(row, "trace_labels"), _many(row, "trace_status"), strict=False))
-            contents.ticks.append(TickRecord(step, row.get("sim_time"), _one(row, "generation", -1),
-                                             _one(row, "status", ""), _one(row, "action") or None, trace))
+            trace = tuple(zip(_many(row, "trace_labels", str), _many(row, "trace_status", str), strict=False))
+            contents.ticks.append(TickRecord(step, row.get("sim_time"), _one(row, "generation", -1, int),
+                                             _one(row, "status", "", str), _one(row, "action", None, str) or None,
+                                             trace))
         elif entity == "/state":
-            state = dict(zip(_many(row, "conditions"), map(bool, _many(row, "values")), strict=False))
-            contents.states.append(StateRecord(step, row.get("sim_time"), state, _one(row, "action") or None))
+            state = dict(zip(_many(row, "conditions", str), map(bool, _many(row, "values", (bool, int))), strict=False))
+            action = _one(row, "action", None, str) or None
+            contents.states.append(StateRecord(step, row.get("sim_time"), state, action))
         elif entity == "/state/external":
-            contents.externals.append((step, _one(row, "external", "")))
+            contents.externals.append((step, _one(row, "external", "", str)))
         elif entity == "/demos":
-            states = tuple(tuple(c == "1" for c in s) for s in _many(row, "states"))
-            contents.demonstrations.append(DemoRecord(_one(row, "name", ""), states,
-                                                      tuple(_many(row, "step_labels")),
-                                                      bool(_one(row, "reached_goal", False)),
-                                                      _one(row, "csv", ""), step))
+            states = tuple(tuple(c == "1" for c in s) for s in _many(row, "states", str))
+            contents.demonstrations.append(DemoRecord(_one(row, "name", "", str), states,
+                                                      tuple(_many(row, "step_labels", str)),
+                                                      _one(row, "reached_goal", False, bool),
+                                                      _one(row, "csv", "", str), step))
         elif entity == "/dialogue":
             _dialogue_row(contents, row, step, open_questions)
     contents.first_entities = tuple(first)
@@ -237,17 +266,17 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
 
 def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None,
                   open_questions: list[QuestionRecord]) -> None:
-    kind = _one(row, "kind", "line")
-    budget = _one(row, "budget_left", -1)
-    text = _one(row, "text", "")
-    contents.dialogue.append(DialogueRecord(kind, _one(row, "speaker", ""), text,
+    kind = _one(row, "kind", "line", str)
+    budget = _one(row, "budget_left", -1, int)
+    text = _one(row, "text", "", str)
+    contents.dialogue.append(DialogueRecord(kind, _one(row, "speaker", "", str), text,
                                             None if budget is None or budget < 0 else budget, step))
     if kind == "question":
         record = QuestionRecord(text, budget, step=step)
         contents.questions.append(record)
         open_questions.append(record)
     elif kind == "answer":
-        asked = _one(row, "question", "")
+        asked = _one(row, "question", "", str)
         match = next((q for q in reversed(open_questions) if q.question == asked),
                      open_questions[-1] if open_questions else None)
         if match is None:  # an answer to a question the recording did not see: keep it anyway
@@ -255,5 +284,5 @@ def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int
             contents.questions.append(match)
         else:
             open_questions.remove(match)
-        match.answer = _one(row, "answer", "")
-        match.change = _one(row, "change", "")
+        match.answer = _one(row, "answer", "", str)
+        match.change = _one(row, "change", "", str)

@@ -47,7 +47,7 @@ from teach.observe.encode import (
 from teach.observe.hook import Observer
 from teach.observe.layout import APPLICATION_ID, blueprint, default_recording_path
 from teach.observe.markdown import demonstration_document, domain_document, state_document
-from teach.observe.merge import keep_earlier, merge_into_place
+from teach.observe.merge import keep_earlier, merge_into_place, print_note, put_back
 
 if TYPE_CHECKING:
     from teach.bt.tick import TickResult
@@ -65,7 +65,8 @@ class RerunLogger(Observer):
     """
 
     def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *, resume: bool = False,
-                 scene_hz: float = 10.0, camera_hz: float = 2.0, jpeg_quality: int = 80, batch_rows: int | None = None):
+                 note: Callable[[str], None] = print_note, scene_hz: float = 10.0, camera_hz: float = 2.0,
+                 jpeg_quality: int = 80, batch_rows: int | None = None):
         if spawn and not has_display():
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
@@ -75,7 +76,7 @@ class RerunLogger(Observer):
         try:  # fail here with a clear line rather than inside rerun's writer
             self.path.parent.mkdir(parents=True, exist_ok=True)
             if resume:
-                self._earlier = keep_earlier(self.path, self._part)
+                self._earlier = keep_earlier(self.path, self._part, note)
             self._part.open("wb").close()
         except OSError as exc:
             raise TeachError(f"cannot write the recording: {exc.strerror}", exc.filename or self._part) from None
@@ -335,6 +336,17 @@ class RerunLogger(Observer):
             merge_into_place(self.path, self._part, self._earlier)
         else:
             os.replace(self._part, self.path)
+
+    def abandon(self) -> None:
+        """Stop without keeping anything of this run (a session that failed to open): the
+        recording on disk stays exactly as it was."""
+        if self._closed:
+            return
+        self._closed = True
+        atexit.unregister(self.close)
+        self._rec.disconnect()
+        self._part.unlink(missing_ok=True)
+        put_back(self.path, self._part, self._earlier)
 
     def __enter__(self) -> RerunLogger:
         return self

@@ -15,6 +15,8 @@ from typing import Any, ClassVar
 
 from teach.domain import State
 from teach.errors import FormatError
+from teach.fsutil import Types, parse_json, validate
+from teach.session.settings import LANGUAGES, WorldKind
 
 VERSION = 1
 
@@ -25,6 +27,19 @@ def state_text(state: State) -> str:
 
 def parse_state_text(text: str) -> State:
     return tuple(c == "1" for c in text)
+
+
+_HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
+                             "step": int, "events": list, "version": int}
+_HEADER_OPTIONAL: dict[str, Types] = {"origin": str}
+_EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
+    "demo": ({"kind": str, "file": str, "source": str}, {}),
+    "undo": ({"kind": str}, {}),
+    "model": ({"kind": str, "file": str}, {}),
+    "asked": ({"kind": str}, {"state": str, "model_question": dict}),
+    "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
+    "model_answer": ({"kind": str, "question": dict, "answer": str}, {}),
+}
 
 
 @dataclass(frozen=True)
@@ -86,16 +101,22 @@ def event_to_json(event: Event) -> dict[str, Any]:
     return {k: v for k, v in data.items() if v is not None}
 
 
-def event_from_json(data: Any) -> Event:
-    """One stored event; ``ValueError`` when it is not one."""
-    if not isinstance(data, dict) or data.get("kind") not in _BY_KIND:
-        raise ValueError(f"unknown event {data!r}")
-    cls = _BY_KIND[data["kind"]]
-    names = {f.name for f in fields(cls)}
-    try:
-        return cls(**{k: v for k, v in data.items() if k in names})
-    except TypeError as error:
-        raise ValueError(f"a {data['kind']!r} event is incomplete ({error})") from None
+def event_from_json(data: Any, where: Path, number: int) -> Event:
+    """One stored event, checked against its kind's schema; a ``FormatError`` naming the event when it is not one."""
+    place = f"events[{number}]"
+    kind = validate(data, where, {"kind": str}, where=place, extra=True)["kind"]
+    if kind not in _EVENT_KEYS:
+        raise FormatError(f"{place}: kind: unknown event kind {kind!r} (known: {', '.join(_EVENT_KEYS)})", where)
+    required, optional = _EVENT_KEYS[str(kind)]
+    checked = validate(data, where, required, optional, where=place)
+    state = checked.get("state")
+    if isinstance(state, str) and not set(state) <= {"0", "1"}:
+        raise FormatError(f"{place}: state: must be a string of 0s and 1s, got {state[:40]!r}", where)
+    file = checked.get("file")
+    if kind == "demo" and isinstance(file, str) and (not file or "/" in file or "\\" in file or file.startswith(".")):
+        raise FormatError(f"{place}: file: must name a file in the session's demos folder, got {file[:40]!r}", where)
+    cls = _BY_KIND[str(kind)]
+    return cls(**{k: v for k, v in checked.items() if k != "kind"})  # type: ignore[arg-type]
 
 
 def effective_events(events: list[Event]) -> list[Event]:
@@ -121,6 +142,8 @@ class Journal:
     step: int = 0  # the session's step clock, so a resumed session's recording goes on from it
     events: list[Event] = field(default_factory=list)
     version: int = VERSION
+    origin: str = ""
+    """What made the session: "replay:<dialogue file, absolute>" for a replay, "" for a live session."""
 
     def to_text(self) -> str:
         data = {f.name: getattr(self, f.name) for f in fields(self)}
@@ -129,15 +152,24 @@ class Journal:
 
     @classmethod
     def from_text(cls, text: str, where: Path) -> Journal:
-        """Parse a journal file's text; damage is a one-line ``FormatError`` naming ``where``."""
+        """Parse a journal file's text against its schema; damage is a one-line ``FormatError``
+        naming ``where`` and the key that is wrong."""
         try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise FormatError(f"the session journal is damaged: {exc}", where, exc.lineno) from None
-        if not isinstance(data, dict) or data.get("version") != VERSION:
+            return cls._checked(parse_json(text, where, "the session journal"), where)
+        except FormatError as error:
+            raise FormatError(f"the session journal is damaged: {error.message}", where, error.line) from None
+
+    @classmethod
+    def _checked(cls, data: object, where: Path) -> Journal:
+        if isinstance(data, dict) and data.get("version") != VERSION:
             raise FormatError(f"not a version {VERSION} session journal", where)
-        try:
-            events = [event_from_json(e) for e in data.pop("events", [])]
-            return cls(events=events, **data)
-        except (TypeError, ValueError) as exc:
-            raise FormatError(f"the session journal is damaged: {exc}", where) from None
+        header = validate(data, where, _HEADER, _HEADER_OPTIONAL)
+        for key in ("questions", "seed", "step"):
+            if int(header[key]) < 0:  # type: ignore[call-overload]
+                raise FormatError(f"{key}: must be 0 or more, got {header[key]}", where)
+        for key, known in (("lang", LANGUAGES), ("world", tuple(WorldKind))):
+            if header[key] not in known:
+                raise FormatError(f"{key}: must be one of {', '.join(known)}, got {str(header[key])[:40]!r}", where)
+        stored: list[object] = header.pop("events")  # type: ignore[assignment]
+        events = [event_from_json(e, where, n) for n, e in enumerate(stored)]
+        return cls(events=events, **header)  # type: ignore[arg-type]

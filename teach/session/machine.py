@@ -658,11 +658,12 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         change = self.learning.describe(update, self.lang)
+        # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
+        self._journal(Answered(state_text(question.state), answer or "done", text))
         self.observer.on_answer(text, said, change)
         self.learning.report("answer", update, self.lang)
         head = self._flush([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
-        event = Answered(state_text(question.state), answer or "done", text)
-        return head + self._after_learning(ask=True, started=started, events=[event])
+        return head + self._after_learning(ask=True, started=started)
 
     def _no_question_text(self) -> str:
         return (m.ALL_QUESTIONS_USED if self.budget.left <= 0 else m.NO_QUESTION_NOW)(self.lang)
@@ -729,6 +730,9 @@ class SessionManager:
                 state = parse_state_text(event.state)
                 if len(state) != len(self.domain.conditions):
                     raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
+                if event.answer not in ("skip", "done") and event.answer not in self.domain.action_names:
+                    raise FormatError(m.UNKNOWN_JOURNAL_ACTION(
+                        "en", number=self.journal.events.index(event), action=event.answer), self.store.journal_path)
                 self.learning.asked.add(state)
                 if event.answer != "skip":
                     try:

@@ -297,3 +297,18 @@ ONE_QUESTION_ASKED = Text("{count} question asked", "{count} Frage gestellt")
 QUESTIONS_ASKED = Text("{count} questions asked", "{count} Fragen gestellt")
 TOOLBAR_PLAIN = Text(" {mode} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
                      " {mode} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
+
+# --- durability (issue 14)
+ORPHAN_SET_ASIDE = Text("{file} was written just before the session stopped but never learned; moved to {folder}",
+                        "{file} wurde kurz vor dem Ende der Sitzung geschrieben, aber nie gelernt; verschoben nach "
+                        "{folder}")
+REPLAY_NEEDS_OVERWRITE = Text("session {session!r} exists already and was not made by replaying {dialogue}: "
+                              "add --overwrite to replace it, or choose another name with --session",
+                              "Sitzung {session!r} gibt es schon, und sie stammt nicht aus {dialogue}: "
+                              "--overwrite ersetzt sie, oder wähle mit --session einen anderen Namen")
+STDIN_IS_A_FILE = Text("standard input is a file, not a terminal: replay it with `teach replay FILE`",
+                       "die Standardeingabe ist eine Datei, kein Terminal: spiele sie mit `teach replay DATEI` ab")
+UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an action of the domain",
+                              "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
+ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
+"""The words that answer a question about action definitions (a dialogue may hold them as lines)."""

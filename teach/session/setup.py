@@ -2,12 +2,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
+from teach.lock import session_lock
 from teach.observe.hook import Observer, Observers
+from teach.observe.merge import print_note
+from teach.session import messages as m
+from teach.session.journal import Journal
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
@@ -38,27 +44,82 @@ def make_world(settings: Settings, domain: Domain, observer: Observer) -> Teachi
     return OfflineWorld(domain)
 
 
-def open_session(settings: Settings, resume: bool = False, fresh: bool = False) -> SessionManager:
-    """A new or resumed session with its world and its recording. A resumed session keeps the
-    domain, language, budget, world and seed it was started with; ``fresh`` forgets an earlier
-    session of the same name."""
+def session_domain(settings: Settings) -> Domain:
+    """The domain a new session of these settings teaches in."""
+    return load_domain(settings.domain) if settings.domain else default_domain()
+
+
+def dialogue_events(settings: Settings, domain: Domain) -> dict[str, tuple[tuple[str, ...], tuple[str, ...]]]:
+    """Every event a dialogue for this domain may name, without building a world: the MuJoCo
+    world's perturbations and the symbolic world's events (a dialogue written for one world is
+    still a dialogue when replayed in another, where such a line only gets an error reply)."""
+    from teach.sim.perturb import PERTURBATIONS
+
+    events = {name: (tuple(p.en), tuple(p.de)) for name, p in PERTURBATIONS.items()}
+    if settings.world is not WorldKind.OFFLINE and domain.has_model:
+        events.update({name: (tuple(en), tuple(de)) for name, (en, de) in
+                       symbolic_world(domain, settings.seed).events.items()})
+    return events
+
+
+def resumed_settings(settings: Settings, journal: Journal) -> Settings:
+    """A resumed session keeps the domain, language, budget, world and seed it was started with."""
+    return replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
+                   questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed)
+
+
+@contextmanager
+def opened_session(settings: Settings, resume: bool = False, fresh: bool = False, domain: Domain | None = None,
+                   origin: str = "", note: Callable[[str], None] = print_note,
+                   before_clearing: Callable[[SessionStore], None] | None = None) -> Iterator[SessionManager]:
+    """A new or resumed session with its world and its recording, held by this process alone
+    from opening to closing. ``fresh`` forgets an earlier session of the same name: the caller
+    has read and checked everything the new session needs (``domain`` among it) beforehand,
+    and ``before_clearing`` may still refuse, holding the lock."""
+    with session_lock(settings.base, settings.session):
+        if before_clearing is not None:
+            before_clearing(SessionStore(settings.base, settings.session, settings.record))
+        manager = _open(settings, resume, fresh, domain, origin, note)
+        try:
+            yield manager
+        finally:
+            manager.close()
+
+
+def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, origin: str,
+          note: Callable[[str], None]) -> SessionManager:
     store = SessionStore(settings.base, settings.session, settings.record)
     if resume:
         journal = store.load_journal()
-        settings = replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
-                           questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed)
-    domain = load_domain(settings.domain) if settings.domain else default_domain()
+        settings = resumed_settings(settings, journal)
+    domain = domain or session_domain(settings)
     if fresh and not resume:
         store.clear()
     elif not resume and store.has_journal():
         raise TeachError(f"session {settings.session!r} exists already: resume it with --resume {settings.session}",
                          store.journal_path)
+    missing = store.folders_missing()
     observer = Observers()
     world = make_world(settings, domain, observer)
-    if store.recording is not None:
-        from teach.observe.rerun_writer import RerunLogger
+    recorder = None
+    try:
+        if store.recording is not None:
+            from teach.observe.rerun_writer import RerunLogger
 
-        observer.observers.append(RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume))
-    if resume:
-        return SessionManager.resume(settings, domain, world, observer)
-    return SessionManager(settings, domain, world, observer)
+            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
+            observer.observers.append(recorder)
+        if resume:
+            manager = SessionManager.resume(settings, domain, world, observer)
+        else:
+            manager = SessionManager(settings, domain, world, observer)
+            manager.journal.origin = origin
+    except BaseException:
+        if recorder is not None:
+            recorder.abandon()  # a session that did not open adds nothing to its recording
+        world.close()
+        store.forget_folders(missing)
+        raise
+    if resume:  # only once the journal has been learned again: a failed resume moves nothing
+        for moved in store.set_aside_orphans(manager.journal):
+            note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
+    return manager

@@ -6,13 +6,14 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+from teach import limits
 from teach.bt.nodes import Node
 from teach.demos import Demonstration, next_demo_path, read_demonstration, write_demonstration
 from teach.domain import Domain, load_domain
 from teach.errors import FormatError
-from teach.fsutil import atomic_write_text
+from teach.fsutil import atomic_write_text, read_text
 from teach.generations import last_generation, write_generation
-from teach.session.journal import Journal
+from teach.session.journal import DemoLearned, Journal
 
 
 class SessionStore:
@@ -30,10 +31,42 @@ class SessionStore:
             shutil.copyfile(domain.path, self.demo_dir / "domain.toml")
 
     def clear(self) -> None:
-        """Forget an earlier session of the same name (a replay starts afresh)."""
+        """Forget an earlier session of the same name (a replay starts afresh; only called once
+        everything the new session needs has been read and checked)."""
         for stale in (self.demo_dir, self.tree_dir):
             shutil.rmtree(stale, ignore_errors=True)
         self.journal_path.unlink(missing_ok=True)
+
+    def exists(self) -> bool:
+        """Whether anything of a session of this name is on disk."""
+        return any(place.exists() for place in (self.demo_dir, self.tree_dir, self.journal_path))
+
+    def folders_missing(self) -> list[Path]:
+        """The session's folders not yet on disk (``forget_folders`` removes them again)."""
+        return [folder for folder in (self.demo_dir, self.tree_dir) if not folder.exists()]
+
+    def forget_folders(self, folders: list[Path]) -> None:
+        """Remove folders a session that failed to open had just created."""
+        for folder in folders:
+            shutil.rmtree(folder, ignore_errors=True)
+
+    def set_aside_orphans(self, journal: Journal) -> list[Path]:
+        """Move demonstrations the journal does not name (written just before a kill, never
+        acknowledged) into ``orphaned/``, so the folder holds exactly the session's demonstrations."""
+        named = {event.file for event in journal.events if isinstance(event, DemoLearned)}
+        orphans = [path for path in sorted(self.demo_dir.glob("demo-*.csv")) if path.name not in named]
+        if not orphans:
+            return []
+        aside = self.demo_dir / "orphaned"
+        aside.mkdir(exist_ok=True)
+        moved = []
+        for path in orphans:
+            target = aside / path.name
+            if target.exists():
+                target = aside / f"{path.stem}-{len(list(aside.iterdir()))}{path.suffix}"
+            path.replace(target)
+            moved.append(target)
+        return moved
 
     def places(self) -> list[Path]:
         """Everything the session keeps, as a 'save' reports it."""
@@ -70,10 +103,8 @@ class SessionStore:
         return self.journal_path.exists()
 
     def load_journal(self) -> Journal:
-        try:
-            text = self.journal_path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            raise FormatError("no such session journal (was the session id right?)", self.journal_path) from None
-        except UnicodeDecodeError as exc:
-            raise FormatError(f"the session journal is damaged: {exc}", self.journal_path) from None
-        return Journal.from_text(text, self.journal_path)
+        """The journal, read through the bounded reader and checked against its schema."""
+        if not self.journal_path.exists() and not self.journal_path.is_symlink():
+            raise FormatError("no such session journal (was the session id right?)", self.journal_path)
+        return Journal.from_text(read_text(self.journal_path, "session journal", limits.MAX_JSON_BYTES),
+                                 self.journal_path)
