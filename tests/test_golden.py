@@ -36,7 +36,7 @@ CASES: dict[str, list[str]] = {
     "deutsch-mujoco": ["dialogues/deutsch.dialogue"],
     "deutsch-symbolic": ["dialogues/deutsch.dialogue", "--world", "symbolic"],
     "messy-mujoco": ["dialogues/messy.dialogue"],
-    "snacks": ["dialogues/snacks.dialogue"],
+    "snacks-en": ["dialogues/snacks_en.dialogue"],
     "snacks-de": ["dialogues/snacks_de.dialogue"],
     **{name: [f"dialogues/study/{name}.dialogue"] for name in STUDY},
     **{f"{name}-oracle": [f"dialogues/study/{name}.dialogue", "--oracle-model", TRUE_MODEL] for name in STUDY},

@@ -25,7 +25,7 @@ from teach.world.hidden import HiddenStateWorld, load_world
 from teach.world.protocol import TeachingWorld
 
 SNACKS = ROOT / "demos" / "snacks"
-DIALOGUES = [ROOT / "dialogues" / "snacks.dialogue", ROOT / "dialogues" / "snacks_de.dialogue"]
+DIALOGUES = [ROOT / "dialogues" / "snacks_en.dialogue", ROOT / "dialogues" / "snacks_de.dialogue"]
 
 
 def _generator() -> ModuleType:
