@@ -496,3 +496,21 @@ def test_a_guessed_answer_to_a_question_is_confirmed_by_yes(ball, tmp_path):
     replies = session.handle("yes")
     assert any(r.text.startswith("Thank you.") for r in replies)
     assert session.learning.labels[question.state] == "FindBall"
+
+
+def test_an_undone_demonstration_leaves_the_folder_teach_learn_reads(ball, tmp_path):
+    """After 'undo' the demonstration's CSV moves to demos/<s>/undone/, so a set read from the
+    folder holds only what the session learned, and the next demonstration gets a new number."""
+    session = new_session(ball, tmp_path, questions=0)
+    teach_two_demonstrations(session)
+    folder = tmp_path / "demos" / "t"
+    assert sorted(p.name for p in folder.glob("demo-*.csv")) == ["demo-001.csv", "demo-002.csv"]
+    session.handle("undo")
+    assert sorted(p.name for p in folder.glob("demo-*.csv")) == ["demo-001.csv"]
+    assert (folder / "undone" / "demo-002.csv").is_file()
+    _, demos = read_demo_set(folder)
+    assert len(demos) == 1
+    session.handle("start")
+    session.handle(SEQUENCE)
+    session.handle("done")
+    assert (folder / "demo-003.csv").is_file()  # never the number of the undone one

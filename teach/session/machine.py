@@ -296,6 +296,7 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
         self._journal(Undone())
+        self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
         head = self._flush([Reply(ReplyKind.INFO, m.UNDONE_LEARNING(self.lang))])
         return head + self._after_learning(ask=False)

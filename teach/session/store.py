@@ -8,12 +8,15 @@ from pathlib import Path
 
 from teach import limits
 from teach.bt.nodes import Node
-from teach.demos import Demonstration, next_demo_path, read_demonstration, write_demonstration
+from teach.demos import Demonstration, read_demonstration, write_demonstration
 from teach.domain import Domain, load_domain
 from teach.errors import FormatError
 from teach.fsutil import atomic_write_text, read_text
 from teach.generations import last_generation, write_generation
-from teach.session.journal import DemoLearned, Journal
+from teach.session.journal import DemoLearned, Journal, effective_events
+
+UNDONE = "undone"
+ORPHANED = "orphaned"
 
 
 class SessionStore:
@@ -54,13 +57,25 @@ class SessionStore:
         """Move demonstrations the journal does not name (written just before a kill, never
         acknowledged) into ``orphaned/``, so the folder holds exactly the session's demonstrations."""
         named = {event.file for event in journal.events if isinstance(event, DemoLearned)}
-        orphans = [path for path in sorted(self.demo_dir.glob("demo-*.csv")) if path.name not in named]
-        if not orphans:
+        return self._move_aside([p for p in sorted(self.demo_dir.glob("demo-*.csv")) if p.name not in named],
+                                ORPHANED)
+
+    def retire_undone(self, journal: Journal) -> list[Path]:
+        """Move the demonstrations an undo took back into ``undone/``, so ``teach learn`` on the
+        folder trains only on what the session learned (also on resume, after a kill between the
+        journal line and the move)."""
+        kept = {event.file for event in effective_events(journal.events) if isinstance(event, DemoLearned)}
+        undone = {event.file for event in journal.events if isinstance(event, DemoLearned)} - kept
+        return self._move_aside([self.demo_dir / name for name in sorted(undone) if (self.demo_dir / name).is_file()],
+                                UNDONE)
+
+    def _move_aside(self, paths: list[Path], folder: str) -> list[Path]:
+        if not paths:
             return []
-        aside = self.demo_dir / "orphaned"
+        aside = self.demo_dir / folder
         aside.mkdir(exist_ok=True)
         moved = []
-        for path in orphans:
+        for path in paths:
             target = aside / path.name
             if target.exists():
                 target = aside / f"{path.stem}-{len(list(aside.iterdir()))}{path.suffix}"
@@ -76,7 +91,11 @@ class SessionStore:
     # --- demonstrations and generations ----------------------------------------------------
 
     def next_demo_path(self) -> Path:
-        return next_demo_path(self.demo_dir)
+        """The next ``demo-NNN.csv``, never a number an undone or orphaned demonstration had (the
+        journal names files, so a number is never reused)."""
+        used = [int(p.stem[5:]) for folder in (self.demo_dir, self.demo_dir / UNDONE, self.demo_dir / ORPHANED)
+                for p in folder.glob("demo-*.csv") if p.stem[5:].isdecimal()]
+        return self.demo_dir / f"demo-{max(used, default=0) + 1:03d}.csv"
 
     def write_demonstration(self, path: Path, demo: Demonstration) -> None:
         write_demonstration(path, demo)
