@@ -514,3 +514,13 @@ def test_an_undone_demonstration_leaves_the_folder_teach_learn_reads(ball, tmp_p
     session.handle(SEQUENCE)
     session.handle("done")
     assert (folder / "demo-003.csv").is_file()  # never the number of the undone one
+
+
+def test_quitting_with_an_open_demonstration_asks_first(ball, tmp_path):
+    """The steps shown so far are not lost silently: the first quit says so, a second one leaves."""
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    replies = session.handle("quit")
+    assert not session.finished and "not learned yet" in replies[0].text
+    session.handle("quit")
+    assert session.finished

@@ -23,6 +23,7 @@ def drive(ball, tmp_path, keys: str, lang: str = "de") -> tuple[str, SessionMana
     console = Console(file=buffer, width=100, color_system=None)
     with create_pipe_input() as pipe:
         pipe.send_text(keys)
+        pipe.close()  # the input ends there, as a closed terminal's does (Ctrl-D again after a warning)
         Terminal(manager, console=console, input=pipe, output=DummyOutput()).run()
     return buffer.getvalue(), manager
 
@@ -67,6 +68,7 @@ def recorded_drive(ball, tmp_path, keys: str) -> tuple[str, SessionManager, Path
     console = Console(file=buffer, width=100, color_system=None)
     with create_pipe_input() as pipe:
         pipe.send_text(keys)
+        pipe.close()  # the input ends there, as a closed terminal's does (Ctrl-D again after a warning)
         Terminal(manager, console=console, input=pipe, output=DummyOutput()).run()
     manager.close()
     return buffer.getvalue(), manager, rrd

@@ -126,6 +126,8 @@ class SessionManager:
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = False  # show conditions by name too (the facilitator's view, --facilitator)
         self.finished = False
+        self._quit_warned_at = -2
+        """The step at which quitting with an open demonstration was warned about."""
         self.step = 0
         self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
         self._turn: list[Reply] = []
@@ -458,6 +460,10 @@ class SessionManager:
         return [Reply(ReplyKind.INFO, m.SAVED(self.lang, places=where))]
 
     def cmd_quit(self, rest: str) -> list[Reply]:
+        steps = len(self.open.steps) if self.open is not None else 0
+        if steps and self._quit_warned_at != self.step - 1:  # not right after the warning
+            self._quit_warned_at = self.step
+            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, count=steps))]
         self.finished = True
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]

@@ -298,6 +298,11 @@ QUESTIONS_ASKED = Text("{count} questions asked", "{count} Fragen gestellt")
 TOOLBAR_PLAIN = Text(" {mode} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
                      " {mode} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
 
+OPEN_ON_QUIT = Text("You have shown me {count} step(s) I have not learned yet: say 'done' to learn them, 'cancel' to "
+                    "drop them, or quit again to leave without them.",
+                    "Du hast mir {count} Schritt(e) gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
+                    "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal, um ohne sie zu gehen.")
+
 # --- durability (issue 14)
 ORPHAN_SET_ASIDE = Text("{file} was written just before the session stopped but never learned; moved to {folder}",
                         "{file} wurde kurz vor dem Ende der Sitzung geschrieben, aber nie gelernt; verschoben nach "

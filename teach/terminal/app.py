@@ -47,9 +47,9 @@ class Terminal:
                 line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang))
             except KeyboardInterrupt:
                 continue
-            except EOFError:
+            except EOFError:  # Ctrl-D: quit (with an open demonstration the first one only warns)
                 self.manager.handle("quit")
-                break
+                continue
             self._handle(line)
 
     def _show(self, reply: Reply) -> None:
