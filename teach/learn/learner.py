@@ -43,6 +43,7 @@ from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
 from teach.errors import LearnError
 from teach.learn.action_model import ActionModel, Lit, literals_of
 from teach.learn.backchain import PlanView, Role, literal_node, plan
+from teach.learn.bits import mask_state, state_mask
 from teach.learn.goal import GoalLearner
 
 Answer = str | None
@@ -633,14 +634,10 @@ class Learner:
         return self._mask(state)
 
     def _mask(self, state: Seq[bool]) -> int:
-        mask = 0
-        for index, value in enumerate(state):
-            if value:
-                mask |= 1 << index
-        return mask
+        return state_mask(state)
 
     def _state(self, mask: int) -> State:
-        return tuple(bool(mask >> i & 1) for i in range(self._n))
+        return mask_state(mask, self._n)
 
 
 def _uids(node: Node) -> set[int]:

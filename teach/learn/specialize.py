@@ -43,6 +43,7 @@ from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence
 from teach.demos import Demonstration
 from teach.domain import Domain, Literal, State
 from teach.errors import LearnError
+from teach.learn.bits import mask_state, state_mask
 from teach.learn.order import OrderGraph, action_order, demo_source
 
 GOAL = None
@@ -435,14 +436,10 @@ class Specializer:
         return self._slots[action]
 
     def _mask(self, state: State) -> int:
-        mask = 0
-        for index, value in enumerate(state):
-            if value:
-                mask |= 1 << index
-        return mask
+        return state_mask(state)
 
     def _state(self, mask: int) -> State:
-        return tuple(bool(mask >> i & 1) for i in range(self._n))
+        return mask_state(mask, self._n)
 
     def _finish(self, where: str, changes: list[Change]) -> Update:
         if not changes:

@@ -1,0 +1,21 @@
+"""States as int bitmasks (bit i = condition i), shared by the learners that index by them."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from teach.domain import State
+
+
+def state_mask(state: Sequence[bool]) -> int:
+    """The bitmask of a state: bit i set iff condition i holds."""
+    mask = 0
+    for index, value in enumerate(state):
+        if value:
+            mask |= 1 << index
+    return mask
+
+
+def mask_state(mask: int, conditions: int) -> State:
+    """The state of a bitmask over ``conditions`` conditions."""
+    return tuple(bool(mask >> i & 1) for i in range(conditions))
