@@ -80,7 +80,8 @@ def test_recording_survives_a_kill_and_a_resume(tmp_path):
     contents = read_recording(tmp_path / "recordings" / "rec.rrd")
     said = [line.text for line in contents.dialogue if line.speaker == "teacher"]
     # what was said before the kill and after the resume are both in the one recording, in order
-    assert SEQUENCE in said and said[-2:] == ["state", "quit"]
+    # (killed in the middle of a demonstration, the first quit only warns that it is still open)
+    assert SEQUENCE in said and said[-1] == "quit" and "state" in said[-3:]
     steps = [line.step for line in contents.dialogue]
     assert steps == sorted(steps)
 

@@ -524,3 +524,22 @@ def test_quitting_with_an_open_demonstration_asks_first(ball, tmp_path):
     assert not session.finished and "not learned yet" in replies[0].text
     session.handle("quit")
     assert session.finished
+
+
+def test_the_open_demonstration_survives_a_resume(ball, tmp_path):
+    """Every step the teacher saw acknowledged is in the journal before the next prompt: a
+    session quit (or killed) in the middle of a demonstration resumes with it still open."""
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    shown = [s.action for s in session.open.steps]
+    state = session.world.state()
+    session.handle("quit")
+    session.handle("quit")
+    session.close()
+    resumed = SessionManager.resume(settings(tmp_path, 5, "en"), ball, SymbolicWorld(ball))
+    assert resumed.open is not None and [s.action for s in resumed.open.steps] == shown
+    assert resumed.world.state() == state
+    assert any("still open (2 step(s))" in r.text for r in resumed.greet())
+    resumed.handle("grasp the ball, go to the bin, put the ball in the bin")
+    resumed.handle("done")
+    assert [d.actions for d in resumed.demos] == [(1, 2, 3, 4, 5)]

@@ -31,7 +31,7 @@ def parse_state_text(text: str) -> State:
 
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
-_HEADER_OPTIONAL: dict[str, Types] = {"origin": str}
+_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str}
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "demo": ({"kind": str, "file": str, "source": str}, {}),
     "undo": ({"kind": str}, {}),
@@ -144,6 +144,10 @@ class Journal:
     version: int = VERSION
     origin: str = ""
     """What made the session: "replay:<dialogue file, absolute>" for a replay, "" for a live session."""
+    open_steps: list[list[str | int]] = field(default_factory=list)
+    """The open demonstration's steps as shown so far, ``[state, action, words]`` each, so a
+    resume restores what the teacher saw acknowledged; ``open_state`` is the world after them."""
+    open_state: str = ""
 
     def to_text(self) -> str:
         data = {f.name: getattr(self, f.name) for f in fields(self)}
@@ -170,6 +174,13 @@ class Journal:
         for key, known in (("lang", LANGUAGES), ("world", tuple(WorldKind))):
             if header[key] not in known:
                 raise FormatError(f"{key}: must be one of {', '.join(known)}, got {str(header[key])[:40]!r}", where)
+        open_steps: list[object] = header.get("open_steps", [])  # type: ignore[assignment]
+        for number, entry in enumerate(open_steps):
+            if not (isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str)
+                    and set(entry[0]) <= {"0", "1"} and type(entry[1]) is int and isinstance(entry[2], str)):
+                raise FormatError(f"open_steps[{number}]: must be [state of 0s and 1s, action id, words]", where)
+        if set(str(header.get("open_state", ""))) - {"0", "1"}:
+            raise FormatError("open_state: must be 0s and 1s", where)
         stored: list[object] = header.pop("events")  # type: ignore[assignment]
         events = [event_from_json(e, where, n) for n, e in enumerate(stored)]
         return cls(events=events, **header)  # type: ignore[arg-type]

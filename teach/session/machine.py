@@ -182,6 +182,8 @@ class SessionManager:
                                                                       generation=self.generation)))
             if self.pruned is not None:
                 replies.append(Reply(ReplyKind.TREE, tree=self.pruned))
+        if self.open is not None and self.open.steps:
+            replies.append(Reply(ReplyKind.INFO, m.OPEN_RESTORED(self.lang, count=len(self.open.steps))))
         replies.append(self._state_reply())
         self._turn = []
         return self._end_turn(replies)
@@ -217,6 +219,7 @@ class SessionManager:
             self._interrupt = None
         turn = self._end_turn(replies)
         self.observer.checkpoint()
+        self._note_open_demonstration()
         self.store.save_journal(self.journal)  # the step clock too, so a resume goes on from it
         return turn
 
@@ -769,9 +772,30 @@ class SessionManager:
             manager.observer.on_tree(manager.generation, current, tree_to_xml(current), "resumed")
         if manager.demos:
             world.arrange(manager.demos[-1].steps[-1].state)
+        manager._restore_open_demonstration()
         return manager
 
     # --- helpers ---------------------------------------------------------------------------
+
+    def _note_open_demonstration(self) -> None:
+        """Put the open demonstration's steps in the journal: every "✓" the teacher saw is on disk
+        before the next prompt, and a resume (after a kill or a quit) shows them again."""
+        steps = self.open.steps if self.open is not None else []
+        words = self.open.words if self.open is not None else []
+        self.journal.open_steps = [[state_text(step.state), step.action, words[i] if i < len(words) else ""]
+                                   for i, step in enumerate(steps)]
+        self.journal.open_state = state_text(self.world.state()) if steps else ""
+
+    def _restore_open_demonstration(self) -> None:
+        if not self.journal.open_steps:
+            return
+        self.open = _OpenDemo()
+        for number, (state, action, words) in enumerate(self.journal.open_steps, 1):
+            self.open.add(Step(parse_state_text(str(state)), int(action), number), str(words))
+        try:
+            self.world.arrange(parse_state_text(self.journal.open_state))
+        except TeachError:  # the world cannot be put back there: start from the last demonstration's end
+            self.open = None
 
     def _state_reply(self, full: bool = False) -> Reply:
         """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""

@@ -303,6 +303,11 @@ OPEN_ON_QUIT = Text("You have shown me {count} step(s) I have not learned yet: s
                     "Du hast mir {count} Schritt(e) gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
                     "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal, um ohne sie zu gehen.")
 
+OPEN_RESTORED = Text("The demonstration you had started is still open ({count} step(s)): 'steps' lists them, "
+                     "'done' learns it, 'cancel' drops it.",
+                     "Die Vorführung, die du angefangen hattest, ist noch offen ({count} Schritt(e)): 'schritte' "
+                     "zeigt sie, 'fertig' lernt sie, 'abbrechen' verwirft sie.")
+
 # --- durability (issue 14)
 ORPHAN_SET_ASIDE = Text("{file} was written just before the session stopped but never learned; moved to {folder}",
                         "{file} wurde kurz vor dem Ende der Sitzung geschrieben, aber nie gelernt; verschoben nach "
