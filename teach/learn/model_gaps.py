@@ -68,10 +68,10 @@ def needed(domain: Domain, goal: Sequence[Literal]) -> list[tuple[Literal, str]]
     return order
 
 
-def requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> set[Literal]:
-    """The open literals ``action`` needs, directly or through the achievers of what it needs."""
+def _closure(domain: Domain, start: list[Literal], open_literals: set[Literal]) -> set[Literal]:
+    """``start`` and every open precondition of an achiever of a literal in it, transitively."""
     found: set[Literal] = set()
-    stack = [p for p in action.pre if p in open_literals]
+    stack = list(start)
     while stack:
         literal = stack.pop()
         if literal in found:
@@ -82,19 +82,14 @@ def requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> 
     return found
 
 
+def requires(domain: Domain, action: ActionDef, open_literals: set[Literal]) -> set[Literal]:
+    """The open literals ``action`` needs, directly or through the achievers of what it needs."""
+    return _closure(domain, [p for p in action.pre if p in open_literals], open_literals)
+
+
 def needs_actions(domain: Domain, literal: Literal, open_literals: set[Literal]) -> set[str]:
     """Every action that may have to run before ``literal`` can hold."""
-    names: set[str] = set()
-    stack, seen = [literal], set()
-    while stack:
-        current = stack.pop()
-        if current in seen:
-            continue
-        seen.add(current)
-        for achiever in achievers(domain, current):
-            names.add(achiever.name)
-            stack += [p for p in achiever.pre if p in open_literals]
-    return names
+    return {a.name for needed in _closure(domain, [literal], open_literals) for a in achievers(domain, needed)}
 
 
 def depends_on(domain: Domain, first: ActionDef, second: str, open_literals: set[Literal]) -> bool:
