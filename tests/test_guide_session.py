@@ -104,14 +104,15 @@ def test_a_motion_no_action_explains_is_asked_about_and_becomes_a_new_action(tmp
     (tmp_path / "src").mkdir()
     session = _session(tmp_path, _without_approach_ball(tmp_path / "src"), label_questions=2)
     session.greet()
-    session.handle("start BallFound")
+    session.handle("start BallFound BinClose")
     teacher = SessionTeacher(session)
     teacher.approach_ball()
-    assert session.mode is Mode.DEMONSTRATING  # the change waits: the next motion might complete it
-    replies = session.handle("steps")  # a looking command ends guidance: now it is asked about
+    if session.mode is not Mode.ASKING:  # the change waited for more motion: a line that is not guiding ends it
+        teacher.replies += [r.text for r in session.handle("steps")]
     assert session.mode is Mode.ASKING
-    assert any(r.kind is ReplyKind.QUESTION and "labelling question 1 of 2" in r.text for r in replies)
+    assert any("labelling question 1 of 2" in text for text in teacher.replies)
     assert session.budget.used == 0  # the precondition questions' budget is untouched
+    assert [r.text for r in session.handle("guide forward 0.1")] == [m.LABEL_GUIDE_FIRST("en")]
     assert [r.text for r in session.handle("the thing")] == [m.LABEL_ONE_ACTION("en")]
     assert session.mode is Mode.ASKING
     replies = session.handle("something new: walk up to the ball")
@@ -123,7 +124,7 @@ def test_a_motion_no_action_explains_is_asked_about_and_becomes_a_new_action(tmp
     assert session.open is not None and session.open.steps[-1].action == session.domain.action("WalkUpToTheBall").id
     # the new action is a skill of the world: named, it drives to the ball from another start
     session.handle("cancel")
-    session.handle("start BallFound BinClose")
+    session.handle("start BallFound")
     replies = session.handle("walk up to the ball")
     assert any(r.text.startswith("✓ walk up to the ball") for r in replies), [r.text for r in replies]
     assert session.world.state()[session.domain.index("BallClose")]
@@ -134,11 +135,13 @@ def test_labelling_questions_have_their_own_cap(tmp_path: Path) -> None:
     (tmp_path / "src").mkdir()
     session = _session(tmp_path, _without_approach_ball(tmp_path / "src"), label_questions=0)
     session.greet()
-    session.handle("start BallFound")
+    session.handle("start BallFound BinClose")
     SessionTeacher(session).approach_ball()
     replies = session.handle("state")
     assert session.mode is Mode.DEMONSTRATING
-    assert any(r.text == m.LABEL_DROPPED("en", change="the ball is within reach") for r in replies)
+    dropped = m.LABEL_DROPPED("en", change="the ball is within reach and the bin is out of reach")
+    assert [r.text for r in replies if r.kind is ReplyKind.INFO] == [dropped]
+    assert session.open is not None and session.open.steps == []
     session.close()
 
 
@@ -158,3 +161,25 @@ def test_a_bad_guide_line_is_one_error_and_moves_nothing(tmp_path: Path) -> None
     assert [r.kind for r in replies] == [ReplyKind.ERROR] and "takes -5 to 5 metres" in replies[0].text
     assert session.world.world.base_pose() == before  # type: ignore[attr-defined]
     session.close()
+
+
+def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> None:
+    from prompt_toolkit.input import create_pipe_input
+    from prompt_toolkit.output import DummyOutput
+
+    from teach.terminal.app import Terminal
+
+    session = _session(tmp_path)
+    buffer = io.StringIO()
+    left, up, page_up, escape = "\x1b[D", "\x1b[A", "\x1b[5~", "\x1b"
+    keys = "start\rguide\r" + left * 24 + up + page_up + " " + escape + "steps\r" + "guide\r" + up + "quit\rquit\r"
+    with create_pipe_input() as pipe:
+        pipe.send_text(keys)
+        pipe.close()
+        Terminal(session, console=Console(file=buffer, width=200, color_system=None), input=pipe,
+                 output=DummyOutput()).run()
+    out = buffer.getvalue()
+    assert out.count(m.GUIDE_MODE_ON("en")) == 2 and m.GUIDE_MODE_OFF("en") in out
+    assert "✓ You moved me so that now you can see the ball: that was “find the ball”." in out
+    assert session.open is not None and session.open.words[0] == m.GUIDED_WORDS("en", action="find the ball")
+    assert session.finished and session.guiding.budget.used == 0

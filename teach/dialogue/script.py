@@ -100,7 +100,8 @@ def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
             from teach.sim.guide import parse_guide_line
 
             parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
-        if command is not None or is_new_action_answer(line) or normalize(line) in answers or is_yes(line, lang) or is_no(line, lang):
+        if command is not None or is_new_action_answer(line) or normalize(line) in answers \
+                or is_yes(line, lang) or is_no(line, lang):
             continue
         if not _names_actions_or_events(line, phrases, lang):
             shown = repr(line) if len(line) <= 40 else repr(line[:37]) + "..."

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import re
 import unicodedata
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 from teach.demos import Step
@@ -29,7 +29,7 @@ from teach.dialogue.phrases import PhraseBook, is_no, is_yes, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
-from teach.learn.recognise import Recognition, changed_literals, describe_change, explain, question
+from teach.learn.recognise import Recognition, changed_literals, describe_change, explain, question, recognise
 from teach.session import messages as m
 from teach.session.commands import SKIP_WORDS
 from teach.session.journal import GuidedActionTaught
@@ -174,7 +174,8 @@ class Guiding:
         return self.manager._flush(replies)
 
     def _next_due(self, final: bool) -> _Due | None:
-        assert self.segmenter is not None or not self.active
+        from teach.sim.segment import join_all
+
         if self.segmenter is None:
             return None
         segments = self.segmenter.segments[self.labelled:]
@@ -183,11 +184,14 @@ class Guiding:
         manager = self.manager
         groups = explain(manager.domain, [(s.before, s.after) for s in segments])
         span, recognition = groups[0]
-        if not recognition.fits and len(groups) == 1 and not final:
-            return None  # it may be the first half of a change the next segment completes
-        from teach.sim.segment import join_all
-
-        return _Due(join_all(segments[span.start:span.stop]), recognition, len(span))
+        if recognition.fits:
+            return _Due(join_all(segments[span.start:span.stop]), recognition, len(span))
+        if not final:
+            return None  # a later change may complete it (driving to the ball leaves the bin behind first)
+        # a stretch of motion that no known action explains is asked about as one
+        unknown = next((g.start for g, r in groups if r.fits), len(segments))
+        joined = join_all(segments[:unknown])
+        return _Due(joined, recognise(manager.domain, joined.before, joined.after), unknown)
 
     def _record(self, due: _Due, action: str, who: str, text: str | None = None) -> list[Reply]:
         manager = self.manager
@@ -284,9 +288,12 @@ class Guiding:
                                                    for p in (*a.en, *a.de)):
             return [Reply(ReplyKind.ERROR, m.NEW_ACTION_TAKEN(self.lang, action=phrase))]
         domain = manager.domain
-        phrases = {"en": (phrase,) if self.lang == "en" else (), "de": (phrase,) if self.lang == "de" else ()}
-        motion = motion_from_segment(name, due.segment, domain, phrases["en"], phrases["de"])
-        effects = changed_literals(domain, due.segment.before, due.segment.after)
+        phrases: dict[str, tuple[str, ...]] = {"en": (), "de": ()}
+        phrases[self.lang] = (phrase,)  # in the session's language only: it is the teacher's word
+        changes = changed_literals(domain, due.segment.before, due.segment.after)
+        # what became true is what it is for; a condition lost on the way is a side effect (unless that is all)
+        effects = tuple(lit for lit in changes if lit.value) or changes
+        motion = replace(motion_from_segment(name, due.segment, domain, phrases["en"], phrases["de"]), effects=effects)
         grown = manager.store.add_action(action_block(domain, name, phrases, effects))
         file = manager.store.write_motion(motion)
         self.adopt(grown, [motion])
@@ -348,7 +355,7 @@ def action_name(phrase: str) -> str:
     return name if name[:1].isalpha() else f"Action{name}"
 
 
-def action_block(domain: Domain, name: str, phrases: dict[str, tuple[str, ...]], effects: Sequence[object]) -> str:
+def action_block(domain: Domain, name: str, phrases: Mapping[str, Sequence[str]], effects: Sequence[object]) -> str:
     """The ``[[action]]`` table of a new action: the next free id, its phrases, its effects."""
     def strings(values: Sequence[object]) -> str:
         return "[" + ", ".join('"' + str(v).replace("\\", "\\\\").replace('"', '\\"') + '"' for v in values) + "]"
