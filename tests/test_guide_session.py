@@ -129,6 +129,15 @@ def test_a_motion_no_action_explains_is_asked_about_and_becomes_a_new_action(tmp
     assert any(r.text.startswith("✓ walk up to the ball") for r in replies), [r.text for r in replies]
     assert session.world.state()[session.domain.index("BallClose")]
     session.close()
+    # the journal brings the action back on resume: in the domain, its phrase understood
+    settings = Settings("guiding", domain=tmp_path / "src" / "domain.toml", base=tmp_path, record=False)
+    from teach.world.mujoco_world import MujocoWorld
+
+    original = load_domain(settings.domain)  # type: ignore[arg-type]
+    resumed = SessionManager.resume(settings, original, MujocoWorld(original, 0))
+    assert resumed.domain.has_action("WalkUpToTheBall") and not original.has_action("WalkUpToTheBall")
+    assert resumed.phrases.parse("walk up to the ball", "en")[0].name == "WalkUpToTheBall"
+    resumed.close()
 
 
 def test_labelling_questions_have_their_own_cap(tmp_path: Path) -> None:
@@ -183,3 +192,17 @@ def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> N
     assert "✓ You moved me so that now you can see the ball: that was “find the ball”." in out
     assert session.open is not None and session.open.words[0] == m.GUIDED_WORDS("en", action="find the ball")
     assert session.finished and session.guiding.budget.used == 0
+
+
+def test_guided_motion_goes_to_the_recording(tmp_path: Path) -> None:
+    from teach.observe.reader import read_recording
+
+    with opened_session(Settings("recorded", base=tmp_path)) as session:
+        session.handle("start")
+        SessionTeacher(session).find_ball()
+        session.handle("steps")
+    contents = read_recording(tmp_path / "recordings" / "recorded.rrd")
+    guided_frames = [s for s in contents.states if s.action is not None and s.action.startswith("guide ")]
+    assert {s.action for s in guided_frames} >= {"guide wait 0.5"} and contents.scene_frames >= 5
+    labels = [e.detail for e in contents.learner_events if e.event == "guided segment"]
+    assert len(labels) == 1 and "BallFound → FindBall (labelled by robot)" in labels[0]
