@@ -107,8 +107,8 @@ def test_a_motion_no_action_explains_is_asked_about_and_becomes_a_new_action(tmp
     session.handle("start BallFound BinClose")
     teacher = SessionTeacher(session)
     teacher.approach_ball()
-    if session.mode is not Mode.ASKING:  # the change waited for more motion: a line that is not guiding ends it
-        teacher.replies += [r.text for r in session.handle("steps")]
+    assert session.mode is Mode.DEMONSTRATING  # leaving the bin behind waits: more motion may explain it
+    teacher.replies += [r.text for r in session.handle("steps")]  # a line that is not guiding ends guidance
     assert session.mode is Mode.ASKING
     assert any("labelling question 1 of 2" in text for text in teacher.replies)
     assert session.budget.used == 0  # the precondition questions' budget is untouched
@@ -117,6 +117,7 @@ def test_a_motion_no_action_explains_is_asked_about_and_becomes_a_new_action(tmp
     assert session.mode is Mode.ASKING
     replies = session.handle("something new: walk up to the ball")
     assert any("New action “walk up to the ball”" in r.text for r in replies)
+    assert replies[-1].text.startswith(m.OPEN_STEPS("en"))  # the line that ended guidance, carried out now
     assert session.domain.has_action("WalkUpToTheBall")
     copy = tmp_path / "demos" / "guiding" / "domain.toml"
     assert 'name = "WalkUpToTheBall"' in copy.read_text(encoding="utf-8")
