@@ -207,3 +207,24 @@ def test_guided_motion_goes_to_the_recording(tmp_path: Path) -> None:
     assert {s.action for s in guided_frames} >= {"guide wait 0.5"} and contents.scene_frames >= 5
     labels = [e.detail for e in contents.learner_events if e.event == "guided segment"]
     assert len(labels) == 1 and "BallFound → FindBall (labelled by robot)" in labels[0]
+
+
+@pytest.mark.parametrize(("said", "phrase", "name"), [
+    ("something new: push the ball", "push the ball", "PushTheBall"),
+    ("Something new - walk up to it", "walk up to it", "WalkUpToIt"),
+    ("etwas Neues: den Ball schieben", "den Ball schieben", "DenBallSchieben"),
+    ("neue Aktion: zum Ball rollen", "zum Ball rollen", "ZumBallRollen"),
+    ("etwas Neues: Ball über den Boden schießen", "Ball über den Boden schießen", "BallUberDenBodenSchiessen"),
+])
+def test_a_new_action_is_named_in_either_language(said: str, phrase: str, name: str) -> None:
+    from teach.session.guiding import _new_action_phrase, action_name, is_new_action_answer
+
+    assert _new_action_phrase(said) == phrase and action_name(phrase) == name
+    assert is_new_action_answer(said)
+
+
+@pytest.mark.parametrize("said", ["something new", "etwas Neues:", "go to the ball", "new start", "neu 3"])
+def test_other_answers_name_no_new_action(said: str) -> None:
+    from teach.session.guiding import is_new_action_answer
+
+    assert not is_new_action_answer(said)
