@@ -28,6 +28,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--domain", type=Path, help="domain.toml (default: the ball-in-bin domain)")
     parser.add_argument("--lang", choices=("en", "de"), help="language (default: the dialogue's @lang or en)")
     parser.add_argument("--questions", type=int, help="question budget (default: @questions or 5)")
+    parser.add_argument("--label-questions", type=int, default=5, metavar="N",
+                        help="most labelling questions about guided motion (default 5)")
     parser.add_argument("--world", choices=("mujoco", "symbolic", "offline"),
                         help="where demonstrations happen (default: @world or mujoco)")
     parser.add_argument("--seed", type=int, help="random seed of the world (default: @seed or 0)")
@@ -68,7 +70,9 @@ def run(args: argparse.Namespace) -> int:
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
-        base=args.base, record=not args.no_record)
+        base=args.base, record=not args.no_record, label_questions=args.label_questions)
+    if args.label_questions < 0:
+        raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)
     if not args.lenient:
         check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)

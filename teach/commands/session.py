@@ -3,6 +3,7 @@
 Example:
     teach session                      # English, ball-in-bin world in MuJoCo, 5 questions
     teach session --lang de --questions 3
+    teach session --label-questions 3  # guide the robot: `guide forward 0.4`, or `guide` alone for the keys
     teach session --resume session-20261122-101500
 
 Type what the robot should do ("find the ball, go to the ball, ..."), `done` when the task
@@ -31,6 +32,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--domain", type=Path, help="domain.toml (default: the ball-in-bin domain)")
     parser.add_argument("--lang", choices=("en", "de"), default="en", help="language of the dialogue")
     parser.add_argument("--questions", type=int, default=5, help="most questions the robot may ask (default 5)")
+    parser.add_argument("--label-questions", type=int, default=5, metavar="N",
+                        help="most labelling questions about guided motion (default 5; apart from --questions)")
     parser.add_argument("--world", choices=("mujoco", "symbolic", "offline"), default="mujoco",
                         help="where demonstrations happen (default mujoco)")
     parser.add_argument("--seed", type=int, default=0, help="random seed of the world")
@@ -53,12 +56,14 @@ def run(args: argparse.Namespace) -> int:
 
     if not args.pace >= 0 or args.pace == float("inf"):  # also refuses nan
         raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
+    if args.label_questions < 0:
+        raise TeachError("--label-questions must be 0 or more")
     if _stdin_is_a_file():  # the terminal would read nothing from it and quit as if all was done
         raise TeachError(m.STDIN_IS_A_FILE(args.lang), "<stdin>")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
-                        viewer=args.viewer, pace=args.pace)
+                        viewer=args.viewer, pace=args.pace, label_questions=args.label_questions)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         manager.facilitator = args.facilitator
         history = args.base / "recordings" / ".teach_history"

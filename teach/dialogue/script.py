@@ -89,12 +89,19 @@ def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
     from teach.session import messages as m
-    from teach.session.commands import DONE_WORDS, SKIP_WORDS, parse_command
+    from teach.session.commands import DONE_WORDS, SKIP_WORDS, Verb, parse_command
+    from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
     answers = DONE_WORDS | SKIP_WORDS | {normalize(word(language)) for word in m.ANSWER_WORDS
                                          for language in ("en", "de")}
     for number, line in script.lines:
-        if parse_command(line)[0] is not None or normalize(line) in answers or is_yes(line, lang) or is_no(line, lang):
+        command, rest = parse_command(line)
+        if command is not None and command.verb is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
+            from teach.sim.guide import parse_guide_line
+
+            parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
+        if command is not None or is_new_action_answer(line) or normalize(line) in answers \
+                or is_yes(line, lang) or is_no(line, lang):
             continue
         if not _names_actions_or_events(line, phrases, lang):
             shown = repr(line) if len(line) <= 40 else repr(line[:37]) + "..."

@@ -31,6 +31,7 @@ class Verb(Enum):
     SAVE = auto()
     QUIT = auto()
     STEPS = auto()
+    GUIDE = auto()
 
 
 @dataclass(frozen=True)
@@ -50,6 +51,7 @@ COMMANDS: tuple[Command, ...] = (
     Command(Verb.CANCEL, ("cancel", "abbrechen"), m.USAGE_CANCEL, m.HELP_CANCEL),
     Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), m.USAGE_UNDO, m.HELP_UNDO_TO_STEP),
     Command(Verb.STEPS, ("steps", "schritte"), m.USAGE_STEPS, m.HELP_STEPS),
+    Command(Verb.GUIDE, ("guide", "fuhren"), m.USAGE_GUIDE, m.HELP_GUIDE),
     Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), m.USAGE_PERTURB, m.HELP_PERTURB),
     Command(Verb.RUN, ("run", "los", "ausfuhren"), m.USAGE_RUN, m.HELP_RUN),
     Command(Verb.STOP, ("stop", "halt"), m.USAGE_STOP, m.HELP_STOP),
@@ -69,11 +71,13 @@ COMMANDS: tuple[Command, ...] = (
 COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names)
 """Every word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
 
-BLOCKED_WHILE_ASKING = frozenset({Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB, Verb.MODEL,
-                                  Verb.ASK})
+BLOCKED_WHILE_ASKING = frozenset({Verb.GUIDE, Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB,
+                                  Verb.MODEL, Verb.ASK})
 """Commands that would change what an open question is about."""
 ANSWERING = frozenset({Verb.DONE, Verb.SKIP})
 """Commands that are also answers to an open question."""
+LOOKING = frozenset({Verb.HELP, Verb.STATE, Verb.SHOW, Verb.STEPS, Verb.WHY, Verb.SAVE, Verb.QUIT})
+"""Commands that only look (or leave), allowed while a labelling question is open."""
 
 DONE_WORDS = {"done", "finished", "nothing", "nothing task is done", "fertig", "nichts", "ziel erreicht"}
 SKIP_WORDS = {"skip", "dont know", "don t know", "i dont know", "i don t know", "weiter", "weiss nicht",

@@ -39,6 +39,7 @@ _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "asked": ({"kind": str}, {"state": str, "model_question": dict}),
     "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
     "model_answer": ({"kind": str, "question": dict, "answer": str}, {}),
+    "guided_action": ({"kind": str, "name": str, "motion": str}, {}),
 }
 
 
@@ -90,10 +91,21 @@ class ModelAnswered:
     """The teacher's words, or "skip"."""
 
 
-Event = DemoLearned | Undone | ModelLoaded | Asked | Answered | ModelAnswered
+# --- an action taught by guidance (issue 12, the guide helper)
+@dataclass(frozen=True)
+class GuidedActionTaught:
+    """A new action the teacher named for a guided motion: in the session's domain copy, its
+    motion in ``motion`` (a file in the demos folder). Not undoable: later steps may use it."""
+
+    kind: ClassVar[str] = "guided_action"
+    name: str
+    motion: str
+
+
+Event = DemoLearned | Undone | ModelLoaded | Asked | Answered | ModelAnswered | GuidedActionTaught
 LEARNING_EVENTS = (DemoLearned, Answered, ModelLoaded, ModelAnswered)
 _BY_KIND: dict[str, type[Event]] = {cls.kind: cls for cls in (DemoLearned, Undone, ModelLoaded, Asked, Answered,
-                                                              ModelAnswered)}
+                                                              ModelAnswered, GuidedActionTaught)}
 
 
 def event_to_json(event: Event) -> dict[str, Any]:

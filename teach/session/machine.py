@@ -44,12 +44,14 @@ from teach.session.commands import (
     COMMAND_WORDS,
     COMMANDS,
     DONE_WORDS,
+    LOOKING,
     SKIP_WORDS,
     Command,
     Verb,
     parse_command,
 )
 from teach.session.describe import unmet_goal, why_refused
+from teach.session.guiding import Guiding
 from teach.session.journal import (
     Answered,
     Asked,
@@ -137,12 +139,13 @@ class SessionManager:
                                           settings.questions, settings.world, settings.seed)
         self.store.prepare(domain)
         self.observer.on_domain(domain)
+        self.guiding = Guiding(self, settings.label_questions)
 
     # --- what drivers and tests read --------------------------------------------------------
 
     @property
     def mode(self) -> Mode:
-        if self.pending is not None or self.pending_model is not None:
+        if self.pending is not None or self.pending_model is not None or self.guiding.pending is not None:
             return Mode.ASKING
         return Mode.DEMONSTRATING if self.open is not None else Mode.IDLE
 
@@ -248,6 +251,9 @@ class SessionManager:
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         line = command_hint(line, self.lang, COMMAND_WORDS) or line
         command, rest = parse_command(line)
+        guided = self._guiding_first(line, command)
+        if guided is not None:
+            return guided
         answering = command is None or command.verb in ANSWERING
         if self.pending_model is not None and answering:
             return self._answer_model(line)
@@ -266,6 +272,27 @@ class SessionManager:
         lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
         examples = "; ".join(self.phrases.phrases(self.lang)[:12])
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
+
+    def cmd_guide(self, rest: str) -> list[Reply]:
+        if not self.guiding.can_guide():
+            return self.guiding.refusal()
+        return self.guiding.command(rest) + [self._state_reply()]
+
+    def _guiding_first(self, line: str, command: Command | None) -> list[Reply] | None:
+        """A labelling question takes the line as its answer; a line that is not guiding ends
+        guidance first (and waits for the labelling answers). None: go on with the line."""
+        if self.guiding.pending is not None:
+            if command is None or command.verb is Verb.SKIP:
+                replies = self.guiding.answer(line)
+                deferred = self.guiding.take_deferred()
+                return replies + (self._dispatch(deferred) if deferred else [])
+            return None if command.verb in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
+        if self.guiding.active and (command is None or command.verb is not Verb.GUIDE):
+            self.guiding.end()
+            if self.guiding.pending is not None:
+                self.guiding.deferred = line
+                return []
+        return None
 
     def cmd_demonstrate(self, rest: str) -> list[Reply]:
         replies = []
@@ -762,6 +789,7 @@ class SessionManager:
         store = SessionStore(settings.base, settings.session, settings.record)
         journal = store.load_journal()
         manager = cls(settings, domain, world, observer, journal)
+        manager.guiding.restore(journal.events)
         manager._rebuild_from_journal()
         manager.step = journal.step + 1  # a step of its own: the kill may have come before the save
         manager.observer.set_time(manager.step)
@@ -838,6 +866,7 @@ SessionManager._handlers = {
     Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
     Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
     Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
+    Verb.GUIDE: SessionManager.cmd_guide,
 }
 
 

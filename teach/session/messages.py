@@ -320,5 +320,47 @@ STDIN_IS_A_FILE = Text("standard input is a file, not a terminal: replay it with
                        "die Standardeingabe ist eine Datei, kein Terminal: spiele sie mit `teach replay DATEI` ab")
 UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an action of the domain",
                               "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
+# --- guiding the robot in a session (issue 12, the guide helper)
+GUIDING_NEEDS_MUJOCO = Text("Guiding moves the robot's body: it needs the MuJoCo world (start the session with "
+                            "--world mujoco).",
+                            "Führen bewegt den Körper des Roboters: dafür braucht es die MuJoCo-Welt (starte die "
+                            "Sitzung mit --world mujoco).")
+GUIDED_STEP = Text("✓ You moved me so that now {change}: that was “{action}”.",
+                   "✓ Du hast mich so bewegt, dass jetzt gilt: {change}. Das war „{action}“.")
+GUIDED_WORDS = Text("{action} (guided)", "{action} (geführt)")
+LABEL_OPTIONS = Text("(name an action, 'yes', 'something new: NAME' or 'skip' · labelling question {used} of {total})",
+                     "(nenne eine Aktion, 'ja', 'etwas Neues: NAME' oder 'weiter' · Benennfrage {used} von {total})")
+LABEL_THANKS = Text("✓ Thank you: that was “{action}”.", "✓ Danke: das war „{action}“.")
+LABEL_WHICH = Text("Then which action was it? Name it, or say 'something new: NAME'.",
+                   "Welche Aktion war es dann? Nenne sie, oder sag 'etwas Neues: NAME'.")
+LABEL_ONE_ACTION = Text("Please name one action I know, or say 'something new: NAME' (or 'skip').",
+                        "Nenne bitte eine Aktion, die ich kenne, oder sag 'etwas Neues: NAME' (oder 'weiter').")
+LABEL_SKIPPED = Text("I leave that motion out of the demonstration.", "Diese Bewegung lasse ich in der Vorführung weg.")
+LABEL_ASSUMED = Text("✓ You moved me so that now {change}: I take it that was “{action}” (no labelling questions "
+                     "left).",
+                     "✓ Du hast mich so bewegt, dass jetzt gilt: {change}. Ich nehme an, das war „{action}“ (keine "
+                     "Benennfragen mehr übrig).")
+LABEL_DROPPED = Text("You moved me so that now {change}, but I know no action for that and have no labelling "
+                     "questions left: I leave it out.",
+                     "Du hast mich so bewegt, dass jetzt gilt: {change}. Dafür kenne ich keine Aktion und habe keine "
+                     "Benennfragen mehr: ich lasse es weg.")
+LABEL_GUIDE_FIRST = Text("Please tell me first what your last motion was (an action, 'something new: NAME' or "
+                         "'skip').",
+                         "Sag mir bitte zuerst, was deine letzte Bewegung war (eine Aktion, 'etwas Neues: NAME' oder "
+                         "'weiter').")
+NEW_ACTION_LEARNED = Text("✓ New action “{action}”: afterwards {change}. I can do it myself from now on.",
+                          "✓ Neue Aktion „{action}“: danach gilt: {change}. Das kann ich jetzt selbst.")
+NEW_ACTION_TAKEN = Text("There is already an action called “{action}”: say its name alone, or choose another name.",
+                        "Eine Aktion „{action}“ gibt es schon: nenne sie allein, oder wähle einen anderen Namen.")
+GUIDE_MODE_ON = Text("Guide mode: ↑/↓ move, ←/→ turn, PgUp/PgDn lift, space opens or closes the hand; Esc ends it.",
+                     "Führmodus: ↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste öffnet oder schließt die "
+                     "Hand; Esc beendet ihn.")
+GUIDE_MODE_OFF = Text("Guide mode ended.", "Führmodus beendet.")
+TOOLBAR_LABELS = Text(" │ labelling questions left: {left}", " │ Benennfragen übrig: {left}")
+USAGE_GUIDE = Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
+                   "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]")
+HELP_GUIDE = Text("move the robot yourself (MuJoCo world); alone: steer it with the keys",
+                  "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken")
+
 ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
 """The words that answer a question about action definitions (a dialogue may hold them as lines)."""

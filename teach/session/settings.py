@@ -41,6 +41,8 @@ class Settings:
     viewer: bool = False
     pace: float = 0.0
     """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
+    label_questions: int = 5
+    """The cap on labelling questions about guided motion (apart from ``questions``)."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):

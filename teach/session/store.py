@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import shutil
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from teach import limits
 from teach.bt.nodes import Node
@@ -14,6 +15,9 @@ from teach.errors import FormatError
 from teach.fsutil import atomic_write_text, read_text
 from teach.generations import last_generation, write_generation
 from teach.session.journal import DemoLearned, Journal, effective_events
+
+if TYPE_CHECKING:
+    from teach.sim.guided_skill import GuidedMotion
 
 UNDONE = "undone"
 ORPHANED = "orphaned"
@@ -112,6 +116,34 @@ class SessionStore:
     def read_model(self, path: Path) -> Domain:
         """Action definitions a teacher loads with 'model FILE'."""
         return load_domain(path)
+
+    # --- actions taught by guidance (issue 12) ---------------------------------------------
+
+    def add_action(self, block: str) -> Domain:
+        """Append an ``[[action]]`` table to the session's copy of its domain (atomically) and
+        read the domain back, checked as every domain file is."""
+        copy = self.demo_dir / "domain.toml"
+        if not copy.is_file():
+            raise FormatError("the session keeps no copy of its domain to add an action to", copy)
+        atomic_write_text(copy, read_text(copy, "domain file", limits.MAX_DOMAIN_BYTES).rstrip("\n") + "\n\n" + block)
+        return load_domain(copy)
+
+    def session_domain(self) -> Domain:
+        """The session's own domain copy, with the actions taught by guidance."""
+        return load_domain(self.demo_dir / "domain.toml")
+
+    def write_motion(self, motion: GuidedMotion) -> str:
+        """Save a guided motion beside the domain copy; its file name, for the journal."""
+        from teach.sim.guided_skill import save_motion
+
+        path = self.demo_dir / f"{motion.name}.motion.json"
+        save_motion(motion, path)
+        return path.name
+
+    def read_motion(self, file: str, domain: Domain) -> GuidedMotion:
+        from teach.sim.guided_skill import load_motion
+
+        return load_motion(self.demo_dir / file, domain)
 
     # --- the journal -----------------------------------------------------------------------
 

@@ -77,8 +77,9 @@ class GuideCommand:
 VERBS: dict[str, str] = {"forward": "forward", "back": "back", "turn": "turn", "lift": "lift", "open": "open",
                          "close": "close", "wait": "wait",
                          "vor": "forward", "vorwärts": "forward", "zurück": "back", "drehen": "turn",
-                         "heben": "lift", "öffnen": "open", "schließen": "close", "warten": "wait"}
-KEYWORDS = ("guide", "führen")
+                         "heben": "lift", "öffnen": "open", "schließen": "close", "warten": "wait",
+                         "vorwarts": "forward", "zuruck": "back", "offnen": "open", "schliessen": "close"}
+KEYWORDS = ("guide", "führen", "fuhren")
 _LIMITS = {"forward": (-MAX_DISTANCE, MAX_DISTANCE, "metres"), "back": (-MAX_DISTANCE, MAX_DISTANCE, "metres"),
            "turn": (-MAX_TURN, MAX_TURN, "degrees"), "lift": (0.0, LIFT_TOP, "metres (absolute height)"),
            "wait": (0.0, MAX_WAIT, "seconds")}
@@ -132,10 +133,10 @@ class Guide:
     """Drives a ``World`` by guiding primitives and records a ``Sample`` every control period."""
 
     def __init__(self, world: World, listener: Callable[[Sample], object] | None = None,
-                 observer: Observer | None = None):
+                 observer: Observer | None = None, frames: FrameClock | None = None):
         self.world = world
         self.listener = listener
-        self.frames = FrameClock(world, observer)
+        self.frames = frames or FrameClock(world, observer)  # a session's clock paces and redraws too
         self.samples: list[Sample] = []
         self.lift_target = world.lift_height()
         self.finger_target = FINGER_CLOSED if world.finger_closure() > FINGER_CLOSED / 2 else FINGER_OPEN

@@ -2,7 +2,9 @@
 output. A thin driver of the session machine: the loop and Ctrl-C handling only.
 
 Ctrl-C interrupts a robot run (not the program) and clears the line at the prompt;
-Ctrl-D saves and leaves.
+Ctrl-D saves and leaves. ``guide`` alone enters the guide mode: each key drives the robot by
+one ``guide …`` line (arrows, PgUp/PgDn, space); Esc leaves it, and typing a letter leaves it
+with that letter as the start of the next line ("done").
 """
 
 from __future__ import annotations
@@ -12,8 +14,12 @@ import threading
 from pathlib import Path
 
 from prompt_toolkit import PromptSession
+from prompt_toolkit.application import Application
 from prompt_toolkit.history import FileHistory, InMemoryHistory
 from prompt_toolkit.input import Input
+from prompt_toolkit.key_binding import KeyBindings, KeyPressEvent
+from prompt_toolkit.keys import Keys
+from prompt_toolkit.layout import FormattedTextControl, Layout, Window
 from prompt_toolkit.output import Output
 from rich.console import Console
 
@@ -36,21 +42,30 @@ class Terminal:
             completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang),
                                      _argument_names(manager)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
-            bottom_toolbar=lambda: toolbar(self.manager), input=input, output=output, complete_while_typing=True)
+            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
         self._interrupt = threading.Event()
+        self._typed = ""  # what a letter typed in the guide mode starts the next line with
 
     def run(self) -> None:
         self.manager.live = self._show
         self.manager.greet()
         while not self.manager.finished:
             try:
-                line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang))
+                line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang), default=self._typed)
             except KeyboardInterrupt:
                 continue
             except EOFError:  # Ctrl-D: quit (with an open demonstration the first one only warns)
                 self.manager.handle("quit")
                 continue
+            finally:
+                self._typed = ""
             self._handle(line)
+
+    def _toolbar(self) -> str:
+        """The bottom line; once the teacher has guided, the labelling questions left as well."""
+        guiding = self.manager.guiding
+        extra = m.TOOLBAR_LABELS(self.manager.lang, left=guiding.budget.left) if guiding.used else ""
+        return toolbar(self.manager) + extra
 
     def _show(self, reply: Reply) -> None:
         self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
@@ -64,7 +79,13 @@ class Terminal:
     def _handle(self, line: str) -> None:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
-        command, _ = self.manager.command(line)
+        command, rest = self.manager.command(line)
+        if command is not None and command.verb is Verb.GUIDE and not rest.strip() \
+                and self.manager.mode is not Mode.ASKING:
+            self.manager.handle(line)
+            if self.manager.guiding.active:
+                self._guide_mode()
+            return
         if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING \
                 or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
@@ -78,6 +99,50 @@ class Terminal:
         finally:
             if in_main:
                 signal.signal(signal.SIGINT, previous)
+
+    def _guide_mode(self) -> None:
+        """Keys drive the robot, one ``guide …`` line each, until Esc (or Ctrl-C, Ctrl-D) or a
+        typed letter; the state line after each shows what changed."""
+        while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
+            key = self._guide_key()
+            if key in _LEAVE:
+                self.manager.handle("guide stop")
+                return
+            if key.startswith(_TYPED):
+                self._typed = key[len(_TYPED):]
+                return
+            line = self.manager.guiding.line_for_key(key)
+            if line is not None:
+                self.manager.handle(line)
+
+    def _guide_key(self) -> str:
+        """One key press of the guide mode, by ``Guide.key``'s name (a letter as ``_TYPED`` + it)."""
+        bindings = KeyBindings()
+
+        def press(name: str) -> None:
+            bindings.add(_KEYS.get(name, name), eager=True)(lambda event: event.app.exit(result=name))
+
+        for name in (*_KEYS, *_LEAVE):
+            press(name)
+
+        @bindings.add(Keys.Any)
+        def typed(event: KeyPressEvent) -> None:
+            event.app.exit(result=_TYPED + event.data if event.data.isprintable() else "")
+
+        text = FormattedTextControl(lambda: m.GUIDE_MODE_ON(self.manager.lang))
+        app: Application[str] = Application(layout=Layout(Window(text, height=1)), key_bindings=bindings,
+                                            input=self.prompt.input, output=self.prompt.output)
+        try:
+            return app.run()
+        except EOFError:
+            return "c-d"
+
+
+_KEYS = {"up": "up", "down": "down", "left": "left", "right": "right", "pageup": "pageup", "pagedown": "pagedown",
+         "space": " "}
+"""The guide mode's keys: ``Guide.key``'s names and prompt_toolkit's."""
+_LEAVE = ("escape", "c-c", "c-d")
+_TYPED = "typed:"
 
 
 def _argument_names(manager: SessionManager) -> dict[str, list[str]]:

@@ -17,8 +17,10 @@ from teach.domain import Domain, State
 from teach.errors import TeachError
 from teach.observe.hook import Observer
 from teach.sim.executor import run_tree
+from teach.sim.guide import Guide, Sample
+from teach.sim.guided_skill import GuidedMotion, guided_skill
 from teach.sim.perturb import PERTURBATIONS
-from teach.sim.skills import FrameClock, run_skill
+from teach.sim.skills import FrameClock, register, run_skill
 from teach.sim.world import World
 from teach.world.protocol import ActResult, Outcome, RunResult
 
@@ -130,3 +132,18 @@ class MujocoWorld:
 
     def close(self) -> None:
         self.world.close()
+
+    # --- guiding (issue 12): the teacher moves the robot's body ----------------------------
+
+    def start_guiding(self, listener: Callable[[Sample], object]) -> Guide:
+        """A guide on this world whose samples go to ``listener`` and whose frames go to the
+        recording through this world's clock (pacing and viewer redraws included)."""
+        return Guide(self.world, listener, self.observer, self.frames)
+
+    def learn_skill(self, motion: GuidedMotion) -> None:
+        """Make a motion taught by guidance runnable under its action name, like any skill."""
+        register(guided_skill(motion))
+
+    def adopt_domain(self, domain: Domain) -> None:
+        """The session's domain grew an action taught by guidance (the conditions are the same)."""
+        self.domain = self.world.domain = domain
