@@ -39,6 +39,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
+    parser.add_argument("--facilitator", action="store_true",
+                        help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--lenient", action="store_true",
                         help="type lines the session does not know at the prompt anyway (default: refuse the file)")
 
@@ -68,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
-        base=args.base, record=not args.no_record)
+        base=args.base, record=not args.no_record, facilitator=args.facilitator)
     domain = session_domain(settings)
     if not args.lenient:
         check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)

@@ -124,7 +124,7 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
-        self.facilitator = False  # show conditions by name too (the facilitator's view, --facilitator)
+        self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
         self.finished = False
         self._quit_warned_at = -2
         """The step at which quitting with an open demonstration was warned about."""
@@ -290,6 +290,7 @@ class SessionManager:
         if self.open is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
         self.open = None
+        self.topic = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
@@ -543,14 +544,12 @@ class SessionManager:
         """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
         self.topic = self.phrases.topic(tokens) or self.topic
         replies: list[Reply] = []
-        if self.open is None:
-            replies += self._flush(self.cmd_demonstrate(""))
-        assert self.open is not None
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
-                              m.EVENT_STEP(self.lang, event=token.text))
+                demo = self._open_for_step()
+                demo.add(Step(result.before, EXTERNAL_ACTION, len(demo.steps) + 1),
+                         m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
@@ -566,10 +565,18 @@ class SessionManager:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
-            self.open.add(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1), label)
+            demo = self._open_for_step()
+            demo.add(Step(result.before, self.domain.action(token.name).id, len(demo.steps) + 1), label)
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
+
+    def _open_for_step(self) -> _OpenDemo:
+        """The open demonstration, opened when its first step has happened (a failed first step opens none)."""
+        if self.open is None:
+            self.open = _OpenDemo()
+            self._flush([Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))])
+        return self.open
 
     def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
         """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
@@ -592,6 +599,7 @@ class SessionManager:
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         self.store.write_demonstration(path, demo)
         self.open = None
+        self.topic = None  # "it" in the next demonstration is whatever it names first
         self.observer.on_demonstration(demo.name, demo, self.domain)
         self.learning.report("specialize", update, self.lang)
         return self._after_learning(ask=True, started=started, events=[DemoLearned(path.name, source)])

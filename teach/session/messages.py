@@ -30,8 +30,6 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Say 'done' when the task is finished, 'help' for more.",
              "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
-RESUMED = Text("Resumed session {session}: {demos} demonstrations, {asked} questions asked, generation {generation}.",
-               "Sitzung {session} fortgesetzt: {demos} Vorführungen, {asked} Fragen gestellt, Generation {generation}.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. “{examples}”.")
 AND = Text(" and ", " und ")
@@ -43,7 +41,6 @@ NO_STEPS_YET = Text("You have not shown me any steps yet.", "Du hast mir noch ke
 NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
                     "Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'.")
 DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
-UNDONE_STEP = Text("Undone: the last step.", "Rückgängig: der letzte Schritt.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
 UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
@@ -178,7 +175,6 @@ HELP_HELP = Text("show this help", "diese Hilfe zeigen")
 HELP_DEMONSTRATE = Text("start a demonstration", "eine Vorführung beginnen")
 HELP_DONE = Text("the task is finished: learn this demonstration", "die Aufgabe ist erledigt: diese Vorführung lernen")
 HELP_CANCEL = Text("discard the open demonstration", "die Vorführung verwerfen")
-HELP_UNDO = Text("undo the last step, demonstration or answer", "letzten Schritt, Vorführung oder Antwort zurücknehmen")
 HELP_PERTURB = Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)")
 HELP_RUN = Text("let the robot do the task (N: stop after N actions)", "den Roboter die Aufgabe machen lassen")
 HELP_STOP = Text("interrupt the robot", "den Roboter anhalten")

@@ -41,6 +41,8 @@ class Settings:
     viewer: bool = False
     pace: float = 0.0
     """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
+    facilitator: bool = False
+    """Show identifiers too: conditions by name, the symbolic tree (default: plain words)."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):
