@@ -318,3 +318,29 @@ UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an ac
                               "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
 ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
 """The words that answer a question about action definitions (a dialogue may hold them as lines)."""
+
+# --- questions that pay, the tree in plain sentences (issue 11, job "pay") ------------------------
+NOT_DONE_THERE = Text("I would not be done there: {unmet}. What should I do there?",
+                      "Dort wäre ich nicht fertig: {unmet}. Was soll ich dort tun?")
+NO_UNDO_WHILE_ASKING = Text("Nothing to undo while I wait for your answer; say 'skip' to leave the question.",
+                            "Solange ich auf deine Antwort warte, gibt es nichts zurückzunehmen; "
+                            "sag 'weiter', um die Frage offen zu lassen.")
+TREE_WORDS_TITLE = Text("what I do", "was ich tue")
+WORDS_DONE_WHEN = Text("When {condition}, I am done.", "Ich bin fertig, sobald gilt: {condition}.")
+WORDS_OTHERWISE_FIRST_FIT = Text("Otherwise I do the first that fits:", "Sonst tue ich das Erste, was passt:")
+WORDS_FIRST_FIT = Text("I do the first that fits:", "Ich tue das Erste, was passt:")
+WORDS_OTHERWISE_NOTHING = Text("Otherwise I do nothing yet.", "Sonst tue ich noch nichts.")
+WORDS_NOTHING = Text("I do nothing yet.", "Ich tue noch nichts.")
+WORDS_BULLET = Text("  – {text}", "  – {text}")
+WORDS_IF = Text("if {condition}, {what}", "wenn gilt: {condition}, dann: {what}")
+WORDS_FIRST = Text("{what}", "{what}")
+WORDS_OTHERWISE = Text("otherwise, {what}", "sonst: {what}")
+WORDS_I_DO = Text("I {action}", "„{action}“")
+WORDS_I_AM_DONE = Text("I am done", "ich bin fertig")
+WORDS_QUOTED = Text("“{action}”", "„{action}“")
+WORDS_SOME_OF = Text("I do {actions}, in a way I cannot say simply ('show full' shows how)",
+                     "{actions}, auf eine Art, die ich nicht einfach sagen kann ('zeige ganz' zeigt sie)")
+WORDS_NOTHING_SIMPLE = Text("I check something I cannot say simply ('show full' shows it)",
+                            "ich prüfe etwas, das ich nicht einfach sagen kann ('zeige ganz' zeigt es)")
+WORDS_SOME_CHECK = Text("a check I cannot say simply holds", "eine Prüfung gilt, die ich nicht einfach sagen kann")
+WORDS_NOT = Text("not {condition}", "nicht {condition}")
