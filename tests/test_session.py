@@ -548,3 +548,28 @@ def test_the_open_demonstration_survives_a_resume(ball, tmp_path):
     resumed.handle("grasp the ball, go to the bin, put the ball in the bin")
     resumed.handle("done")
     assert [d.actions for d in resumed.demos] == [(1, 2, 3, 4, 5)]
+
+
+def test_show_says_the_tree_in_words_and_show_full_or_a_facilitator_sees_the_symbols(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(SEQUENCE)
+    session.handle("fertig")
+    words = session.handle("zeige")[0]
+    assert words.kind.name == "TREE" and words.text.startswith("Ich bin fertig, sobald gilt: der Ball ist im Eimer.")
+    assert session.handle("zeige alles")[0].text == ""  # the view draws the symbols
+    facilitator = SessionManager(Settings("f", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False,
+                                          facilitator=True), ball, SymbolicWorld(ball))
+    facilitator.handle(SEQUENCE)
+    assert all(r.text == "" for r in facilitator.handle("fertig") if r.kind.name == "TREE")
+
+
+def test_it_means_nothing_in_a_new_demonstration(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    assert session.topic is not None
+    session.handle("cancel")
+    assert session.topic is None
+    session.handle("start")
+    session.handle(SEQUENCE)
+    session.handle("done")
+    assert session.demos and session.topic is None

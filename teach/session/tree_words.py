@@ -5,8 +5,8 @@ checks that must hold before it is ticked (a condition in a Sequence must hold, 
 Fallback must not), and "I am done" where the root succeeds. Read that way, the backchained
 trees the learners build say what a teacher would say: "When the ball is in the bin, I am
 done. Otherwise: if you cannot see the ball, I find the ball; ...". Checks that earlier
-rules already rule out are left out (the order says them), and an action said once is not
-said again (the backchained tree repeats actions as last resorts). A part that is neither
+rules already rule out are left out (the order says them), and an action a Fallback tries
+once more as a last resort after the branch that does it is not said again. A part that is neither
 conditions nor Sequences and Fallbacks of them (a Parallel, an Inverter over actions) is
 named by its actions, with a pointer to ``show full``. Pure: tree, domain and language in,
 lines out.
@@ -84,11 +84,19 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     check = _check(node)
     if check is not None:
         return [_Rule(guard, "done", done_when=check)] if at_root else []
+    if at_root and isinstance(node, Sequence):
+        reached = [_reached_when(child) for child in node.children]
+        if reached and all(r is not None for r in reached):  # one part after the other: done when each is
+            parts = tuple(r for r in reached if r is not None)
+            done = _Rule(guard, "done", done_when=parts[0] if len(parts) == 1 else _Check("all", parts=parts))
+            return [done] + [rule for child in node.children for rule in _rules(child, guard, at_root=False)]
     if isinstance(node, Sequence | Fallback):
         rules: list[_Rule] = []
         inside = guard
-        for child in node.children:
+        for number, child in enumerate(node.children):
             child_check = _check(child)
+            if isinstance(node, Fallback) and _last_resort(child, node.children[:number]):
+                continue
             if child_check is None:
                 rules += _rules(child, inside, at_root and isinstance(node, Fallback))
             elif isinstance(node, Sequence):
@@ -100,6 +108,21 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
         return rules
     names = tuple(dict.fromkeys(n.name for n in walk(node) if isinstance(n, Action)))
     return [_Rule(guard, "opaque", names)]
+
+
+def _reached_when(node: Node) -> _Check | None:
+    """What holds when a Fallback that tries checks first succeeds without acting (None: not that shape)."""
+    if not isinstance(node, Fallback) or _check(node) is not None:
+        return None
+    leading = []
+    for child in node.children:
+        check = _check(child)
+        if check is None:
+            break
+        leading.append(check)
+    if not leading:
+        return None
+    return leading[0] if len(leading) == 1 else _Check("any", parts=tuple(leading))
 
 
 def _check(node: Node) -> _Check | None:
@@ -119,18 +142,16 @@ def _check(node: Node) -> _Check | None:
     return _Check("opaque")
 
 
+def _last_resort(child: Node, before: tuple[Node, ...]) -> bool:
+    """An action a Fallback tries again after the branch that already does it (the backchained
+    tree's "if the steps before it did not work, try it anyway"): not said twice."""
+    return isinstance(child, Action) and any(isinstance(n, Action) and n.name == child.name
+                                             for sibling in before for n in walk(sibling))
+
+
 def _deduplicated(rules: list[_Rule]) -> list[_Rule]:
-    """Each action said once, where it first comes (later ones are last resorts); the same for
-    "I am done"."""
-    said: set[tuple[str, tuple[str, ...], _Check | None]] = set()
-    kept = []
-    for rule in rules:
-        key = (rule.kind, rule.actions, rule.done_when)
-        if rule.kind != "opaque" and key in said:
-            continue
-        said.add(key)
-        kept.append(rule)
-    return kept
+    """Each rule once (a subtree the tree repeats says the same)."""
+    return list(dict.fromkeys(rules))
 
 
 def _what(rule: _Rule, domain: Domain, lang: str) -> str:
