@@ -39,7 +39,8 @@ def test_ask_finds_the_situation_where_the_tree_would_stop_short(ball, tmp_path)
 
 
 def test_done_where_the_goal_does_not_hold_is_refused_and_asked_again(ball, tmp_path):
-    for lang, done, reason in (("en", "done", "the ball is not in the bin"), ("de", "fertig", "der Ball ist nicht im Eimer")):
+    for lang, done, reason in (("en", "done", "the ball is not in the bin"),
+                               ("de", "fertig", "der Ball ist nicht im Eimer")):
         session, state = wrongly_done_session(ball, tmp_path / lang, lang)
         session.handle("start BallFound BinClose")
         session.handle("run" if lang == "en" else "los")

@@ -32,7 +32,8 @@ def test_table_6_1_in_english_and_german(ball):
         "Ich bin fertig, sobald gilt: der Ball ist im Eimer.",
         "Sonst tue ich das Erste, was passt:",
         "  – wenn gilt: du hast den Ball nicht in der Hand und du siehst den Ball nicht, dann: „Ball finden“",
-        "  – wenn gilt: du hast den Ball nicht in der Hand und der Ball ist nicht in Reichweite, dann: „zum Ball gehen“",
+        "  – wenn gilt: du hast den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
+        "dann: „zum Ball gehen“",
         "  – wenn gilt: du hast den Ball nicht in der Hand, dann: „Ball greifen“",
         "  – wenn gilt: der Eimer ist nicht in Reichweite, dann: „zum Eimer gehen“",
         "  – sonst: „Ball in den Eimer legen“",
@@ -52,7 +53,8 @@ def test_a_learned_tree_says_its_goal_and_every_step_without_identifiers(ball):
 def test_a_tree_of_nothing_but_checks_does_nothing(ball):
     tree = read_tree(BALL / "reference" / "table61.xml")
     goal_only = tree.children[0]  # type: ignore[union-attr]
-    assert tree_lines(goal_only, ball, "en") == ["When the ball is in the bin, I am done.", "Otherwise I do nothing yet."]
+    assert tree_lines(goal_only, ball, "en") == ["When the ball is in the bin, I am done.",
+                                                 "Otherwise I do nothing yet."]
 
 
 @settings(max_examples=150, deadline=None)

@@ -639,6 +639,8 @@ class SessionManager:
         """A run that ended "done" with the goal unmet, or doing nothing: the situation it ended
         in is the most useful question there is, so it is asked at once while questions are left."""
         state = self.world.state()
+        if not self.learning.has_behaviour:  # a tree planned from action definitions: their questions come from 'model'
+            return []
         if self.pending is not None or state in self.learning.asked or not self._affordable(state):
             return []
         return self._ask(Question(state, 1.0))

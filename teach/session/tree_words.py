@@ -69,7 +69,7 @@ def tree_lines(tree: Node, domain: Domain, lang: str) -> list[str]:
     for number, rule in enumerate(rules):
         what = _what(rule, domain, lang)
         if rule.condition:
-            condition = _listed([_check_words(c, domain, lang) for c in rule.condition], lang)
+            condition = _listed(list(dict.fromkeys(_check_words(c, domain, lang) for c in rule.condition)), lang)
             text = m.WORDS_IF(lang, condition=condition, what=what)
         else:
             text = (m.WORDS_OTHERWISE if number else m.WORDS_FIRST)(lang, what=what)
