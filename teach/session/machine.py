@@ -398,6 +398,7 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
         names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
+        self.topic = self.phrases.topic_in(rest)  # "start ball found", then "go to it"
         return [self._state_reply()]
 
     def _condition_names(self, text: str) -> list[str]:
