@@ -65,6 +65,9 @@ def test_a_careless_teacher_still_teaches_the_task(ball, tmp_path, lang, lines):
             asked = session.pending.state
             answered = session.handle("go to the bin" if asked[ball.index("BinClose")] else "put the ball in the bin")
             assert answered[0].kind.name != "ERROR" and session.learning.labels[asked] in ("ApproachBin", "PlaceBall")
+            if session.pending is not None:  # undo at answer> takes nothing back: leave the next question first
+                session.handle("skip")
+                session.handle("undo")
             session.handle("undo")
             assert asked not in session.learning.labels
         errors = [r.text for r in replies if r.kind.name == "ERROR"]

@@ -107,3 +107,13 @@ def test_questions_answered_by_the_table_6_1_tree_reproduce_all_of_delta5() -> N
             assert status is not Status.FAILURE
             learner.teach_step(question.state, action if status is Status.RUNNING else None, f"q{number}")
         assert replay(learner.tree, domain, delta5).reproduced == len(delta5), name
+
+
+def test_a_situation_where_the_tree_stops_short_of_the_declared_goal_is_asked_about() -> None:
+    learner = ball_learner()
+    stop_short = next(s for s in itertools.product((False, True), repeat=5)
+                      if s not in learner.situations and not s[-1])  # the ball not in the bin
+    learner.teach_step(stop_short, None, "an answer nobody checked")  # "done" there
+    question = next_question(learner, [])
+    assert question is not None and question.kind == "unmet-goal" and question.tree_does == "done"
+    assert not learner.domain.holds(learner.domain.goal[0], question.state)

@@ -190,11 +190,16 @@ def test_undo_never_refunds_a_question(ball, tmp_path):
     session = new_session(ball, tmp_path, questions=1)
     teach_two_demonstrations(session)
     assert session.pending is not None and session.budget.left == 0
-    session.handle("undo")  # takes back the demonstration the open question was about
-    assert session.pending is None and session.budget.left == 0
+    session.handle("skip")
+    session.handle("undo")  # takes back the skipped question's answer, not its price
+    session.handle("undo")  # and the demonstration it was about
+    assert session.pending is None and session.budget.left == 0 and len(session.demos) == 1
     session.handle("start BallFound")
     session.handle(SECOND)
     session.handle("done")
+    # the same situation is open again: asked again, but not paid for twice
+    assert session.pending is not None and session.budget.left == 0
+    session.handle("find the ball")
     assert session.pending is None and "used all my questions" in session.handle("ask")[0].text
 
 
@@ -467,7 +472,7 @@ def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
 def test_a_failed_step_is_explained_in_the_sessions_language_only(ball, tmp_path):
     session = new_session(ball, tmp_path, lang="de")
     texts = [r.text for r in session.handle("Ball greifen")]
-    assert texts[1].startswith("„Ball greifen“ ging nicht: dafür muss erst gelten: ")
+    assert texts[0].startswith("„Ball greifen“ ging nicht: dafür muss erst gelten: ")  # no "Neue Vorführung" first
     assert "needs" not in " ".join(texts) and "BallClose" not in " ".join(texts)
     session.facilitator = True
     assert any("BallClose" in t for t in (r.text for r in session.handle("Ball greifen")))
@@ -543,3 +548,28 @@ def test_the_open_demonstration_survives_a_resume(ball, tmp_path):
     resumed.handle("grasp the ball, go to the bin, put the ball in the bin")
     resumed.handle("done")
     assert [d.actions for d in resumed.demos] == [(1, 2, 3, 4, 5)]
+
+
+def test_show_says_the_tree_in_words_and_show_full_or_a_facilitator_sees_the_symbols(ball, tmp_path):
+    session = new_session(ball, tmp_path, lang="de")
+    session.handle(SEQUENCE)
+    session.handle("fertig")
+    words = session.handle("zeige")[0]
+    assert words.kind.name == "TREE" and words.text.startswith("Ich bin fertig, sobald gilt: der Ball ist im Eimer.")
+    assert session.handle("zeige alles")[0].text == ""  # the view draws the symbols
+    facilitator = SessionManager(Settings("f", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False,
+                                          facilitator=True), ball, SymbolicWorld(ball))
+    facilitator.handle(SEQUENCE)
+    assert all(r.text == "" for r in facilitator.handle("fertig") if r.kind.name == "TREE")
+
+
+def test_it_means_nothing_in_a_new_demonstration(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball")
+    assert session.topic is not None
+    session.handle("cancel")
+    assert session.topic is None
+    session.handle("start")
+    session.handle(SEQUENCE)
+    session.handle("done")
+    assert session.demos and session.topic is None

@@ -41,6 +41,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
+    parser.add_argument("--facilitator", action="store_true",
+                        help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--lenient", action="store_true",
                         help="type lines the session does not know at the prompt anyway (default: refuse the file)")
 
@@ -70,7 +72,8 @@ def run(args: argparse.Namespace) -> int:
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
-        base=args.base, record=not args.no_record, label_questions=args.label_questions)
+        base=args.base, record=not args.no_record, label_questions=args.label_questions,
+        facilitator=args.facilitator)
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)

@@ -44,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
                              "(default 1: real time; 0 = as fast as possible)")
     parser.add_argument("--facilitator", action="store_true",
-                        help="show conditions by their names as well (default: the situation in plain words)")
+                        help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -63,9 +63,9 @@ def run(args: argparse.Namespace) -> int:
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
-                        viewer=args.viewer, pace=args.pace, label_questions=args.label_questions)
+                        viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
+                        facilitator=args.facilitator)
     with opened_session(settings, resume=bool(args.resume)) as manager:
-        manager.facilitator = args.facilitator
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)
         Terminal(manager, history=history).run()

@@ -286,6 +286,10 @@ class PhraseBook:
         """Phrases shown for completion, in the given language."""
         return sorted(self._display[lang])
 
+    def topic_in(self, text: str) -> str | None:
+        """The object a line names last ("start ball found": the ball), or None."""
+        return self._last_noun(_key(text))
+
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """The object named last in ``tokens``: what "it" means in the next line."""
         topic = None

@@ -21,7 +21,12 @@ point of the model, most decisive first:
 5. **gaps**: a state next to a demonstrated one where the tree knows nothing (FAILURE);
 6. **the goal**: a goal state with one goal *candidate* false that the learned goal does not
    check (the tree says "done" there); an action as answer puts the literal into the goal,
-   "done" drops it from the candidates.
+   "done" drops it from the candidates;
+7. **unmet goal**: any situation, nearest to the labelled ones first, where the domain's
+   declared goal does not hold but the tree would say "done" (the learned goal holds there)
+   or do nothing (FAILURE): a run from there ends with "I thought I was done" or does
+   nothing, so every answer but "done" changes the tree. These come last only because the
+   earlier kinds settle more at once; ``ask`` never says "no question" while one exists.
 
 The order puts first the situations where, on random domains (``bench/bench_generalise.py``),
 the teacher's answer most often differed from what the tree did.
@@ -40,7 +45,10 @@ from teach.domain import State
 from teach.learn.action_model import literals_of
 from teach.learn.learner import Learner
 
-KINDS = ("conflict", "goal-bound", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal")
+KINDS = ("conflict", "goal-bound", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal",
+         "unmet-goal")
+MAX_PROBED = 4096
+"""The most situations searched for an unmet goal (every one of a domain of 12 conditions)."""
 
 
 @dataclass(frozen=True)
@@ -83,6 +91,7 @@ def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
 
+    yield from _unmet_goal(learner, does, flipped)
     if first:
         yield from _goal_bound(learner, does, flipped)
     yield from _preconditions(learner, does, flipped, ("possible-precondition",))
@@ -166,3 +175,31 @@ def _goal_bound(learner: Learner, does: Callable[[State], str],
             there = action if status is Status.RUNNING else "done" if status is Status.SUCCESS else "nothing"
             if there != now:
                 yield SituationQuestion(probe, "goal-bound", tree_does=now)
+
+
+def _unmet_goal(learner: Learner, does: Callable[[State], str],
+                flipped: Callable[[State, int], State]) -> Iterable[SituationQuestion]:
+    """Situations where the declared goal does not hold and the tree says "done" or does nothing,
+    searched outwards from the labelled ones (one condition changed, then two, ...), so the
+    first found are those a teacher most likely meets. Without a declared goal, only "nothing"."""
+    position = {name: index for index, name in enumerate(learner.names)}
+    goal = [(position[literal.name], literal.value) for literal in learner.domain.goal]
+
+    def unmet(state: State) -> bool:
+        return any(state[index] != value for index, value in goal)
+
+    frontier = list(learner.situations)
+    seen = set(frontier)
+    while frontier and len(seen) < MAX_PROBED:
+        reached: list[State] = []
+        for state in frontier:
+            for index in range(len(learner.names)):
+                probe = flipped(state, index)
+                if probe in seen:
+                    continue
+                seen.add(probe)
+                reached.append(probe)
+                now = does(probe)
+                if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
+                    yield SituationQuestion(probe, "unmet-goal", tree_does=now)
+        frontier = reached

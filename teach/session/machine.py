@@ -34,7 +34,7 @@ from teach.dialogue.phrases import (
     normalize,
 )
 from teach.dialogue.questions import Question, QuestionBudget, describe_situation
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
 from teach.session import messages as m
@@ -69,6 +69,7 @@ from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.settings import Settings
 from teach.session.store import SessionStore
+from teach.session.tree_words import tree_lines
 from teach.world.protocol import Outcome, TeachingWorld
 
 if TYPE_CHECKING:
@@ -126,7 +127,7 @@ class SessionManager:
         self.open: _OpenDemo | None = None
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
-        self.facilitator = False  # show conditions by name too (the facilitator's view, --facilitator)
+        self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
         self.finished = False
         self._quit_warned_at = -2
         """The step at which quitting with an open demonstration was warned about."""
@@ -184,7 +185,7 @@ class SessionManager:
                                                                       demos=demos, asked=asked,
                                                                       generation=self.generation)))
             if self.pruned is not None:
-                replies.append(Reply(ReplyKind.TREE, tree=self.pruned))
+                replies.append(self._tree_reply(self.pruned))
         if self.open is not None and self.open.steps:
             replies.append(Reply(ReplyKind.INFO, m.OPEN_RESTORED(self.lang, count=len(self.open.steps))))
         replies.append(self._state_reply())
@@ -317,9 +318,12 @@ class SessionManager:
         if self.open is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
         self.open = None
+        self.topic = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
+        if self.mode is Mode.ASKING:  # the answer is what is open, and there is none to take back yet
+            return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
         if self.open is not None and self.open.steps:
             return self._undo_steps(rest)
         if rest.strip():
@@ -397,18 +401,21 @@ class SessionManager:
         for state, action in result.steps:
             self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
                           m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
-        return replies + [Reply(ReplyKind.SAY, message), self._state_reply()]
+        replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
+        if result.outcome in (Outcome.SUCCESS, Outcome.FAILURE):  # "I thought I was done", or nothing fits
+            replies += self._ask_after_run()
+        return replies
 
     def cmd_stop(self, rest: str) -> list[Reply]:
         return [Reply(ReplyKind.INFO, m.NOT_RUNNING(self.lang))]
 
     def cmd_show(self, rest: str) -> list[Reply]:
+        full = normalize(rest) in _FULL_WORDS
         if self.pruned is None and self.planned is not None:
-            return [Reply(ReplyKind.TREE, tree=self.planned)]
+            return [self._tree_reply(self.planned, full)]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
-        tree = self.learning.tree if normalize(rest) in _FULL_WORDS else self.pruned
-        return [Reply(ReplyKind.TREE, tree=tree)]
+        return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
         return [self._state_reply(full=normalize(rest) in _FULL_WORDS)]
@@ -418,6 +425,7 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
         names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
+        self.topic = self.phrases.topic_in(rest)  # "start ball found", then "go to it"
         return [self._state_reply()]
 
     def _condition_names(self, text: str) -> list[str]:
@@ -529,7 +537,7 @@ class SessionManager:
             self.planned = outcome.tree
             if ask:
                 self.learning.save_generation(outcome.tree, "planned from the action definitions")
-            return [Reply(ReplyKind.SAY, m.CAN_BUILD(self.lang)), Reply(ReplyKind.TREE, tree=outcome.tree)]
+            return [Reply(ReplyKind.SAY, m.CAN_BUILD(self.lang)), self._tree_reply(outcome.tree)]
         replies = [Reply(ReplyKind.SAY, m.CANNOT_BUILD(self.lang, reason=outcome.reason))]
         return replies + (self._ask_model() if ask else [])
 
@@ -570,14 +578,12 @@ class SessionManager:
         """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
         self.topic = self.phrases.topic(tokens) or self.topic
         replies: list[Reply] = []
-        if self.open is None:
-            replies += self._flush(self.cmd_demonstrate(""))
-        assert self.open is not None
         for token in tokens:
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
-                              m.EVENT_STEP(self.lang, event=token.text))
+                demo = self._open_for_step()
+                demo.add(Step(result.before, EXTERNAL_ACTION, len(demo.steps) + 1),
+                         m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
@@ -593,10 +599,18 @@ class SessionManager:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
-            self.open.add(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1), label)
+            demo = self._open_for_step()
+            demo.add(Step(result.before, self.domain.action(token.name).id, len(demo.steps) + 1), label)
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
+
+    def _open_for_step(self) -> _OpenDemo:
+        """The open demonstration, opened when its first step has happened (a failed first step opens none)."""
+        if self.open is None:
+            self.open = _OpenDemo()
+            self._flush([Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))])
+        return self.open
 
     def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
         """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
@@ -619,6 +633,7 @@ class SessionManager:
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         self.store.write_demonstration(path, demo)
         self.open = None
+        self.topic = None  # "it" in the next demonstration is whatever it names first
         self.observer.on_demonstration(demo.name, demo, self.domain)
         self.learning.report("specialize", update, self.lang)
         return self._after_learning(ask=True, started=started, events=[DemoLearned(path.name, source)])
@@ -641,23 +656,47 @@ class SessionManager:
 
     def _maybe_ask(self, force: bool = False) -> list[Reply]:
         """Ask the best question if the budget allows; unforced, at most QUESTIONS_PER_TURN in a row."""
-        if self.budget.left <= 0 or self.pending is not None:
+        if self.pending is not None:
             return []
         if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or self._turn_questions >= QUESTIONS_PER_TURN):
             return []
         question = self.next_question()
-        if question is None:
+        return [] if question is None or not self._affordable(question.state) else self._ask(question)
+
+    def _ask_after_run(self) -> list[Reply]:
+        """A run that ended "done" with the goal unmet, or doing nothing: the situation it ended
+        in is the most useful question there is, so it is asked at once while questions are left."""
+        state = self.world.state()
+        if not self.learning.has_behaviour:  # a tree planned from action definitions: their questions come from 'model'
             return []
-        self.budget.spend()
+        if self.pending is not None or state in self.learning.asked or not self._affordable(state):
+            return []
+        return self._ask(Question(state, 1.0))
+
+    def _affordable(self, state: State) -> bool:
+        """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""
+        return self.budget.left > 0 or state_text(state) in self._charged()
+
+    def _ask(self, question: Question) -> list[Reply]:
+        """Ask ``question``: paid for once per situation, even if an undo made it open again."""
+        if state_text(question.state) not in self._charged():
+            self.budget.spend()
         self._turn_questions += 1
         self.pending = question
         self.learning.asked.add(question.state)
         self._journal(Asked(state=state_text(question.state)))
+        return [self._question_reply(question)]
+
+    def _charged(self) -> set[str]:
+        """The situations asked about so far (undone or not): each was paid for once."""
+        return {event.state for event in self.journal.events if isinstance(event, Asked) and event.state}
+
+    def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.domain, self.lang)
         self.observer.on_question(text, self.budget.left)
         options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
                              [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
-        return [Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")]
+        return Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")
 
     def next_question(self) -> Question | None:
         return self.learning.next_question(self.settings.seed)
@@ -673,6 +712,10 @@ class SessionManager:
             self.observer.on_answer(text, line, "nothing (skipped)")
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
         if key in DONE_WORDS:
+            unmet = unmet_goal(self.domain, question.state, self.lang)
+            if unmet:  # the question stays open and is not paid for again
+                return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
+                        self._question_reply(question)]
             answer: str | None = None
         else:
             tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
@@ -726,7 +769,7 @@ class SessionManager:
         summary = m.GENERATION(self.lang, generation=self.generation, nodes=size(pruned),
                                unpruned=size(self.learning.tree), path=path, reproduced=report.reproduced,
                                total=report.total)
-        replies = self._flush([Reply(ReplyKind.TREE, tree=pruned), Reply(ReplyKind.INFO, summary)])
+        replies = self._flush([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
         if ask:
             replies += self._maybe_ask()
         return replies
@@ -751,7 +794,8 @@ class SessionManager:
         self.learning.restart()
         self.model_repair, self.pending_model, self.planned = None, None, None
         # every question asked stays paid for, even when what it was about is undone
-        self.budget = QuestionBudget(self.settings.questions, sum(isinstance(e, Asked) for e in self.journal.events))
+        asked = [e for e in self.journal.events if isinstance(e, Asked)]
+        self.budget = QuestionBudget(self.settings.questions, len(self._charged()) + sum(not e.state for e in asked))
         answered = 0
         for event in effective_events(self.journal.events):
             if isinstance(event, DemoLearned):
@@ -824,6 +868,11 @@ class SessionManager:
             self.world.arrange(parse_state_text(self.journal.open_state))
         except TeachError:  # the world cannot be put back there: start from the last demonstration's end
             self.open = None
+
+    def _tree_reply(self, tree: Node, full: bool = False) -> Reply:
+        """The tree in sentences of the session's language; the symbols too for a facilitator or 'show full'."""
+        words = "" if full or self.facilitator else "\n".join(tree_lines(tree, self.domain, self.lang))
+        return Reply(ReplyKind.TREE, words, tree=tree)
 
     def _state_reply(self, full: bool = False) -> Reply:
         """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""

@@ -30,8 +30,6 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Say 'done' when the task is finished, 'help' for more.",
              "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
-RESUMED = Text("Resumed session {session}: {demos} demonstrations, {asked} questions asked, generation {generation}.",
-               "Sitzung {session} fortgesetzt: {demos} Vorführungen, {asked} Fragen gestellt, Generation {generation}.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. “{examples}”.")
 AND = Text(" and ", " und ")
@@ -43,7 +41,6 @@ NO_STEPS_YET = Text("You have not shown me any steps yet.", "Du hast mir noch ke
 NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
                     "Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'.")
 DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
-UNDONE_STEP = Text("Undone: the last step.", "Rückgängig: der letzte Schritt.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
 UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
@@ -178,7 +175,6 @@ HELP_HELP = Text("show this help", "diese Hilfe zeigen")
 HELP_DEMONSTRATE = Text("start a demonstration", "eine Vorführung beginnen")
 HELP_DONE = Text("the task is finished: learn this demonstration", "die Aufgabe ist erledigt: diese Vorführung lernen")
 HELP_CANCEL = Text("discard the open demonstration", "die Vorführung verwerfen")
-HELP_UNDO = Text("undo the last step, demonstration or answer", "letzten Schritt, Vorführung oder Antwort zurücknehmen")
 HELP_PERTURB = Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)")
 HELP_RUN = Text("let the robot do the task (N: stop after N actions)", "den Roboter die Aufgabe machen lassen")
 HELP_STOP = Text("interrupt the robot", "den Roboter anhalten")
@@ -364,3 +360,29 @@ HELP_GUIDE = Text("move the robot yourself (MuJoCo world); alone: steer it with 
 
 ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
 """The words that answer a question about action definitions (a dialogue may hold them as lines)."""
+
+# --- questions that pay, the tree in plain sentences (issue 11, job "pay") ------------------------
+NOT_DONE_THERE = Text("I would not be done there: {unmet}. What should I do there?",
+                      "Dort wäre ich nicht fertig: {unmet}. Was soll ich dort tun?")
+NO_UNDO_WHILE_ASKING = Text("Nothing to undo while I wait for your answer; say 'skip' to leave the question.",
+                            "Solange ich auf deine Antwort warte, gibt es nichts zurückzunehmen; "
+                            "sag 'weiter', um die Frage offen zu lassen.")
+TREE_WORDS_TITLE = Text("what I do", "was ich tue")
+WORDS_DONE_WHEN = Text("When {condition}, I am done.", "Ich bin fertig, sobald gilt: {condition}.")
+WORDS_OTHERWISE_FIRST_FIT = Text("Otherwise I do the first that fits:", "Sonst tue ich das Erste, was passt:")
+WORDS_FIRST_FIT = Text("I do the first that fits:", "Ich tue das Erste, was passt:")
+WORDS_OTHERWISE_NOTHING = Text("Otherwise I do nothing yet.", "Sonst tue ich noch nichts.")
+WORDS_NOTHING = Text("I do nothing yet.", "Ich tue noch nichts.")
+WORDS_BULLET = Text("  – {text}", "  – {text}")
+WORDS_IF = Text("if {condition}, {what}", "wenn gilt: {condition}, dann: {what}")
+WORDS_FIRST = Text("{what}", "{what}")
+WORDS_OTHERWISE = Text("otherwise, {what}", "sonst: {what}")
+WORDS_I_DO = Text("I {action}", "„{action}“")
+WORDS_I_AM_DONE = Text("I am done", "ich bin fertig")
+WORDS_QUOTED = Text("“{action}”", "„{action}“")
+WORDS_SOME_OF = Text("I do {actions}, in a way I cannot say simply ('show full' shows how)",
+                     "{actions}, auf eine Art, die ich nicht einfach sagen kann ('zeige ganz' zeigt sie)")
+WORDS_NOTHING_SIMPLE = Text("I check something I cannot say simply ('show full' shows it)",
+                            "ich prüfe etwas, das ich nicht einfach sagen kann ('zeige ganz' zeigt es)")
+WORDS_SOME_CHECK = Text("a check I cannot say simply holds", "eine Prüfung gilt, die ich nicht einfach sagen kann")
+WORDS_NOT = Text("not {condition}", "nicht {condition}")

@@ -43,6 +43,8 @@ class Settings:
     """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
     label_questions: int = 5
     """The cap on labelling questions about guided motion (apart from ``questions``)."""
+    facilitator: bool = False
+    """Show identifiers too: conditions by name, the symbolic tree (default: plain words)."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):

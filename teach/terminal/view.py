@@ -23,6 +23,8 @@ MODES = {"idle": m.MODE_IDLE, "demonstrating": m.MODE_DEMONSTRATING, "asking": m
 
 
 def render_reply(reply: Reply, domain: Domain, lang: str = "en") -> RenderableType:
+    if reply.kind is ReplyKind.TREE and reply.text:  # the caregiver's view: the tree in sentences
+        return Panel(Text(reply.text), title=m.TREE_WORDS_TITLE(lang), expand=False)
     if reply.kind is ReplyKind.TREE and reply.tree is not None:
         from teach.bt.render import render_tree
 

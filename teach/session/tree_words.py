@@ -1,0 +1,185 @@
+"""A behaviour tree in plain sentences: the caregiver's view of what the robot learned.
+
+A tree is read as an ordered list of rules, "the first that fits": each action with the
+checks that must hold before it is ticked (a condition in a Sequence must hold, one in a
+Fallback must not), and "I am done" where the root succeeds. Read that way, the backchained
+trees the learners build say what a teacher would say: "When the ball is in the bin, I am
+done. Otherwise: if you cannot see the ball, I find the ball; ...". Checks that earlier
+rules already rule out are left out (the order says them), and an action a Fallback tries
+once more as a last resort after the branch that does it is not said again. A part that is neither
+conditions nor Sequences and Fallbacks of them (a Parallel, an Inverter over actions) is
+named by its actions, with a pointer to ``show full``. Pure: tree, domain and language in,
+lines out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
+from teach.domain import Domain
+from teach.session import messages as m
+
+
+@dataclass(frozen=True)
+class _Check:
+    """Something the tree tests without acting: a literal, or an all/any of checks;
+    ``kind`` "opaque" for a test of a shape that has no simple words."""
+
+    kind: str  # "literal", "all", "any", "opaque"
+    name: str = ""
+    value: bool = True
+    parts: tuple[_Check, ...] = ()
+
+    def negated(self) -> _Check:
+        if self.kind == "literal":
+            return _Check("literal", self.name, not self.value)
+        if self.kind in ("all", "any"):  # De Morgan
+            return _Check("any" if self.kind == "all" else "all", parts=tuple(p.negated() for p in self.parts))
+        return self
+
+
+@dataclass(frozen=True)
+class _Rule:
+    guard: tuple[_Check, ...]
+    kind: str  # "done", "action", "opaque"
+    actions: tuple[str, ...] = ()
+    done_when: _Check | None = None
+    """For "done": what holds then (the guard is what earlier parts of the tree add to it)."""
+
+    @property
+    def condition(self) -> tuple[_Check, ...]:
+        return self.guard + ((self.done_when,) if self.done_when is not None else ())
+
+
+def tree_lines(tree: Node, domain: Domain, lang: str) -> list[str]:
+    """What the tree does, in sentences of ``lang``, one rule a line."""
+    rules = _deduplicated(_rules(tree, (), at_root=True))
+    lines: list[str] = []
+    goal = []
+    while rules and rules[0].kind == "done" and not rules[0].guard:
+        goal.append(rules.pop(0))
+    if goal:  # the checks the root's Fallback tries first
+        lines.append(m.WORDS_DONE_WHEN(lang, condition=m.OR(lang).join(
+            _check_words(rule.condition[0], domain, lang) for rule in goal)))
+    if not rules:
+        lines.append((m.WORDS_OTHERWISE_NOTHING if goal else m.WORDS_NOTHING)(lang))
+        return lines
+    lines.append((m.WORDS_OTHERWISE_FIRST_FIT if goal else m.WORDS_FIRST_FIT)(lang))
+    for number, rule in enumerate(rules):
+        what = _what(rule, domain, lang)
+        if rule.condition:
+            condition = _listed(list(dict.fromkeys(_check_words(c, domain, lang) for c in rule.condition)), lang)
+            text = m.WORDS_IF(lang, condition=condition, what=what)
+        else:
+            text = (m.WORDS_OTHERWISE if number else m.WORDS_FIRST)(lang, what=what)
+        lines.append(m.WORDS_BULLET(lang, text=text))
+    return lines
+
+
+def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
+    """The rules of ``node`` in tick order; ``at_root``: the node succeeding means the task is done."""
+    if isinstance(node, Action):
+        return [_Rule(guard, "action", (node.name,))]
+    check = _check(node)
+    if check is not None:
+        return [_Rule(guard, "done", done_when=check)] if at_root else []
+    if at_root and isinstance(node, Sequence):
+        reached = [_reached_when(child) for child in node.children]
+        if reached and all(r is not None for r in reached):  # one part after the other: done when each is
+            parts = tuple(r for r in reached if r is not None)
+            done = _Rule(guard, "done", done_when=parts[0] if len(parts) == 1 else _Check("all", parts=parts))
+            return [done] + [rule for child in node.children for rule in _rules(child, guard, at_root=False)]
+    if isinstance(node, Sequence | Fallback):
+        rules: list[_Rule] = []
+        inside = guard
+        for number, child in enumerate(node.children):
+            child_check = _check(child)
+            if isinstance(node, Fallback) and _last_resort(child, node.children[:number]):
+                continue
+            if child_check is None:
+                rules += _rules(child, inside, at_root and isinstance(node, Fallback))
+            elif isinstance(node, Sequence):
+                inside += (child_check,)
+            elif at_root:  # the task is done when it holds; later rules need not say it does not
+                rules.append(_Rule(inside, "done", done_when=child_check))
+            else:
+                inside += (child_check.negated(),)
+        return rules
+    names = tuple(dict.fromkeys(n.name for n in walk(node) if isinstance(n, Action)))
+    return [_Rule(guard, "opaque", names)]
+
+
+def _reached_when(node: Node) -> _Check | None:
+    """What holds when a Fallback that tries checks first succeeds without acting (None: not that shape)."""
+    if not isinstance(node, Fallback) or _check(node) is not None:
+        return None
+    leading = []
+    for child in node.children:
+        check = _check(child)
+        if check is None:
+            break
+        leading.append(check)
+    if not leading:
+        return None
+    return leading[0] if len(leading) == 1 else _Check("any", parts=tuple(leading))
+
+
+def _check(node: Node) -> _Check | None:
+    """``node`` as a test, or None when it acts."""
+    if any(isinstance(n, Action) for n in walk(node)):
+        return None
+    if isinstance(node, Condition):
+        return _Check("literal", node.name)
+    if isinstance(node, Inverter):
+        inner = _check(node.child)
+        return None if inner is None else inner.negated()
+    if isinstance(node, Sequence | Fallback):
+        parts = tuple(c for c in (_check(child) for child in node.children) if c is not None)
+        if len(parts) == 1:
+            return parts[0]
+        return _Check("all" if isinstance(node, Sequence) else "any", parts=parts)
+    return _Check("opaque")
+
+
+def _last_resort(child: Node, before: tuple[Node, ...]) -> bool:
+    """An action a Fallback tries again after the branch that already does it (the backchained
+    tree's "if the steps before it did not work, try it anyway"): not said twice."""
+    return isinstance(child, Action) and any(isinstance(n, Action) and n.name == child.name
+                                             for sibling in before for n in walk(sibling))
+
+
+def _deduplicated(rules: list[_Rule]) -> list[_Rule]:
+    """Each rule once (a subtree the tree repeats says the same)."""
+    return list(dict.fromkeys(rules))
+
+
+def _what(rule: _Rule, domain: Domain, lang: str) -> str:
+    if rule.kind == "done":
+        return m.WORDS_I_AM_DONE(lang)
+    labels = [_action_label(name, domain, lang) for name in rule.actions]
+    if rule.kind == "action":
+        return m.WORDS_I_DO(lang, action=labels[0])
+    if not labels:
+        return m.WORDS_NOTHING_SIMPLE(lang)
+    return m.WORDS_SOME_OF(lang, actions=m.OR(lang).join(m.WORDS_QUOTED(lang, action=a) for a in labels))
+
+
+def _listed(items: list[str], lang: str) -> str:
+    """"a, b and c"."""
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
+
+
+def _action_label(name: str, domain: Domain, lang: str) -> str:
+    return domain.action(name).label(lang) if domain.has_action(name) else name
+
+
+def _check_words(check: _Check, domain: Domain, lang: str) -> str:
+    if check.kind == "literal":
+        if domain.has_condition(check.name):
+            return domain.condition(check.name).label(lang, check.value)
+        return check.name if check.value else m.WORDS_NOT(lang, condition=check.name)
+    if check.kind == "opaque" or not check.parts:
+        return m.WORDS_SOME_CHECK(lang)
+    joiner = m.AND(lang) if check.kind == "all" else m.OR(lang)
+    return joiner.join(_check_words(part, domain, lang) for part in check.parts)

@@ -1,0 +1,72 @@
+"""The tree in plain sentences (teach/session/tree_words.py): the reference tree word for word in
+both languages, learned trees, and random trees of any shape."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hypothesis import given, settings
+from strategies import trees
+
+from teach.bt.nodes import Action, walk
+from teach.bt.xml import read_tree
+from teach.demos import read_demo_set
+from teach.learn.learner import learn_online
+from teach.session.tree_words import tree_lines
+
+BALL = Path(__file__).resolve().parent.parent / "demos" / "ball"
+
+
+def test_table_6_1_in_english_and_german(ball):
+    tree = read_tree(BALL / "reference" / "table61.xml")
+    assert tree_lines(tree, ball, "en") == [
+        "When the ball is in the bin, I am done.",
+        "Otherwise I do the first that fits:",
+        "  – if the ball is not in your hand and you cannot see the ball, I find the ball",
+        "  – if the ball is not in your hand and the ball is out of reach, I go to the ball",
+        "  – if the ball is not in your hand, I grasp the ball",
+        "  – if the bin is out of reach, I go to the bin",
+        "  – otherwise, I put the ball in the bin",
+    ]
+    assert tree_lines(tree, ball, "de") == [
+        "Ich bin fertig, sobald gilt: der Ball ist im Eimer.",
+        "Sonst tue ich das Erste, was passt:",
+        "  – wenn gilt: du hast den Ball nicht in der Hand und du siehst den Ball nicht, dann: „Ball finden“",
+        "  – wenn gilt: du hast den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
+        "dann: „zum Ball gehen“",
+        "  – wenn gilt: du hast den Ball nicht in der Hand, dann: „Ball greifen“",
+        "  – wenn gilt: der Eimer ist nicht in Reichweite, dann: „zum Eimer gehen“",
+        "  – sonst: „Ball in den Eimer legen“",
+    ]
+
+
+def test_a_learned_tree_says_its_goal_and_every_step_without_identifiers(ball):
+    domain, demos = read_demo_set(BALL / "delta4")
+    tree = learn_online(domain, demos).tree
+    for lang in ("en", "de"):
+        text = "\n".join(tree_lines(tree, ball, lang))
+        assert ball.condition("BallPlaced").label(lang) in text.splitlines()[0]
+        assert all(action.label(lang) in text for action in ball.actions)
+        assert not any(name in text for name in (*ball.condition_names, *ball.action_names))
+
+
+def test_a_tree_of_nothing_but_checks_does_nothing(ball):
+    tree = read_tree(BALL / "reference" / "table61.xml")
+    goal_only = tree.children[0]  # type: ignore[union-attr]
+    assert tree_lines(goal_only, ball, "en") == ["When the ball is in the bin, I am done.",
+                                                 "Otherwise I do nothing yet."]
+
+
+@settings(max_examples=150, deadline=None)
+@given(trees(["BallFound", "BallClose", "BallGrasped", "BinClose", "BallPlaced"],
+             ["FindBall", "ApproachBall", "GraspBall", "ApproachBin", "PlaceBall"]))
+def test_any_tree_is_said_in_words_naming_every_action(tree):
+    from teach.domain import load_domain
+
+    ball = load_domain(BALL / "domain.toml")
+    for lang in ("en", "de"):
+        lines = tree_lines(tree, ball, lang)
+        assert lines and lines == tree_lines(tree, ball, lang)  # deterministic
+        text = "\n".join(lines)
+        assert all(ball.action(n.name).label(lang) in text for n in walk(tree) if isinstance(n, Action))
+        assert not any(name in text for name in (*ball.condition_names, *ball.action_names))
