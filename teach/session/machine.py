@@ -67,7 +67,7 @@ from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.settings import Settings
 from teach.session.store import SessionStore
-from teach.world.protocol import Outcome, TeachingWorld
+from teach.world.protocol import ActResult, Outcome, TeachingWorld, WorldEvent
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion, ModelRepair
@@ -349,8 +349,11 @@ class SessionManager:
             self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
                 self.lang)))])
 
+        def heard(event: WorldEvent) -> None:
+            self._flush([self._event_reply(event)])
+
         result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
-                                stop_after=stop_after, on_action=announce)
+                                stop_after=stop_after, on_action=announce, on_event=heard)
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
@@ -366,10 +369,18 @@ class SessionManager:
         else:
             message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         # what the robot did so far and what the teacher shows next become one corrective demonstration
+        # and the world's events in the run (a slip) are external steps (-1) in it
         self.open = _OpenDemo()
-        for state, action in result.steps:
+
+        def events_after(count: int) -> None:
+            for event in (event for after, event in result.events if after == count):
+                self._add_event(event)
+
+        for number, (state, action) in enumerate(result.steps):
+            events_after(number)
             self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
                           m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
+        events_after(len(result.steps))
         return replies + [Reply(ReplyKind.SAY, message), self._state_reply()]
 
     def cmd_stop(self, rest: str) -> list[Reply]:
@@ -546,7 +557,7 @@ class SessionManager:
         if self.open is None:
             replies += self._flush(self.cmd_demonstrate(""))
         assert self.open is not None
-        for token in tokens:
+        for index, token in enumerate(tokens):
             if token.kind == "event":
                 result = self.world.perturb(token.name)
                 self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
@@ -562,6 +573,9 @@ class SessionManager:
                 if self.facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
+            if result.events:  # the world stopped it: the rest of the line no longer fits
+                replies += self._flush(self._halted(token.name, result) + self._not_done(tokens[index + 1:]))
+                break
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
@@ -570,6 +584,36 @@ class SessionManager:
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
+
+    def _halted(self, action: str, result: ActResult) -> list[Reply]:
+        """An action the world's events halted: its own part kept as a step if it changed
+        anything (else dropped: said which), then each event as an external step (-1)."""
+        assert self.open is not None
+        label = self.domain.action(action).label(self.lang)
+        if result.action_after != result.before:
+            self.open.add(Step(result.before, self.domain.action(action).id, len(self.open.steps) + 1),
+                          m.HALTED_STEP(self.lang, action=label))
+        kept = m.HALTED_KEPT if result.action_after != result.before else m.HALTED_DROPPED
+        replies = [Reply(ReplyKind.INFO, kept(self.lang, action=label))]
+        for event in result.events:
+            self._add_event(event)
+            replies.append(self._event_reply(event))
+        return replies
+
+    def _add_event(self, event: WorldEvent) -> None:
+        """An event of the world as an external step (-1) of the open demonstration."""
+        assert self.open is not None
+        self.open.add(Step(event.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
+                      m.EVENT_STEP(self.lang, event=m.Text(event.en, event.de)(self.lang)))
+
+    def _event_reply(self, event: WorldEvent) -> Reply:
+        return Reply(ReplyKind.INFO, m.EVENT(self.lang, event=m.Text(event.en, event.de)(self.lang)))
+
+    def _not_done(self, tokens: list[Token]) -> list[Reply]:
+        if not tokens:
+            return []
+        words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
+        return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
     def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
         """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""

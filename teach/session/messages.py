@@ -320,5 +320,13 @@ STDIN_IS_A_FILE = Text("standard input is a file, not a terminal: replay it with
                        "die Standardeingabe ist eine Datei, kein Terminal: spiele sie mit `teach replay DATEI` ab")
 UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an action of the domain",
                               "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
+# --- slips during a skill (issue 11: the world's events)
+HALTED_KEPT = Text("✓ {action} (stopped halfway: recorded up to there)",
+                   "✓ {action} (mittendrin angehalten: bis dahin aufgezeichnet)")
+HALTED_DROPPED = Text("✗ {action} (stopped before it changed anything: not recorded)",
+                      "✗ {action} (angehalten, bevor sich etwas geändert hat: nicht aufgezeichnet)")
+HALTED_STEP = Text("{action} (stopped halfway)", "{action} (mittendrin angehalten)")
+REST_NOT_DONE = Text("I stopped there. Not done: {actions}.", "Ich habe dort aufgehört. Nicht gemacht: {actions}.")
+
 ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
 """The words that answer a question about action definitions (a dialogue may hold them as lines)."""
