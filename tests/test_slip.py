@@ -11,8 +11,8 @@ import pytest
 
 from teach.demos import read_demo_set
 from teach.observe.reader import read_recording
-from teach.session.setup import opened_session
 from teach.session.settings import Settings, WorldKind
+from teach.session.setup import opened_session
 from teach.sim.slip import SLIP, keeps_hold
 from teach.sim.world import World
 
