@@ -9,10 +9,15 @@ from __future__ import annotations
 
 import pytest
 
+from teach.bt.nodes import Action, Condition, Fallback, Sequence
 from teach.demos import read_demo_set
 from teach.observe.reader import read_recording
+from teach.replay import replay
 from teach.session.settings import Settings, WorldKind
 from teach.session.setup import opened_session
+from teach.sim.executor import run_tree
+from teach.sim.perturb import PERTURBATIONS
+from teach.sim.skills import run_skill
 from teach.sim.slip import SLIP, keeps_hold
 from teach.sim.world import World
 
@@ -41,6 +46,25 @@ def settings(tmp_path, lang: str, name: str = "slip") -> Settings:
 def test_only_actions_whose_model_leaves_the_hold_alone_must_keep_it() -> None:
     domain = World(0).domain
     assert [keeps_hold(domain, name) for name in domain.action_names] == [True, True, False, True, False]
+
+
+def test_a_slip_in_a_run_halts_the_carry_and_is_an_external_line() -> None:
+    world = World(seed=5)
+    for action in ("FindBall", "ApproachBall", "GraspBall"):
+        run_skill(world, action)
+    PERTURBATIONS["knock_ball"].apply(world, world.rng)
+    for action in ("FindBall", "ApproachBall", "GraspBall"):
+        run_skill(world, action)
+    fetch = Fallback((Condition("BallGrasped"), Action("GraspBall")))
+    tree = Fallback((Condition("BallPlaced"), Sequence((fetch, Fallback((Condition("BinClose"), Action("ApproachBin"))),
+                                                        Action("PlaceBall")))))
+    trace = run_tree(world, tree)
+    [slip] = trace.externals
+    assert (slip.name, slip.halted, slip.halted_changed) == (SLIP, "ApproachBin", False)
+    assert not slip.after[world.domain.index("BallGrasped")]
+    demo = trace.as_demonstration(world.domain)
+    assert [step.action for step in demo.steps] == [-1, 3, 4, 5, 0]  # the carry it halted did nothing
+    assert replay(tree, world.domain, [demo]).reproduced == 1
 
 
 @pytest.mark.parametrize("lang", ["en", "de"])
