@@ -17,6 +17,7 @@ from teach.session.settings import Settings, WorldKind
 from teach.session.setup import opened_session
 from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
+from teach.sim.recorder import record
 from teach.sim.skills import run_skill
 from teach.sim.slip import SLIP, keeps_hold
 from teach.sim.world import World
@@ -65,6 +66,13 @@ def test_a_slip_in_a_run_halts_the_carry_and_is_an_external_line() -> None:
     demo = trace.as_demonstration(world.domain)
     assert [step.action for step in demo.steps] == [-1, 3, 4, 5, 0]  # the carry it halted did nothing
     assert replay(tree, world.domain, [demo]).reproduced == 1
+
+
+def test_a_recorded_carry_that_slips_is_an_external_line() -> None:
+    script = ["FindBall", "ApproachBall", "GraspBall", "knock_ball", "FindBall", "ApproachBall", "GraspBall",
+              "ApproachBin", "GraspBall", "ApproachBin", "PlaceBall"]
+    demo = record(World(seed=5), script)
+    assert [";".join([*("01"[v] for v in step.state), str(step.action)]) for step in demo.steps] == DEMONSTRATION
 
 
 @pytest.mark.parametrize("lang", ["en", "de"])
