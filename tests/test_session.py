@@ -191,8 +191,7 @@ def test_undo_never_refunds_a_question(ball, tmp_path):
     teach_two_demonstrations(session)
     assert session.pending is not None and session.budget.left == 0
     session.handle("skip")
-    session.handle("undo")  # takes back the skipped question's answer, not its price
-    session.handle("undo")  # and the demonstration it was about
+    session.handle("undo")  # takes back the demonstration the skipped question was about, not its price
     assert session.pending is None and session.budget.left == 0 and len(session.demos) == 1
     session.handle("start BallFound")
     session.handle(SECOND)

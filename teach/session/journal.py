@@ -136,11 +136,17 @@ def effective_events(events: list[Event]) -> list[Event]:
     kept: list[Event] = []
     for event in events:
         if isinstance(event, Undone):
+            while kept and _skipped(kept[-1]):
+                kept.pop()  # a skipped question taught nothing: an undo takes back what did teach
             if kept:
                 kept.pop()
         elif isinstance(event, LEARNING_EVENTS):
             kept.append(event)
     return kept
+
+
+def _skipped(event: Event) -> bool:
+    return isinstance(event, Answered | ModelAnswered) and event.answer == "skip"
 
 
 @dataclass

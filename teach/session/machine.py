@@ -70,7 +70,7 @@ from teach.session.replies import Reply, ReplyKind
 from teach.session.settings import Settings
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
-from teach.world.protocol import Outcome, TeachingWorld
+from teach.world.protocol import ActResult, Outcome, TeachingWorld, WorldEvent
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion, ModelRepair
@@ -331,11 +331,23 @@ class SessionManager:
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
+        before = effective_events(self.journal.events)
         self._journal(Undone())
+        after = {id(event) for event in effective_events(self.journal.events)}
+        taken_back = [event for event in before if id(event) not in after and not _skip_answer(event)]
         self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
-        head = self._flush([Reply(ReplyKind.INFO, m.UNDONE_LEARNING(self.lang))])
+        head = self._flush([Reply(ReplyKind.INFO, self._undone_text(taken_back))])
         return head + self._after_learning(ask=False)
+
+    def _undone_text(self, taken_back: list[Event]) -> str:
+        """What an undo took back, in words: the demonstration's number or the question answered."""
+        event = taken_back[-1] if taken_back else None
+        if isinstance(event, DemoLearned):
+            return m.UNDONE_DEMONSTRATION(self.lang, name=Path(event.file).stem)
+        if isinstance(event, Answered):
+            return m.UNDONE_ANSWER(self.lang, question=event.question)
+        return m.UNDONE_LEARNING(self.lang)
 
     def _undo_steps(self, rest: str) -> list[Reply]:
         """Take back steps N.. of the open demonstration (the last one without N): the world goes
@@ -380,8 +392,11 @@ class SessionManager:
             self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
                 self.lang)))])
 
+        def heard(event: WorldEvent) -> None:
+            self._flush([self._event_reply(event)])
+
         result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
-                                stop_after=stop_after, on_action=announce)
+                                stop_after=stop_after, on_action=announce, on_event=heard)
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
@@ -397,10 +412,18 @@ class SessionManager:
         else:
             message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         # what the robot did so far and what the teacher shows next become one corrective demonstration
+        # and the world's events in the run (a slip) are external steps (-1) in it
         self.open = _OpenDemo()
-        for state, action in result.steps:
+
+        def events_after(count: int) -> None:
+            for event in (event for after, event in result.events if after == count):
+                self._add_event(event)
+
+        for number, (state, action) in enumerate(result.steps):
+            events_after(number)
             self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
                           m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
+        events_after(len(result.steps))
         replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
         if result.outcome in (Outcome.SUCCESS, Outcome.FAILURE):  # "I thought I was done", or nothing fits
             replies += self._ask_after_run()
@@ -578,7 +601,7 @@ class SessionManager:
         """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
         self.topic = self.phrases.topic(tokens) or self.topic
         replies: list[Reply] = []
-        for token in tokens:
+        for index, token in enumerate(tokens):
             if token.kind == "event":
                 result = self.world.perturb(token.name)
                 demo = self._open_for_step()
@@ -594,6 +617,9 @@ class SessionManager:
                                                                   reason=self._why_not(token.name, result.before))))
                 if self.facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
+                break
+            if result.events:  # the world stopped it: the rest of the line no longer fits
+                replies += self._flush(self._halted(token.name, result) + self._not_done(tokens[index + 1:]))
                 break
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
@@ -611,6 +637,36 @@ class SessionManager:
             self.open = _OpenDemo()
             self._flush([Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))])
         return self.open
+
+    def _halted(self, action: str, result: ActResult) -> list[Reply]:
+        """An action the world's events halted: its own part kept as a step if it changed
+        anything (else dropped: said which), then each event as an external step (-1)."""
+        label = self.domain.action(action).label(self.lang)
+        if result.action_after != result.before:
+            demo = self._open_for_step()
+            demo.add(Step(result.before, self.domain.action(action).id, len(demo.steps) + 1),
+                     m.HALTED_STEP(self.lang, action=label))
+        kept = m.HALTED_KEPT if result.action_after != result.before else m.HALTED_DROPPED
+        replies = [Reply(ReplyKind.INFO, kept(self.lang, action=label))]
+        for event in result.events:
+            self._add_event(event)
+            replies.append(self._event_reply(event))
+        return replies
+
+    def _add_event(self, event: WorldEvent) -> None:
+        """An event of the world as an external step (-1) of the open demonstration."""
+        demo = self._open_for_step()
+        demo.add(Step(event.before, EXTERNAL_ACTION, len(demo.steps) + 1),
+                 m.EVENT_STEP(self.lang, event=m.Text(event.en, event.de)(self.lang)))
+
+    def _event_reply(self, event: WorldEvent) -> Reply:
+        return Reply(ReplyKind.INFO, m.EVENT(self.lang, event=m.Text(event.en, event.de)(self.lang)))
+
+    def _not_done(self, tokens: list[Token]) -> list[Reply]:
+        if not tokens:
+            return []
+        words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
+        return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
     def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
         """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
@@ -923,6 +979,10 @@ _OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME
                   Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
 _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+
+
+def _skip_answer(event: Event) -> bool:
+    return isinstance(event, Answered) and event.answer == "skip"
 
 
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:

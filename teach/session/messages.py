@@ -43,6 +43,9 @@ NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say
 DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
 UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
+UNDONE_DEMONSTRATION = Text("Undone: demonstration {name} (set aside, not learned).",
+                            "Rückgängig: Vorführung {name} (beiseitegelegt, nicht gelernt).")
+UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: deine Antwort auf „{question}“.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
 COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
@@ -357,6 +360,13 @@ USAGE_GUIDE = Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
                    "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]")
 HELP_GUIDE = Text("move the robot yourself (MuJoCo world); alone: steer it with the keys",
                   "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken")
+# --- slips during a skill (issue 11: the world's events)
+HALTED_KEPT = Text("✓ {action} (stopped halfway: recorded up to there)",
+                   "✓ {action} (mittendrin angehalten: bis dahin aufgezeichnet)")
+HALTED_DROPPED = Text("✗ {action} (stopped before it changed anything: not recorded)",
+                      "✗ {action} (angehalten, bevor sich etwas geändert hat: nicht aufgezeichnet)")
+HALTED_STEP = Text("{action} (stopped halfway)", "{action} (mittendrin angehalten)")
+REST_NOT_DONE = Text("I stopped there. Not done: {actions}.", "Ich habe dort aufgehört. Nicht gemacht: {actions}.")
 
 ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, WORD_YES, WORD_NO, WORD_EITHER)
 """The words that answer a question about action definitions (a dialogue may hold them as lines)."""

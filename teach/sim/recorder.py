@@ -2,7 +2,7 @@
 
 Every guided action runs its skill to completion; the symbolic state before and after is read
 from physics, so a demonstration says what really happened (an approach that leaves the bin
-behind shows BinClose dropping). Perturbations become external-action lines (-1). ``done``
+behind shows BinClose dropping). Perturbations and slips become external-action lines (-1). ``done``
 adds the goal line (action 0) when the domain's goal holds in the final state; otherwise the
 demonstration ends with its last action, as the CSV format has no line for a state after it.
 """
@@ -21,6 +21,7 @@ from teach.fsutil import atomic_write_text
 from teach.observe.hook import Observer
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
+from teach.sim.slip import SLIP, SlipWatch, let_fall
 from teach.sim.world import DOMAIN_FILE, World
 
 
@@ -48,11 +49,24 @@ class Recorder:
             self.steps.pop()  # a finished run continued by the teacher: the goal line comes last
 
     def step(self, action: str) -> RecordedStep:
-        """Run the skill for ``action`` (a name or phrase) and record (state, action, next state)."""
+        """Run the skill for ``action`` (a name or phrase) and record (state, action, next state).
+
+        A slip halts the skill (``teach.sim.slip``): its line is kept if it changed anything,
+        then the slip's external line (-1) follows, and that is the step returned."""
         definition = self.domain.action(resolve_action(self.domain, action))
         before = self.world.state()
-        status = run_skill(self.world, definition.name, self.observer, frames=self.frames)
-        return self._note(before, definition.id, definition.name, status)
+        watch = SlipWatch(self.world, definition.name)
+        status = run_skill(self.world, definition.name, self.observer, frames=self.frames,
+                           halt_when=lambda: watch.check() is not None)
+        held = watch.lost()
+        if held is None:
+            return self._note(before, definition.id, definition.name, status)
+        if held != before:
+            self.steps.append(Step(before, definition.id, len(self.steps) + 1))
+        if self.observer is not None:
+            self.observer.on_external(SLIP)
+        let_fall(self.world, lambda: self.frames(None))
+        return self._note(held, EXTERNAL_ACTION, SLIP, None)
 
     def perturb(self, name: str) -> RecordedStep:
         """Apply a perturbation and record it as an external action (-1)."""

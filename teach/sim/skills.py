@@ -348,8 +348,12 @@ class FrameClock:
 
 
 def run_skill(world: World, name: str, observer: Observer | None = None, max_seconds: float = 60.0,
-              frames: Callable[[str | None], None] | None = None) -> Status:
-    """Run the skill for action ``name`` to completion (or FAILURE after ``max_seconds``)."""
+              frames: Callable[[str | None], None] | None = None,
+              halt_when: Callable[[], bool] | None = None) -> Status:
+    """Run the skill for action ``name`` to completion (or FAILURE after ``max_seconds``).
+
+    ``halt_when`` is asked after every control period; when it says so the skill is halted
+    where it is and RUNNING returned: it did not finish, something else stopped it."""
     skill = skill_for(name)(world)
     report = frames or FrameClock(world, observer)
     deadline = world.sim_time + max_seconds
@@ -360,5 +364,8 @@ def run_skill(world: World, name: str, observer: Observer | None = None, max_sec
             skill.halt()
             return FAILURE
         status = skill.tick()
+        if status is RUNNING and halt_when is not None and halt_when():
+            skill.halt()
+            return RUNNING
     report(name)
     return status

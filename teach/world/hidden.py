@@ -49,7 +49,7 @@ from teach.domain import Domain, Literal, State
 from teach.errors import DomainError, FormatError
 from teach.fsutil import read_text
 from teach.observe.hook import Observer
-from teach.world.protocol import ActResult, RunResult
+from teach.world.protocol import ActResult, RunResult, WorldEvent
 from teach.world.symbolic import SymbolicWorld
 
 WORLD_FILE = "world.toml"
@@ -459,14 +459,16 @@ class HiddenStateWorld(SymbolicWorld):
         return ActResult(True, before, self._state, event)
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> HiddenRunResult:
-        """``SymbolicWorld.run``; after every action each event may happen (``events_in_runs``)."""
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
+            on_event: Callable[[WorldEvent], None] | None = None) -> HiddenRunResult:
+        """``SymbolicWorld.run``; after every action each event may happen (``events_in_runs``),
+        reported in ``external`` (not through ``on_event``)."""
         log = self._run = _RunLog()
         try:
-            plain = super().run(tree, max_actions, interrupt, stop_after, on_action)
+            plain = super().run(tree, max_actions, interrupt, stop_after, on_action, on_event)
         finally:
             self._run = None
-        return HiddenRunResult(plain.outcome, plain.steps, plain.final_state, log.external)
+        return HiddenRunResult(plain.outcome, plain.steps, plain.final_state, external=log.external)
 
     def _random_events(self, log: _RunLog) -> None:
         """Each event in file order happens with its probability when its ``pre`` holds."""

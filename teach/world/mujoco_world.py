@@ -16,13 +16,14 @@ from teach.display import has_display
 from teach.domain import Domain, State
 from teach.errors import TeachError
 from teach.observe.hook import Observer
-from teach.sim.executor import run_tree
+from teach.sim.executor import External, run_tree
 from teach.sim.guide import Guide, Sample
 from teach.sim.guided_skill import GuidedMotion, guided_skill
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, register, run_skill
+from teach.sim.slip import SLIP, SLIP_DE, SLIP_EN, SlipWatch, let_fall
 from teach.sim.world import World
-from teach.world.protocol import ActResult, Outcome, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
@@ -99,8 +100,17 @@ class MujocoWorld:
         self.frames(None)
 
     def act(self, action: str) -> ActResult:
+        """Run the skill; a slip halts it and comes back as the result's event."""
         before = self.world.state()
-        status = run_skill(self.world, action, self.observer, frames=self.frames)
+        watch = SlipWatch(self.world, action)
+        status = run_skill(self.world, action, self.observer, frames=self.frames,
+                           halt_when=lambda: watch.check() is not None)
+        held = watch.lost()
+        if held is not None:
+            self.observer.on_external(SLIP)
+            after = let_fall(self.world, lambda: self.frames(None))
+            slip = WorldEvent(SLIP, held, after, SLIP_EN, SLIP_DE, action, held != before)
+            return ActResult(True, before, after, f"halted: {SLIP_EN}", (slip,))
         after = self.world.state()
         if status is Status.SUCCESS:
             return ActResult(True, before, after)
@@ -113,22 +123,32 @@ class MujocoWorld:
         return ActResult(True, before, self.world.state())
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
+            on_event: Callable[[WorldEvent], None] | None = None) -> RunResult:
         limit = _RunLimit(on_action, stop_after)
 
         def stop() -> bool:
             return (interrupt is not None and interrupt()) or limit.reached()
 
+        def heard(external: External) -> None:
+            if on_event is not None:
+                on_event(_world_event(external))
+
         trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
-                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame)
-        ticks = zip(trace.states, trace.actions, trace.started, strict=True)
-        steps = [(state, action) for state, action, fresh in ticks
-                 if fresh and action is not None]
-        if stop_after is not None and trace.outcome is Outcome.INTERRUPTED:
-            steps = steps[:stop_after]
-        if trace.outcome is Outcome.INTERRUPTED and steps and steps[-1][0] == self.world.state():
-            steps.pop()  # stopped before it changed anything: the teacher's next step replaces it
-        return RunResult(trace.outcome, steps, self.world.state())
+                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame,
+                         on_external=heard)
+        result = RunResult(trace.outcome, final_state=self.world.state())
+        # nothing from the action that reached the 'run N' limit: it was stopped as it started
+        for entry in trace.entries(stop_after if trace.outcome is Outcome.INTERRUPTED else None):
+            if isinstance(entry, External):
+                result.events.append((len(result.steps), _world_event(entry)))
+            else:
+                result.steps.append(entry)
+        last = result.steps[-1] if result.steps else None
+        if trace.outcome is Outcome.INTERRUPTED and last is not None and last[0] == result.final_state \
+                and not any(after == len(result.steps) for after, _ in result.events):
+            result.steps.pop()  # stopped before it changed anything: the teacher's next step replaces it
+        return result
 
     def close(self) -> None:
         self.world.close()
@@ -147,3 +167,14 @@ class MujocoWorld:
     def adopt_domain(self, domain: Domain) -> None:
         """The session's domain grew an action taught by guidance (the conditions are the same)."""
         self.domain = self.world.domain = domain
+
+
+def _world_event(external: External) -> WorldEvent:
+    """An external action of a run in the session's terms (a perturbation's words are its phrases)."""
+    if external.name == SLIP:
+        en, de = SLIP_EN, SLIP_DE
+    else:
+        perturbation = PERTURBATIONS[external.name]
+        en, de = perturbation.en[0], perturbation.de[0]
+    return WorldEvent(external.name, external.before, external.after, en, de, external.halted,
+                      external.halted_changed)

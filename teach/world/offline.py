@@ -6,7 +6,7 @@ from collections.abc import Callable
 
 from teach.bt.nodes import Node
 from teach.domain import Domain, State
-from teach.world.protocol import ActResult, Outcome, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
 
 
 class OfflineWorld:
@@ -35,7 +35,8 @@ class OfflineWorld:
         return ActResult(False, self._state, self._state, "this session has no world to act in")
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
+            on_event: Callable[[WorldEvent], None] | None = None) -> RunResult:
         return RunResult(Outcome.FAILURE, [], self._state)
 
     def close(self) -> None:

@@ -9,18 +9,40 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Protocol
+from typing import NamedTuple, Protocol
 
 from teach.bt.nodes import Node
 from teach.domain import Domain, State
 
 
+class WorldEvent(NamedTuple):
+    """Something the world did on its own (an external action, -1): a ball slipping out of the
+    gripper in the middle of a skill. The world reports it to its observer when it happens."""
+
+    name: str
+    before: State
+    after: State
+    en: str  # what happened, in the teacher's words
+    de: str
+    halted: str | None = None  # the robot's action it stopped
+    halted_changed: bool = False  # whether that action had changed the state before it stopped
+
+
 @dataclass(frozen=True)
 class ActResult:
+    """One action: the state before it and after it; ``events`` happened in the middle of it,
+    in order (the first one halted the action: the action's own part ends at its ``before``)."""
+
     ok: bool
     before: State
     after: State
     message: str = ""
+    events: tuple[WorldEvent, ...] = ()
+
+    @property
+    def action_after(self) -> State:
+        """The state the action itself led to, before any event of the world."""
+        return self.events[0].before if self.events else self.after
 
 
 class Outcome(StrEnum):
@@ -34,11 +56,13 @@ class Outcome(StrEnum):
 
 @dataclass
 class RunResult:
-    """A run of the learned tree: outcome and the (state, action) steps it executed."""
+    """A run of the learned tree: outcome and the (state, action) steps it executed; ``events``
+    happened on their own, each after that many of the steps."""
 
     outcome: Outcome
     steps: list[tuple[State, str]] = field(default_factory=list)
     final_state: State = ()
+    events: list[tuple[int, WorldEvent]] = field(default_factory=list)
 
 
 class TeachingWorld(Protocol):
@@ -59,7 +83,9 @@ class TeachingWorld(Protocol):
     def perturb(self, event: str) -> ActResult: ...
 
     def run(self, tree: Node, max_actions: int, interrupt: Callable[[], bool] | None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
-        """Tick ``tree`` until it finishes; ``on_action`` hears of every action as it starts."""
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
+            on_event: Callable[[WorldEvent], None] | None = None) -> RunResult:
+        """Tick ``tree`` until it finishes; ``on_action`` hears of every action as it starts,
+        ``on_event`` of every event of the world as it happens."""
 
     def close(self) -> None: ...

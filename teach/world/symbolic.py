@@ -12,7 +12,7 @@ from teach.domain import Domain
 from teach.observe.hook import Observer
 from teach.symbolic import apply_action, assign, missing_preconditions
 from teach.world.offline import OfflineWorld
-from teach.world.protocol import ActResult, Outcome, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
 
 
 class SymbolicWorld(OfflineWorld):
@@ -51,7 +51,8 @@ class SymbolicWorld(OfflineWorld):
         return ActResult(True, before, self._state, f"{self.domain.conditions[index].name} changed")
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
-            stop_after: int | None = None, on_action: Callable[[str], None] | None = None) -> RunResult:
+            stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
+            on_event: Callable[[WorldEvent], None] | None = None) -> RunResult:
         names = self.domain.condition_names
         result = RunResult(Outcome.TIMEOUT)
         for _ in range(max_actions):
