@@ -349,8 +349,10 @@ class SessionManager:
             self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
                 self.lang)))])
 
+        self.observer.on_run_start(tree)
         result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
                                 stop_after=stop_after, on_action=announce)
+        self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]

@@ -108,6 +108,9 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
 
             recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
             observer.observers.append(recorder)
+            from teach.observe.btlog_writer import BtlogRecorder
+
+            observer.observers.append(BtlogRecorder(store.run_dir))
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
         else:
