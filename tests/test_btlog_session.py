@@ -21,6 +21,7 @@ from teach.observe.btlog_writer import SYMBOLIC_TICK_US, BtlogRecorder, next_run
 from teach.observe.hook import Observer, Observers
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
+from teach.world.protocol import TeachingWorld
 from teach.world.symbolic import SymbolicWorld
 
 WHOLE_TASK = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
@@ -63,12 +64,11 @@ def _session(tmp_path: Path, world: WorldKind) -> tuple[SessionManager, RunColle
     recorder = BtlogRecorder(tmp_path / "runs", wall_clock=lambda: START_US)
     observer = Observers(recorder, collector)
     settings = Settings("t", world=world, seed=3, base=tmp_path, record=False)
+    world_: TeachingWorld = SymbolicWorld(domain, 3, observer)
     if world is WorldKind.MUJOCO:
         from teach.world.mujoco_world import MujocoWorld
 
         world_ = MujocoWorld(domain, 3, observer)
-    else:
-        world_ = SymbolicWorld(domain, 3, observer)
     return SessionManager(settings, domain, world_, observer), collector, recorder
 
 

@@ -33,6 +33,7 @@ class QuestionRecord:
     answer: str | None = None
     change: str | None = None
     step: int | None = None
+    answer_step: int | None = None
 
 
 @dataclass(frozen=True)
@@ -364,5 +365,6 @@ def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int
             contents.questions.append(match)
         else:
             open_questions.remove(match)
+        match.answer_step = step
         match.answer = _one(row, "answer", str)
         match.change = _one(row, "change", str)
