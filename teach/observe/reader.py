@@ -149,8 +149,10 @@ def read_recording(path: str | Path) -> RecordingContents:
     path = Path(path)
     try:
         info = os.stat(path)
-    except OSError:
+    except FileNotFoundError:
         raise FormatError("no such recording file", path) from None
+    except OSError as exc:
+        raise FormatError(f"cannot read recording: {exc.strerror}", path) from None
     if not stat.S_ISREG(info.st_mode):
         raise FormatError("is not a regular file, not a recording", path)
     try:
