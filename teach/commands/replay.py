@@ -36,6 +36,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     oracle.add_argument("--oracle-model", type=Path, metavar="DOMAIN.toml",
                         help="answer questions from this true action model")
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
+    parser.add_argument("--groot", type=int, nargs="?", const=1667, metavar="PORT",
+                        help="run trees through BehaviorTree.CPP, watched live by Groot2 on PORT (default 1667)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
@@ -68,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
-        base=args.base, record=not args.no_record)
+        base=args.base, record=not args.no_record, groot=args.groot)
     domain = session_domain(settings)
     if not args.lenient:
         check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)

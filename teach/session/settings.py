@@ -41,6 +41,8 @@ class Settings:
     viewer: bool = False
     pace: float = 0.0
     """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
+    groot: int | None = None
+    """Run trees through BehaviorTree.CPP with a Groot2 publisher on this port (None: our own tick)."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):

@@ -11,7 +11,7 @@ import time
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
-from teach.bt.tick import TickResult
+from teach.bt.tick import TickResult, tick
 from teach.display import has_display
 from teach.domain import Domain, State
 from teach.errors import TeachError
@@ -20,7 +20,7 @@ from teach.sim.executor import run_tree
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
 from teach.sim.world import World
-from teach.world.protocol import ActResult, Outcome, RunResult
+from teach.world.protocol import ActResult, Outcome, RunResult, Ticker
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
@@ -70,6 +70,7 @@ class MujocoWorld:
         self.world = World(seed, domain)
         self.domain = self.world.domain
         self.observer = observer or Observer()
+        self.ticker: Ticker = tick
         self._frame_steps: list[Callable[[], None]] = []  # after each scene frame: pace, redraw
         if pace > 0:
             self._frame_steps.append(_Pacer(self.world, pace))
@@ -118,7 +119,8 @@ class MujocoWorld:
             return (interrupt is not None and interrupt()) or limit.reached()
 
         trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
-                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame)
+                         tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame,
+                         ticker=self.ticker)
         ticks = zip(trace.states, trace.actions, trace.started, strict=True)
         steps = [(state, action) for state, action, fresh in ticks
                  if fresh and action is not None]

@@ -11,7 +11,8 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Protocol
 
-from teach.bt.nodes import Node
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import TickResult
 from teach.domain import Domain, State
 
 
@@ -41,8 +42,13 @@ class RunResult:
     final_state: State = ()
 
 
+Ticker = Callable[[Node, Callable[[str], bool] | Mapping[str, bool], Callable[[str], Status]], TickResult]
+"""What ticks a tree once: ``teach.bt.tick.tick``, or BehaviorTree.CPP (``teach.bt.groot``)."""
+
+
 class TeachingWorld(Protocol):
     domain: Domain
+    ticker: Ticker
 
     @property
     def events(self) -> Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]:
