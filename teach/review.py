@@ -1,23 +1,68 @@
 """A recorded session as a rich summary: what was demonstrated, asked, learned and replayed.
 
 Pure functions over ``teach.observe.reader.RecordingContents`` (which ``read_recording`` reads
-back with rerun), so the terminal prints them and tests compare their text.
+back with rerun) and the session's runs as ``.btlog`` files (``RunRecord``, read with
+``read_runs``), so the terminal prints them and tests compare their text.
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
 
 from rich.console import Group, RenderableType
 from rich.panel import Panel
 from rich.table import Table
 from rich.text import Text
+from rich.tree import Tree
 
-from teach.bt.render import render_tree
+from teach.bt.btcpp_status import BtStatus
+from teach.bt.btlog import read_btlog
+from teach.bt.nodes import Action, Status, walk
+from teach.bt.render import STYLES, render_tree
 from teach.bt.xml import tree_from_xml
-from teach.observe.reader import DemoRecord, RecordingContents
+from teach.errors import TeachError
+from teach.observe.btlog_writer import run_logs
+from teach.observe.reader import DemoRecord, GraphRecord, QuestionRecord, RecordingContents
 
 
-def summary(contents: RecordingContents) -> Group:
-    """Everything a researcher reviews, in session order within each section."""
+@dataclass(frozen=True)
+class RunRecord:
+    """One run of the learned tree as its ``.btlog`` file tells it."""
+
+    path: Path
+    outcome: str
+    """"success" or "failure" (the root finished so), "stopped" (halted while running)."""
+    actions: tuple[str, ...]
+    """The actions started, in order."""
+    seconds: float
+    changes: int
+
+
+def read_runs(recording: Path) -> list[RunRecord]:
+    """The runs the session wrote beside ``recording`` (``recordings/<session>/run-NNN.btlog``)."""
+    return [_run(path) for path in run_logs(recording.parent / recording.stem)]
+
+
+def _run(path: Path) -> RunRecord:
+    log = read_btlog(path)
+    nodes = list(walk(tree_from_xml(log.xml, path)))
+    actions = {uid for uid, node in enumerate(nodes, 1) if isinstance(node, Action)}
+    outcome = "stopped"
+    started = []
+    for transition in log.transitions:
+        if transition.uid == 1 and transition.status in (BtStatus.SUCCESS, BtStatus.FAILURE):
+            outcome = transition.status.name.lower()
+        elif transition.uid in actions and transition.status is BtStatus.RUNNING:
+            started.append(log.names[transition.uid])
+    seconds = log.transitions[-1].time_us / 1e6 if log.transitions else 0.0
+    return RunRecord(path, outcome, tuple(started), seconds, len(log.transitions))
+
+
+def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: int | None = None) -> Group:
+    """Everything a researcher reviews, in session order within each section; with ``step``,
+    also the tree at that step coloured by each node's status there."""
     parts: list[RenderableType] = [_header(contents)]
     parts += [Text("\nDemonstrations", style="bold underline")]
     parts += [_demonstration(d, contents.conditions) for d in contents.demonstrations] or [Text("  none")]
@@ -27,8 +72,12 @@ def summary(contents: RecordingContents) -> Group:
         parts += [Text("\nLearner events", style="bold underline"), _learner_events(contents)]
     if contents.ticks:
         parts += [Text("\nTicks", style="bold underline"), _ticks(contents)]
+    if step is not None:
+        parts += [Text(f"\nTree at step {step}", style="bold underline"), step_tree(contents, step)]
+    parts += [Text("\nRuns (.btlog files for Groot2)", style="bold underline"), _runs(runs)]
     parts += [Text("\nFinal tree", style="bold underline"), _final_tree(contents)]
     parts += [Text("\nReplay", style="bold underline"), _replay(contents)]
+    parts += [Text("\nStudy figures", style="bold underline"), study_figures(contents, runs)]
     return Group(*parts)
 
 
@@ -127,3 +176,126 @@ def _replay(contents: RecordingContents) -> RenderableType:
     mode = "lenient" if last.lenient else "strict"
     history = " → ".join(f"{r.reproduced}/{r.total}" for r in contents.replays)
     return Text(f"  reproduced {last.reproduced}/{last.total} demonstrations ({mode}); over the session: {history}")
+
+
+# --- the tree at one step ---------------------------------------------------------------------
+
+_STATUS_STYLES = {status.name: style for status, style in STYLES.items()}
+_RUNNING_ACTION = "bold black on yellow"
+
+
+def session_steps(contents: RecordingContents) -> list[int]:
+    """Every step something was logged at, in order."""
+    steps = {line.step for line in contents.dialogue} | {t.step for t in contents.ticks} | \
+        {g.step for g in contents.generations}
+    return sorted(s for s in steps if s is not None)
+
+
+def step_tree(contents: RecordingContents, step: int) -> RenderableType:
+    """The tree at ``step`` as the viewer's graph shows it, each node coloured by its status in
+    the step's last tick (success green, failure red, running yellow, not ticked dim; the
+    running action highlighted); labels as the session logged them, in its language."""
+    steps = session_steps(contents)
+    if not steps or not steps[0] <= step <= steps[-1]:
+        shown = f"{steps[0]}–{steps[-1]}" if steps else "none"
+        raise TeachError(f"--step {step} is outside the recording (its steps: {shown})", contents.path)
+    ticked = [i for i, tick in enumerate(contents.ticks) if tick.step == step]
+    if ticked:
+        tick = contents.ticks[ticked[-1]]
+        graph_at = contents.tick_graphs[ticked[-1]]
+        statuses = {node: status for node, (_, status) in zip(tick.nodes, tick.trace, strict=True)}
+        note = Text(f"  last of {len(ticked)} tick{'s' if len(ticked) != 1 else ''} at step {step}: "
+                    f"root {tick.status}" + (f", running {tick.action}" if tick.action else ""))
+    else:
+        earlier = [i for i, g in enumerate(contents.graphs) if g.step is not None and g.step <= step]
+        graph_at = earlier[-1] if earlier else -1
+        statuses, tick = {}, None
+        note = Text(f"  no tick at step {step}: the tree as it stood, nothing ticked", style="dim")
+    if graph_at < 0:
+        return Text(f"  no tree yet at step {step}", style="dim")
+    running = tick.action if tick is not None else None
+    return Group(note, _graph_tree(contents.graphs[graph_at], statuses, running), _legend())
+
+
+def _graph_tree(graph: GraphRecord, statuses: dict[int, str], running: str | None) -> Tree:
+    kids: dict[int, list[int]] = {}
+    parents: set[int] = set()
+    for parent, child in graph.edges:
+        kids.setdefault(parent, []).append(child)
+        parents.add(child)
+    root = next((i for i in range(len(graph.labels)) if i not in parents), 0)
+
+    def line(node: int) -> Text:
+        status = statuses.get(node)
+        if status == Status.RUNNING.name and node not in kids and graph.labels[node] == running:
+            return Text(f" {graph.labels[node]} ", style=_RUNNING_ACTION)
+        return Text(graph.labels[node], style=_STATUS_STYLES.get(status or "", "dim"))
+
+    top = Tree(line(root), guide_style="bright_black")
+    stack, seen = [(root, top)], {root}
+    while stack:  # each node's children are added in order when it is reached; no cycle is followed
+        node, into = stack.pop()
+        for kid in kids.get(node, []):
+            if kid not in seen:
+                seen.add(kid)
+                stack.append((kid, into.add(line(kid))))
+    return top
+
+
+def _legend() -> Text:
+    return Text.assemble("  ", ("success", "green"), " · ", ("failure", "red"), " · ", ("running", "yellow"),
+                         " · ", ("not ticked", "dim"), " · ", (" running action ", _RUNNING_ACTION))
+
+
+# --- runs and study figures -------------------------------------------------------------------
+
+def _runs(runs: Sequence[RunRecord]) -> RenderableType:
+    if not runs:
+        return Text("  no run was written")
+    table = Table(box=None, padding=(0, 2), header_style="dim")
+    for column in ("file", "outcome", "sim s", "changes", "actions started"):
+        table.add_column(column)
+    for run in runs:
+        style = {"success": "green", "failure": "red"}.get(run.outcome, "yellow")
+        table.add_row(f"{run.path.parent.name}/{run.path.name}", Text(run.outcome, style=style),
+                      f"{run.seconds:.1f}", str(run.changes),
+                      " → ".join(run.actions) or "—")
+    return table
+
+
+def _question_effect(contents: RecordingContents, question: QuestionRecord) -> str:
+    """Whether the answer gave the tree a new shape: the generation saved at the answer's step
+    compared with the one before it."""
+    if question.answer is None:
+        return "unanswered"
+    made = [i for i, g in enumerate(contents.generations) if question.answer_step is not None
+            and g.step == question.answer_step]
+    if not made:
+        return "no new generation"
+    new = contents.generations[made[-1]]
+    old = contents.generations[made[0] - 1] if made[0] > 0 else None
+    if old is not None and old.xml == new.xml:
+        return f"tree unchanged (generation {new.generation}, {new.nodes} nodes)"
+    before = f"{old.nodes} → " if old is not None else ""
+    return f"generation {new.generation}: {before}{new.nodes} nodes"
+
+
+def study_figures(contents: RecordingContents, runs: Sequence[RunRecord] = ()) -> RenderableType:
+    """What a study leader asks afterwards: how the tree grew and how much of what was shown it
+    reproduces, generation by generation; which question changed what; how the runs ended."""
+    table = Table(box=None, padding=(0, 2), header_style="dim", title_justify="left")
+    for column in ("generation", "step", "nodes", "reproduced", "share"):
+        table.add_column(column, justify="right")
+    for g in contents.generations:
+        replay = next((r for r in reversed(contents.replays) if r.step == g.step), None)
+        share = f"{100 * replay.reproduced / replay.total:.0f}%" if replay is not None and replay.total else ""
+        table.add_row(str(g.generation), "" if g.step is None else str(g.step), str(g.nodes),
+                      f"{replay.reproduced}/{replay.total}" if replay is not None else "", share)
+    lines: list[RenderableType] = [table if contents.generations else Text("  no tree generation")]
+    for number, q in enumerate(contents.questions, 1):
+        lines.append(Text(f"  question {number}: {q.change or q.answer or '—'} → {_question_effect(contents, q)}"))
+    if runs:
+        counts = {outcome: sum(r.outcome == outcome for r in runs) for outcome in ("success", "failure", "stopped")}
+        lines.append(Text(f"  runs: {len(runs)} — " + ", ".join(f"{n} {o}" for o, n in counts.items() if n)
+                          + f"; over time: {' '.join(r.outcome for r in runs)}"))
+    return Group(*lines)

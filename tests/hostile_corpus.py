@@ -5,17 +5,22 @@
 Every entry must be refused by every command that reads its kind with one line
 ``teach: FILE[:LINE]: what is wrong`` and exit status 2 (tests/test_hostile_corpus.py runs them).
 Kinds: ``tree``, ``domain``, ``csv`` (one bad file in an otherwise good set), ``set`` (a whole
-demonstration folder), ``dialogue``; ``output`` cases are paths a command must refuse to write.
+demonstration folder), ``dialogue``, ``recording`` (rerun files with values missing or of the
+wrong type, written by rerun itself); ``output`` cases are paths a command must refuse to write.
 Special files (FIFOs, sockets, devices, symlinks, folders, missing files) are made by
 ``materialise``; nothing here knows the ball task beyond using its files as the good inputs.
 """
 
 from __future__ import annotations
 
+import functools
+import json
 import os
 import random
 import socket
+import subprocess
 import sys
+import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -372,6 +377,92 @@ def dialogues() -> list[Hostile]:
     return entries + _special("dialogue")
 
 
+# --- recordings ---------------------------------------------------------------------------------
+
+Row = tuple[str, dict[str, list[object]]]
+"""One logged row: the entity and its plain fields (each a list, as the session's writer logs them)."""
+
+LINE = {"speaker": ["robot"], "text": ["hi"], "question": [""], "answer": [""], "change": [""]}
+MISSING: dict[str, Row] = {
+    "replay-without-reproduced": ("learner/replay", {"total": [3], "lenient": [False]}),
+    "replay-with-two-values": ("learner/replay", {"reproduced": [1, 2], "total": [3], "lenient": [False]}),
+    "generation-without-xml": ("learner/generations", {"generation": [1], "reason": ["r"], "nodes": [5]}),
+    "dialogue-without-kind": ("dialogue", {**LINE, "budget_left": [-1]}),
+    "dialogue-without-budget": ("dialogue", {**LINE, "kind": ["line"]}),
+    "answer-without-change": ("dialogue", {**LINE, "kind": ["answer"], "budget_left": [-1], "change": []}),
+    "demo-without-csv": ("demos", {"name": ["d"], "states": ["00"], "step_labels": ["goal"], "reached_goal": [True]}),
+    "demo-states-and-labels-differ": ("demos", {"name": ["d"], "states": ["00", "01"], "step_labels": ["goal"],
+                                                "reached_goal": [True], "csv": ["0;0;0\n"]}),
+    "tick-without-generation": ("tree/graph", {"status": ["RUNNING"], "action": ["A"]}),
+    "tick-without-action": ("tree/graph", {"status": ["RUNNING"], "generation": [0]}),
+    "tick-trace-lengths-differ": ("tree/graph", {"status": ["RUNNING"], "action": [""], "generation": [0],
+                                                 "trace_nodes": [0, 1], "trace_labels": ["a"],
+                                                 "trace_status": ["SUCCESS"]}),
+    "tick-trace-without-status": ("tree/graph", {"status": ["RUNNING"], "action": [""], "generation": [0],
+                                                 "trace_nodes": [0], "trace_labels": ["a"]}),
+    "state-without-action": ("state", {"conditions": ["A"], "values": [True]}),
+    "state-values-missing-one": ("state", {"conditions": ["A", "B"], "values": [True], "action": [""]}),
+    "external-without-name": ("state/external", {"level": ["EXTERNAL"]}),
+    "learner-event-without-detail": ("learner/events", {"event": ["e"]}),
+    "domain-without-name": ("domain", {"conditions": ["A"], "actions": ["B"]}),
+}
+"""Rows with a field missing, or lists that do not fit together (all present fields well typed)."""
+
+WRONG: dict[str, Row] = {
+    "replay-reproduced-is-text": ("learner/replay", {"reproduced": ["many"], "total": [3], "lenient": [False]}),
+    "generation-nodes-is-text": ("learner/generations", {"generation": [1], "reason": ["r"], "nodes": ["many"],
+                                                         "xml": ["<root/>"]}),
+    "dialogue-budget-is-text": ("dialogue", {**LINE, "kind": ["line"], "budget_left": ["two"]}),
+    "demo-reached-goal-is-text": ("demos", {"name": ["d"], "states": ["00"], "step_labels": ["goal"],
+                                            "reached_goal": ["yes"], "csv": ["x"]}),
+    "state-values-are-numbers": ("state", {"conditions": ["A"], "values": [0.5], "action": [""]}),
+    "tick-status-is-a-number": ("tree/graph", {"status": [3], "action": [""], "generation": [0]}),
+    "external-is-a-number": ("state/external", {"external": [7]}),
+    "learner-removed-are-numbers": ("learner/events", {"event": ["e"], "detail": ["d"], "removed": [1, 2]}),
+    "domain-actions-are-numbers": ("domain", {"name": ["n"], "conditions": ["A"], "actions": [1, 2]}),
+}
+"""Rows with one field of another type than the session's writer logs. rerun fixes a field's type
+the first time a process logs it, so these are written in a process of their own, and no field
+appears here with two types."""
+
+_WRITE_RECORDINGS = """
+import json, sys
+import rerun as rr
+from teach.observe.layout import APPLICATION_ID
+folder, cases = sys.argv[1], json.loads(sys.argv[2])
+for name, (entity, fields) in cases.items():
+    app = "other-application" if name == "another-application" else APPLICATION_ID
+    rec = rr.RecordingStream(app, recording_id=name)
+    rec.save(f"{folder}/{name}.rrd")
+    rec.set_time("step", sequence=3)
+    parts = [rr.AnyValues(**fields)] if fields else [rr.TextLog("no fields")]
+    rec.log(entity, *parts, static=entity == "domain")
+    rec.flush()
+    rec.disconnect()
+"""
+
+
+def _written(cases: dict[str, Row]) -> dict[str, bytes]:
+    """Each case as a one-row recording, written by rerun in a fresh process."""
+    with tempfile.TemporaryDirectory() as folder:
+        done = subprocess.run([sys.executable, "-c", _WRITE_RECORDINGS, folder, json.dumps(cases)], check=True,
+                              cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, capture_output=True, timeout=300)
+        if b"Inconsistent with previous type" in done.stderr:  # a field given two types: rerun dropped one
+            raise RuntimeError(done.stderr.decode(errors="replace"))
+        return {name: (Path(folder) / f"{name}.rrd").read_bytes() for name in cases}
+
+
+@functools.cache
+def recordings() -> list[Hostile]:
+    written = _written({**MISSING, "good": ("learner/replay", {"reproduced": [1], "total": [1], "lenient": [False]}),
+                        "another-application": ("learner/replay", {"total": [1]})})
+    written.update(_written(WRONG))
+    good = written.pop("good")
+    written.update({"empty": b"", "not-rerun": b"RRF2" + bytes(random.Random(13).randrange(256) for _ in range(400)),
+                    "truncated": good[:len(good) // 2], "text": b"this is not a recording\n"})
+    return [Hostile("recording", name, content) for name, content in written.items()] + _special("recording")
+
+
 # --- special files, the same for every kind -----------------------------------------------------
 
 SPECIALS = ("fifo", "folder", "socket", "missing", "symlink-loop", "symlink-to-fifo", "dangling-symlink",
@@ -404,7 +495,7 @@ def materialise(entry: Hostile, folder: Path) -> str:
     return str(path.relative_to(folder))
 
 
-_SUFFIX = {"tree": "xml", "domain": "toml", "csv": "csv", "dialogue": "dialogue"}
+_SUFFIX = {"tree": "xml", "domain": "toml", "csv": "csv", "dialogue": "dialogue", "recording": "rrd"}
 
 
 def _make_special(special: str, path: Path, folder: Path) -> str:
@@ -551,7 +642,7 @@ def outputs(tree: str, demo_set: str) -> list[OutputCase]:
 
 
 def corpus() -> list[Hostile]:
-    return trees() + domains() + csvs() + sets() + dialogues()
+    return trees() + domains() + csvs() + sets() + dialogues() + recordings()
 
 
 def main(argv: list[str]) -> int:

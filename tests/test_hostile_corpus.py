@@ -50,6 +50,7 @@ READERS = {
                  ("replay", "{P}", "--world", "offline", "--no-record", "--oracle", "{TREE}")],
 }
 READERS["set"] = READERS["csv"]
+READERS["recording"] = [("review", "{P}"), ("review", "{P}", "--step", "3")]
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 from conftest import BALL_DOMAIN
 from rich.console import Console
+from rich.text import Text
 from test_log import record_session
 
 from teach.cli import main
@@ -94,3 +95,91 @@ def test_a_recording_with_wrong_value_types_is_one_line(tmp_path: Path, capsys: 
     assert main(["review", str(path)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and err.startswith(f"teach: {path}: ") and "reproduced is 'many', not int" in err
+
+
+# --- the tree at a step, the runs and the study figures -------------------------------------------
+
+def _styles(renderable: object) -> dict[str, set[str]]:
+    """Every label of a rich tree with the styles it is drawn in."""
+    from rich.tree import Tree
+
+    found: dict[str, set[str]] = {}
+    stack = [renderable]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, Tree):
+            label = item.label
+            assert isinstance(label, Text)
+            found.setdefault(label.plain.strip(), set()).add(str(label.style))
+            stack.extend(item.children)
+        elif hasattr(item, "renderables"):
+            stack.extend(item.renderables)
+    return found
+
+
+def test_the_tree_at_a_step_is_coloured_by_each_nodes_status_there(recording: Path) -> None:
+    from teach.review import step_tree
+
+    contents = read_recording(recording)
+    last = contents.ticks[-1]
+    assert last.action == "ApproachBall" and last.step is not None
+    styles = _styles(step_tree(contents, last.step))
+    assert styles["ApproachBall"] == {"bold black on yellow"}  # the running action
+    assert styles["(BallFound)"] == {"green"} and styles["(BallClose)"] == {"red"}
+    assert styles["→"] == {"yellow"} and styles["?"] == {"green", "yellow", "dim"}
+    assert styles["PlaceBall"] == styles["(BallPlaced)"] == {"dim"}  # not ticked
+    # the first tick, on generation 0's tree: it finds the ball
+    first = contents.ticks[0]
+    assert first.step is not None
+    early = _styles(step_tree(contents, first.step))
+    assert early["FindBall"] == {"bold black on yellow"} and early["(BallFound)"] == {"red"}
+    assert "ApproachBall" in early and early["ApproachBall"] == {"dim"}
+
+
+def test_a_step_without_ticks_shows_the_tree_as_it_stood(recording: Path) -> None:
+    from teach.review import step_tree
+
+    contents = read_recording(recording)
+    text = _plain(step_tree(contents, 1))
+    assert "no tick at step 1" in text and "FindBall" in text and "PlaceBall" not in text
+
+
+def _plain(renderable: object) -> str:
+    console = Console(record=True, width=160, color_system=None)
+    console.print(renderable)
+    return console.export_text()
+
+
+def test_cli_step_outside_the_recording_is_one_line(recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["review", str(recording), "--step", "999"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.count("\n") == 1
+    assert "--step 999 is outside the recording (its steps: 0–12)" in captured.err
+
+
+def test_cli_step_shows_the_tree_there(recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["review", str(recording), "--step", "12"]) == 0
+    out = capsys.readouterr().out
+    assert "Tree at step 12" in out and "last of 1 tick at step 12: root RUNNING, running ApproachBall" in out
+
+
+def test_study_figures_give_share_and_size_per_generation_and_what_each_answer_did(recording: Path) -> None:
+    text = _text(recording)
+    figures = text[text.index("Study figures"):]
+    rows = [line.split() for line in figures.splitlines()[2:] if line.strip()[:1].isdigit()]
+    # generation, step, nodes, reproduced, share: generation 0 came before any replay
+    assert rows[0][:3] == ["0", "0", "5"] and rows[-1] == ["2", "12", "16", "2/2", "100%"]
+    assert "question 1: kept (BallGrasped) → no new generation" in figures
+    assert "question 2: no → tree unchanged (generation 2, 16 nodes)" in figures
+
+
+def test_a_damaged_run_log_beside_the_recording_is_one_line(recording: Path, tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    copy = tmp_path / "copy.rrd"
+    copy.write_bytes(recording.read_bytes())
+    (tmp_path / "copy").mkdir()
+    (tmp_path / "copy" / "run-001.btlog").write_bytes(b"BTCPP4-FileLogger2\x01")
+    assert main(["review", str(copy)]) == 2
+    captured = capsys.readouterr()
+    bad = tmp_path / "copy" / "run-001.btlog"
+    assert captured.out == "" and captured.err == f"teach: {bad}: the log ends inside its header\n"

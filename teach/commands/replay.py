@@ -38,6 +38,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     oracle.add_argument("--oracle-model", type=Path, metavar="DOMAIN.toml",
                         help="answer questions from this true action model")
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
+    parser.add_argument("--groot", type=int, nargs="?", const=1667, metavar="PORT",
+                        help="run trees through BehaviorTree.CPP, watched live by Groot2 on PORT (default 1667)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
@@ -73,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record, label_questions=args.label_questions,
-        facilitator=args.facilitator)
+        facilitator=args.facilitator, groot=args.groot)
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)

@@ -3,9 +3,12 @@
 Example:
     teach review recordings/quickstart.rrd
     teach review recordings/quickstart.rrd --open
+    teach review recordings/quickstart.rrd --step 12
 
 Prints the demonstrations (action sequences with their states), the questions with their
-answers, each tree generation with its node count, the final tree and the replay result.
+answers, each tree generation with its node count, the runs (their .btlog files beside the
+recording, for Groot2), the final tree, the replay result and the study figures; ``--step N``
+adds the tree at step N coloured by each node's status there.
 """
 
 from __future__ import annotations
@@ -21,6 +24,13 @@ ORDER = 12
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("recording", type=Path, help="a recording written by a session (recordings/*.rrd)")
     parser.add_argument("--open", action="store_true", help="also start the rerun viewer on it (needs a display)")
+    parser.add_argument("--step", type=_step, metavar="N", help="also show the tree at step N, coloured by status")
+
+
+def _step(text: str) -> int:
+    if not text.isdecimal() or not text.isascii():
+        raise argparse.ArgumentTypeError(f"{text!r} is not a step number (0, 1, 2, ...)")
+    return int(text)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -28,10 +38,11 @@ def run(args: argparse.Namespace) -> int:
 
     from teach.observe.reader import read_recording
     from teach.observe.viewer import open_viewer
-    from teach.review import summary
+    from teach.review import read_runs, summary
 
     contents = read_recording(args.recording)
-    Console().print(summary(contents))
+    shown = summary(contents, read_runs(args.recording), args.step)  # all checked before anything is printed
+    Console().print(shown)
     if args.open:
         open_viewer(args.recording)
     return 0

@@ -39,6 +39,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=0, help="random seed of the world")
     parser.add_argument("--spawn", action="store_true", help="also stream to a live rerun viewer")
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
+    parser.add_argument("--groot", type=int, nargs="?", const=1667, metavar="PORT",
+                        help="run trees through BehaviorTree.CPP, watched live by Groot2 on PORT (default 1667)")
     parser.add_argument("--viewer", action="store_true", help="show the MuJoCo viewer (needs a display)")
     parser.add_argument("--pace", type=float, default=1.0,
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
@@ -64,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
-                        facilitator=args.facilitator)
+                        facilitator=args.facilitator, groot=args.groot)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)

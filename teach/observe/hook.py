@@ -32,6 +32,12 @@ class Observer:
     def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         """A new tree generation (``reason`` says what produced it)."""
 
+    def on_run_start(self, tree: Node) -> None:
+        """A run of the learned tree ``tree`` begins (its ticks follow)."""
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        """The run ended with ``outcome`` (an ``Outcome`` value) after ``actions`` actions."""
+
     def on_tick(self, tree: Node, result: TickResult) -> None:
         """One tick: root status, running action, and the statuses of visited nodes."""
 
@@ -90,6 +96,14 @@ class Observers(Observer):
     def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         for o in self.observers:
             o.on_tree(generation, tree, xml, reason)
+
+    def on_run_start(self, tree: Node) -> None:
+        for o in self.observers:
+            o.on_run_start(tree)
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        for o in self.observers:
+            o.on_run_end(outcome, actions)
 
     def on_tick(self, tree: Node, result: TickResult) -> None:
         for o in self.observers:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import stat
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -31,6 +33,7 @@ class QuestionRecord:
     answer: str | None = None
     change: str | None = None
     step: int | None = None
+    answer_step: int | None = None
 
 
 @dataclass(frozen=True)
@@ -51,6 +54,17 @@ class TickRecord:
     action: str | None
     trace: tuple[tuple[str, str], ...]
     """(node label, status) in the order the tick finished them (post-order)."""
+    nodes: tuple[int, ...] = ()
+    """The graph's node index of each ``trace`` entry (pre-order positions in the ticked tree)."""
+
+
+@dataclass(frozen=True)
+class GraphRecord:
+    """The tree graph as the viewer draws it: node labels and (parent, child) index pairs."""
+
+    step: int | None
+    labels: tuple[str, ...]
+    edges: tuple[tuple[int, int], ...]
 
 
 @dataclass(frozen=True)
@@ -105,6 +119,10 @@ class RecordingContents:
     learner_events: list[LearnerRecord] = field(default_factory=list)
     replays: list[ReplayRecord] = field(default_factory=list)
     ticks: list[TickRecord] = field(default_factory=list)
+    graphs: list[GraphRecord] = field(default_factory=list)
+    """Every tree graph logged, in order (a new one whenever the ticked tree changed)."""
+    tick_graphs: list[int] = field(default_factory=list)
+    """For each tick, the index in ``graphs`` of the graph it was drawn on (-1: none yet)."""
     states: list[StateRecord] = field(default_factory=list)
     dialogue: list[DialogueRecord] = field(default_factory=list)
     externals: list[tuple[int | None, str]] = field(default_factory=list)
@@ -124,12 +142,19 @@ _FRAME_ENTITIES = tuple("/" + e for e in SHAPE_ENTITIES.values())
 
 
 def read_recording(path: str | Path) -> RecordingContents:
-    """Read a ``teach`` recording back with rerun's own reader; damage is a one-line ``FormatError``."""
+    """Read a ``teach`` recording back with rerun's own reader; damage, and any value missing or of
+    the wrong type, is a one-line ``FormatError``: ``FILE: entity at step N: what is wrong``."""
     from rerun.chunk import RrdReader
 
     path = Path(path)
-    if not path.is_file():
-        raise FormatError("no such recording file", path)
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        raise FormatError("no such recording file", path) from None
+    except OSError as exc:
+        raise FormatError(f"cannot read recording: {exc.strerror}", path) from None
+    if not stat.S_ISREG(info.st_mode):
+        raise FormatError("is not a regular file, not a recording", path)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -155,7 +180,7 @@ def read_recording(path: str | Path) -> RecordingContents:
         entity = chunk.entity_path
         if entity in _FRAME_ENTITIES:
             frame_rows = _rows(chunk, ("step", "sim_time"))
-            frames.update((row["step"], row.get("sim_time")) for _rid, _e, row in frame_rows)
+            frames.update((row.get("step"), row.get("sim_time")) for _rid, _e, row in frame_rows)
             rows.extend(frame_rows)
         elif entity == "/camera/image":
             contents.camera_frames += chunk.num_rows
@@ -163,10 +188,7 @@ def read_recording(path: str | Path) -> RecordingContents:
             rows.extend(_rows(chunk))
     contents.scene_frames = len(frames)
     rows.sort(key=lambda row: row[0])
-    try:
-        _fill(contents, rows)
-    except _WrongValue as wrong:
-        raise FormatError(f"damaged rerun recording: {wrong}", path) from None
+    _fill(contents, rows)
     return contents
 
 
@@ -184,37 +206,54 @@ def _rows(chunk: Any, only: tuple[str, ...] | None = None) -> list[tuple[bytes, 
 
 
 class _WrongValue(ValueError):
-    """A recorded value of the wrong type (turned into a one-line ``FormatError`` by the reader)."""
+    """A recorded value missing or of the wrong type (``_fill`` names the file, entity and step)."""
 
 
 Kind = type | tuple[type, ...]
 
 
+def _shown(value: Any) -> str:
+    return repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+
+
 def _typed(value: Any, kind: Kind, name: str) -> Any:
     """``value`` when it has the ``kind`` the writer logs (a bool is not an integer)."""
     kinds = kind if isinstance(kind, tuple) else (kind,)
-    if isinstance(value, bool) and bool not in kinds:
-        raise _WrongValue(f"{name} is {value!r}, not {' or '.join(k.__name__ for k in kinds)}")
-    if not isinstance(value, kinds):
-        shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
-        raise _WrongValue(f"{name} is {shown}, not {' or '.join(k.__name__ for k in kinds)}")
+    if (isinstance(value, bool) and bool not in kinds) or not isinstance(value, kinds):
+        raise _WrongValue(f"{name} is {_shown(value)}, not {' or '.join(k.__name__ for k in kinds)}")
     return value
 
 
-def _one(row: Mapping[str, Any], name: str, default: Any, kind: Kind) -> Any:
-    value = row.get(name)
+def _one(row: Mapping[str, Any], name: str, kind: Kind) -> Any:
+    """A field the writer always logs, as one value (rerun keeps it as a list of one)."""
+    if name not in row or row[name] is None:
+        raise _WrongValue(f"{name} is missing")
+    value = row[name]
     if isinstance(value, list):
-        value = value[0] if value else None
-    return default if value is None else _typed(value, kind, name)
+        if len(value) != 1:
+            raise _WrongValue(f"{name} has {len(value)} values, not one")
+        value = value[0]
+        if value is None:
+            raise _WrongValue(f"{name} is missing")
+    return _typed(value, kind, name)
 
 
-def _many(row: Mapping[str, Any], name: str, kind: Kind) -> list[Any]:
+def _many(row: Mapping[str, Any], name: str, kind: Kind, optional: bool = False) -> list[Any]:
+    """A list field; ``optional`` ones the writer leaves out when empty."""
     value = row.get(name)
     if value is None:
-        return []
+        if optional:
+            return []
+        raise _WrongValue(f"{name} is missing")
     if not isinstance(value, list):
-        raise _WrongValue(f"{name} is {value!r}, not a list")
+        raise _WrongValue(f"{name} is {_shown(value)}, not a list")
     return [_typed(item, kind, name) for item in value]
+
+
+def _same_length(names: tuple[str, ...], *lists: list[Any]) -> None:
+    if len({len(values) for values in lists}) > 1:
+        counts = ", ".join(f"{len(values)} {name}" for name, values in zip(names, lists, strict=True))
+        raise _WrongValue(f"{' and '.join(names)} differ in length ({counts})")
 
 
 def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, Any]]]) -> None:
@@ -222,61 +261,105 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
     open_questions: list[QuestionRecord] = []
     for _rid, entity, row in rows:
         step = row.get("step")
-        if step is not None:
-            _typed(step, int, f"{entity} step")
-        if step is None and entity != "/domain":
-            continue  # static display settings
-        if step is not None and len(first) < 8 and (not first or first[-1] != entity):
-            first.append(entity)
-        if entity == "/domain" and "conditions" in row:
-            contents.domain_name = _one(row, "name", None, str)
-            contents.conditions = tuple(_many(row, "conditions", str))
-            contents.actions = tuple(_many(row, "actions", str))
-            contents.goal = tuple(_many(row, "goal", str))
-        elif entity == "/learner/generations":
-            contents.generations.append(GenerationRecord(_one(row, "generation", -1, int), _one(row, "reason", "", str),
-                                                         _one(row, "nodes", 0, int), _one(row, "xml", "", str), step))
-        elif entity == "/learner/events":
-            contents.learner_events.append(LearnerRecord(_one(row, "event", "", str), _one(row, "detail", "", str),
-                                                         tuple(_many(row, "removed", str)), step))
-        elif entity == "/learner/replay":
-            contents.replays.append(ReplayRecord(_one(row, "reproduced", 0, int), _one(row, "total", 0, int),
-                                                 _one(row, "lenient", False, bool), step))
-        elif entity == "/tree/graph" and "status" in row:
-            trace = tuple(zip(_many(row, "trace_labels", str), _many(row, "trace_status", str), strict=False))
-            contents.ticks.append(TickRecord(step, row.get("sim_time"), _one(row, "generation", -1, int),
-                                             _one(row, "status", "", str), _one(row, "action", None, str) or None,
-                                             trace))
-        elif entity == "/state":
-            state = dict(zip(_many(row, "conditions", str), map(bool, _many(row, "values", (bool, int))), strict=False))
-            action = _one(row, "action", None, str) or None
-            contents.states.append(StateRecord(step, row.get("sim_time"), state, action))
-        elif entity == "/state/external":
-            contents.externals.append((step, _one(row, "external", "", str)))
-        elif entity == "/demos":
-            states = tuple(tuple(c == "1" for c in s) for s in _many(row, "states", str))
-            contents.demonstrations.append(DemoRecord(_one(row, "name", "", str), states,
-                                                      tuple(_many(row, "step_labels", str)),
-                                                      _one(row, "reached_goal", False, bool),
-                                                      _one(row, "csv", "", str), step))
-        elif entity == "/dialogue":
-            _dialogue_row(contents, row, step, open_questions)
+        try:
+            if step is not None:
+                _typed(step, int, "step")
+            if step is None and entity != "/domain":
+                continue  # static display settings
+            if step is not None and len(first) < 8 and (not first or first[-1] != entity):
+                first.append(entity)
+            _fill_row(contents, entity, row, step, open_questions)
+        except _WrongValue as wrong:
+            where = "(static)" if step is None else f"at step {step}" if isinstance(step, int) else "at a step"
+            raise FormatError(f"{entity.lstrip('/')} {where}: {wrong}", contents.path) from None
     contents.first_entities = tuple(first)
+
+
+def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], step: int | None,
+              open_questions: list[QuestionRecord]) -> None:
+    sim_time = row.get("sim_time")
+    if sim_time is not None:
+        _typed(sim_time, float, "sim_time")
+    if entity == "/domain" and "conditions" in row:
+        contents.domain_name = _one(row, "name", str)
+        contents.conditions = tuple(_many(row, "conditions", str))
+        contents.actions = tuple(_many(row, "actions", str))
+        contents.goal = tuple(_many(row, "goal", str, optional=True))
+    elif entity == "/learner/generations":
+        contents.generations.append(GenerationRecord(_one(row, "generation", int), _one(row, "reason", str),
+                                                     _one(row, "nodes", int), _one(row, "xml", str), step))
+    elif entity == "/learner/events":
+        contents.learner_events.append(LearnerRecord(_one(row, "event", str), _one(row, "detail", str),
+                                                     tuple(_many(row, "removed", str, optional=True)), step))
+    elif entity == "/learner/replay":
+        contents.replays.append(ReplayRecord(_one(row, "reproduced", int), _one(row, "total", int),
+                                             _one(row, "lenient", bool), step))
+    elif entity == "/tree/graph" and "status" in row:
+        _tick_row(contents, row, step, sim_time)
+    elif entity == "/tree/graph" and "GraphNodes:labels" in row:
+        _graph_row(contents, row, step)
+    elif entity == "/state":
+        names = _many(row, "conditions", str, optional=True)
+        values = _many(row, "values", bool, optional=True)
+        _same_length(("conditions", "values"), names, values)
+        contents.states.append(StateRecord(step, sim_time, dict(zip(names, values, strict=True)),
+                                           _one(row, "action", str) or None))
+    elif entity == "/state/external":
+        contents.externals.append((step, _one(row, "external", str)))
+    elif entity == "/demos":
+        states = tuple(tuple(c == "1" for c in s) for s in _many(row, "states", str))
+        labels = tuple(_many(row, "step_labels", str))
+        _same_length(("states", "step_labels"), list(states), list(labels))
+        contents.demonstrations.append(DemoRecord(_one(row, "name", str), states, labels,
+                                                  _one(row, "reached_goal", bool), _one(row, "csv", str), step))
+    elif entity == "/dialogue":
+        _dialogue_row(contents, row, step, open_questions)
+
+
+_TRACE = ("trace_nodes", "trace_labels", "trace_status")
+
+
+def _tick_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None, sim_time: float | None) -> None:
+    traced = [name for name in _TRACE if row.get(name) is not None]
+    if traced and len(traced) < len(_TRACE):
+        raise _WrongValue(f"{next(n for n in _TRACE if n not in traced)} is missing beside {traced[0]}")
+    nodes = _many(row, "trace_nodes", int, optional=True)
+    labels = _many(row, "trace_labels", str, optional=True)
+    statuses = _many(row, "trace_status", str, optional=True)
+    _same_length(_TRACE, nodes, labels, statuses)
+    contents.ticks.append(TickRecord(step, sim_time, _one(row, "generation", int), _one(row, "status", str),
+                                     _one(row, "action", str) or None, tuple(zip(labels, statuses, strict=True)),
+                                     tuple(nodes)))
+    contents.tick_graphs.append(len(contents.graphs) - 1)
+
+
+def _graph_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None) -> None:
+    labels = _many(row, "GraphNodes:labels", str)
+    ids = _many(row, "GraphNodes:node_ids", str)
+    _same_length(("node labels", "node ids"), labels, ids)
+    index = {node: i for i, node in enumerate(ids)}
+    edges = []
+    for edge in _many(row, "GraphEdges:edges", dict, optional=True):
+        ends = (edge.get("first"), edge.get("second"))
+        if not all(isinstance(end, str) and end in index for end in ends):
+            raise _WrongValue(f"an edge joins {_shown(ends)}, not two of the graph's nodes")
+        edges.append((index[ends[0]], index[ends[1]]))
+    contents.graphs.append(GraphRecord(step, tuple(labels), tuple(edges)))
 
 
 def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None,
                   open_questions: list[QuestionRecord]) -> None:
-    kind = _one(row, "kind", "line", str)
-    budget = _one(row, "budget_left", -1, int)
-    text = _one(row, "text", "", str)
-    contents.dialogue.append(DialogueRecord(kind, _one(row, "speaker", "", str), text,
-                                            None if budget is None or budget < 0 else budget, step))
+    kind = _one(row, "kind", str)
+    budget = _one(row, "budget_left", int)
+    text = _one(row, "text", str)
+    contents.dialogue.append(DialogueRecord(kind, _one(row, "speaker", str), text,
+                                            None if budget < 0 else budget, step))
     if kind == "question":
         record = QuestionRecord(text, budget, step=step)
         contents.questions.append(record)
         open_questions.append(record)
     elif kind == "answer":
-        asked = _one(row, "question", "", str)
+        asked = _one(row, "question", str)
         match = next((q for q in reversed(open_questions) if q.question == asked),
                      open_questions[-1] if open_questions else None)
         if match is None:  # an answer to a question the recording did not see: keep it anyway
@@ -284,5 +367,6 @@ def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int
             contents.questions.append(match)
         else:
             open_questions.remove(match)
-        match.answer = _one(row, "answer", "", str)
-        match.change = _one(row, "change", "", str)
+        match.answer_step = step
+        match.answer = _one(row, "answer", str)
+        match.change = _one(row, "change", str)

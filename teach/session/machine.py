@@ -395,8 +395,10 @@ class SessionManager:
         def heard(event: WorldEvent) -> None:
             self._flush([self._event_reply(event)])
 
+        self.observer.on_run_start(tree)
         result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
                                 stop_after=stop_after, on_action=announce, on_event=heard)
+        self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]

@@ -45,6 +45,8 @@ class Settings:
     """The cap on labelling questions about guided motion (apart from ``questions``)."""
     facilitator: bool = False
     """Show identifiers too: conditions by name, the symbolic tree (default: plain words)."""
+    groot: int | None = None
+    """Run trees through BehaviorTree.CPP with a Groot2 publisher on this port (None: our own tick)."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):

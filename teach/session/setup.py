@@ -101,6 +101,11 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
     missing = store.folders_missing()
     observer = Observers()
     world = make_world(settings, domain, observer)
+    if settings.groot is not None:
+        from teach.bt.groot import GrootTicker
+
+        world.ticker = groot = GrootTicker(settings.groot)
+        observer.observers.append(groot)
     recorder = None
     try:
         if store.recording is not None:
@@ -108,6 +113,9 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
 
             recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
             observer.observers.append(recorder)
+            from teach.observe.btlog_writer import BtlogRecorder
+
+            observer.observers.append(BtlogRecorder(store.run_dir))
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
         else:

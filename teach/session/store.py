@@ -29,6 +29,7 @@ class SessionStore:
         self.tree_dir = base / "trees" / session
         self.journal_path = base / "recordings" / f"{session}.journal.json"
         self.recording = base / "recordings" / f"{session}.rrd" if record else None
+        self.run_dir = base / "recordings" / session  # run-NNN.btlog, each run for Groot2
 
     def prepare(self, domain: Domain) -> None:
         """Create the session's folders; keep a copy of the domain beside its demonstrations."""
@@ -40,7 +41,7 @@ class SessionStore:
     def clear(self) -> None:
         """Forget an earlier session of the same name (a replay starts afresh; only called once
         everything the new session needs has been read and checked)."""
-        for stale in (self.demo_dir, self.tree_dir):
+        for stale in (self.demo_dir, self.tree_dir, self.run_dir):
             shutil.rmtree(stale, ignore_errors=True)
         self.journal_path.unlink(missing_ok=True)
 

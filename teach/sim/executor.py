@@ -28,7 +28,7 @@ from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, Skill, skill_for
 from teach.sim.slip import SLIP, SlipWatch, let_fall
 from teach.sim.world import CONTROL_STEPS, World
-from teach.world.protocol import Outcome
+from teach.world.protocol import Outcome, Ticker
 
 
 @dataclass(frozen=True, slots=True)
@@ -104,7 +104,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
              tick_hz: float = 10.0, interrupt: Callable[[], bool] | None = None,
              perturbations: Mapping[int, str] | None = None, after_tick: Callable[[TickResult], None] | None = None,
              on_frame: Callable[[], None] | None = None,
-             on_external: Callable[[External], None] | None = None) -> RunTrace:
+             on_external: Callable[[External], None] | None = None, ticker: Ticker = tick) -> RunTrace:
     """Tick ``tree`` in ``world`` until it finishes, ``max_ticks`` pass, or ``interrupt()`` is true.
 
     ``perturbations`` maps a tick number to a perturbation name applied just before that tick.
@@ -178,7 +178,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
         slipped(number, at_tick=True)
         state, conditions, start = world.state(), world.conditions(), world.sim_time
         fresh[0] = False
-        result = tick(tree, conditions, action_status)
+        result = ticker(tree, conditions, action_status)
         trace.states.append(state)
         trace.actions.append(result.action)
         trace.statuses.append(result.status)

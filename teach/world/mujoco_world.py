@@ -11,7 +11,7 @@ import time
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
-from teach.bt.tick import TickResult
+from teach.bt.tick import TickResult, tick
 from teach.display import has_display
 from teach.domain import Domain, State
 from teach.errors import TeachError
@@ -23,7 +23,7 @@ from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, register, run_skill
 from teach.sim.slip import SLIP, SLIP_DE, SLIP_EN, SlipWatch, let_fall
 from teach.sim.world import World
-from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
+from teach.world.protocol import ActResult, Outcome, RunResult, Ticker, WorldEvent
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
@@ -73,6 +73,7 @@ class MujocoWorld:
         self.world = World(seed, domain)
         self.domain = self.world.domain
         self.observer = observer or Observer()
+        self.ticker: Ticker = tick
         self._frame_steps: list[Callable[[], None]] = []  # after each scene frame: pace, redraw
         if pace > 0:
             self._frame_steps.append(_Pacer(self.world, pace))
@@ -136,7 +137,7 @@ class MujocoWorld:
 
         trace = run_tree(self.world, tree, self.observer, max_ticks=int(max_actions * SECONDS_PER_ACTION * TICK_HZ),
                          tick_hz=TICK_HZ, interrupt=stop, after_tick=limit.after_tick, on_frame=self._on_frame,
-                         on_external=heard)
+                         on_external=heard, ticker=self.ticker)
         result = RunResult(trace.outcome, final_state=self.world.state())
         # nothing from the action that reached the 'run N' limit: it was stopped as it started
         for entry in trace.entries(stop_after if trace.outcome is Outcome.INTERRUPTED else None):

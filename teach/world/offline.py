@@ -5,8 +5,9 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from teach.bt.nodes import Node
+from teach.bt.tick import tick
 from teach.domain import Domain, State
-from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
+from teach.world.protocol import ActResult, Outcome, RunResult, Ticker, WorldEvent
 
 
 class OfflineWorld:
@@ -17,6 +18,7 @@ class OfflineWorld:
 
     def __init__(self, domain: Domain):
         self.domain = domain
+        self.ticker: Ticker = tick
         self._state: State = tuple(False for _ in domain.conditions)
 
     def state(self) -> State:

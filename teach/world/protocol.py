@@ -11,7 +11,8 @@ from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import NamedTuple, Protocol
 
-from teach.bt.nodes import Node
+from teach.bt.nodes import Node, Status
+from teach.bt.tick import TickResult
 from teach.domain import Domain, State
 
 
@@ -65,8 +66,13 @@ class RunResult:
     events: list[tuple[int, WorldEvent]] = field(default_factory=list)
 
 
+Ticker = Callable[[Node, Callable[[str], bool] | Mapping[str, bool], Callable[[str], Status]], TickResult]
+"""What ticks a tree once: ``teach.bt.tick.tick``, or BehaviorTree.CPP (``teach.bt.groot``)."""
+
+
 class TeachingWorld(Protocol):
     domain: Domain
+    ticker: Ticker
 
     @property
     def events(self) -> Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]]:

@@ -7,7 +7,7 @@ import random
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
-from teach.bt.tick import tick
+from teach.bt.tick import always_running
 from teach.domain import Domain
 from teach.observe.hook import Observer
 from teach.symbolic import apply_action, assign, missing_preconditions
@@ -56,7 +56,7 @@ class SymbolicWorld(OfflineWorld):
         names = self.domain.condition_names
         result = RunResult(Outcome.TIMEOUT)
         for _ in range(max_actions):
-            ticked = tick(tree, dict(zip(names, self._state, strict=True)))
+            ticked = self.ticker(tree, dict(zip(names, self._state, strict=True)), always_running)
             self.observer.on_tick(tree, ticked)
             if ticked.status is not Status.RUNNING or ticked.action is None:
                 result.outcome = Outcome.SUCCESS if ticked.status is Status.SUCCESS else Outcome.FAILURE
