@@ -364,7 +364,7 @@ class SessionManager:
             for state, action in result.steps:
                 self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
                               m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
-        self._note_open_demonstration()  # how the run ended is on disk before the teacher hears of it
+        self._note_open_demonstration("run")  # how the run ended is on disk before the teacher hears of it
         self.store.save_journal(self.journal)
         if not result.steps and finished:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
@@ -789,7 +789,7 @@ class SessionManager:
 
     # --- helpers ---------------------------------------------------------------------------
 
-    def _note_open_demonstration(self) -> None:
+    def _note_open_demonstration(self, how: str = "after") -> None:
         """Put the open demonstration's steps in the journal: every "✓" the teacher saw is on disk
         before the next prompt, and a resume (after a kill or a quit) shows them again. With none
         open, the world's situation is journalled when it changed (a demonstration finished or
@@ -801,7 +801,7 @@ class SessionManager:
         self.journal.open_state = state_text(self.world.state()) if steps else ""
         self.journal.open_run = ""
         if not steps and state_text(self.world.state()) != self._last_situation():
-            self.journal.events.append(Situated(state_text(self.world.state()), "after"))
+            self.journal.events.append(Situated(state_text(self.world.state()), how))
 
     def _note_run(self, started: list[tuple[State, str]]) -> None:
         """Journal a run as it goes: the actions the robot finished (each ends as the next begins)
