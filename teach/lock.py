@@ -97,9 +97,10 @@ class ResourceLock:
             state = "no longer runs" if not _running(previous.pid) else "no longer holds it"
             self.note(f"{self.what} was left open by {previous.who}, "
                       f"which {state}; taking it over")
-        os.ftruncate(fd, 0)
         note = {"pid": os.getpid(), "started": time.time(), "uid": os.getuid()}
-        os.pwrite(fd, (json.dumps(note) + "\n").encode(), 0)
+        with contextlib.suppress(OSError):  # the flock is the lock; the note only names its holder (a full disk)
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, (json.dumps(note) + "\n").encode(), 0)
         self._fd = fd
         return self
 
