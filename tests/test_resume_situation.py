@@ -175,3 +175,23 @@ def test_a_damaged_situation_is_one_line(ball, tmp_path, change, wrong):  # type
                            "--base", str(tmp_path)], input="quit\n", text=True, capture_output=True, timeout=120)
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and "Traceback" not in done.stderr, done.stderr
     assert str(path) in done.stderr and wrong in done.stderr
+
+
+def test_every_step_shown_while_a_line_runs_is_on_disk(ball, tmp_path):
+    """A live driver shows each "✓" as its step ends; killed as the second is shown, both steps
+    come back (before, they reached the journal only at the end of the line)."""
+    first = session(ball, tmp_path)
+    shown: list[str] = []
+
+    def live(reply: Reply) -> None:
+        if reply.text.startswith(m.DID_STEP("en", action="").split()[0]):
+            shown.append(reply.text)
+            if len(shown) == 2:
+                raise Killed
+
+    first.live = live
+    with pytest.raises(Killed):
+        first.handle(SEQUENCE)
+    again, said = resumed(ball, tmp_path)
+    assert again.open is not None and [s.action for s in again.open.steps] == [1, 2]
+    assert m.OPEN_RESTORED("en", count=2) in said

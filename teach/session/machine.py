@@ -564,6 +564,7 @@ class SessionManager:
                 self.open.add(Step(result.before, EXTERNAL_ACTION, len(self.open.steps) + 1),
                               m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
+                self._save_open()
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
             result = self.world.act(token.name)
@@ -579,6 +580,7 @@ class SessionManager:
                 replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
             self.open.add(Step(result.before, self.domain.action(token.name).id, len(self.open.steps) + 1), label)
+            self._save_open()
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
@@ -802,6 +804,12 @@ class SessionManager:
         self.journal.open_run = ""
         if not steps and state_text(self.world.state()) != self._last_situation():
             self.journal.events.append(Situated(state_text(self.world.state()), how))
+
+    def _save_open(self) -> None:
+        """The open demonstration on disk now: a "✓" shown while a line still runs (a live
+        driver shows each step at once) survives a kill during the line's next step."""
+        self._note_open_demonstration()
+        self.store.save_journal(self.journal)
 
     def _note_run(self, started: list[tuple[State, str]]) -> None:
         """Journal a run as it goes: the actions the robot finished (each ends as the next begins)
