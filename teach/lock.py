@@ -3,24 +3,24 @@
 A lock is a small file holding the holder's pid and start time, locked with ``fcntl.flock``:
 the kernel drops the flock when its holder dies, so a ``kill -9`` never leaves a false lock;
 the file left behind is only the stale note of who held it, which the next holder explains
-and takes over. A second holder gets one line naming the process that has it.
+and takes over. A second holder gets one line naming the process (and its user) that has it.
 
-Lock files live in a per-user folder outside the project (``$TMPDIR/teach-locks-<uid>/``),
-named after the resource's absolute path, so taking a lock never changes the project's
-folders and a command that fails leaves nothing behind.
+The lock file lies beside what it protects (``.NAME.teach-lock`` in the resource's folder,
+gitignored), so everyone who works on those files sees it, whatever their user or ``$TMPDIR``;
+it is readable and writable by the group when the folder is. Taking a lock creates nothing
+else for good: a folder it had to create is removed again when the lock is released and the
+folder is still empty, so a command that fails leaves no trace but, after a kill, the note.
 """
 
 from __future__ import annotations
 
 import contextlib
 import fcntl
-import hashlib
 import json
 import os
-import re
+import pwd
 import stat
 import sys
-import tempfile
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -29,6 +29,7 @@ from types import TracebackType
 
 from teach.errors import TeachError
 
+SUFFIX = ".teach-lock"
 
 class LockedError(TeachError):
     """The resource is held by another running process."""
@@ -40,6 +41,7 @@ class Holder:
 
     pid: int
     started: float
+    uid: int | None = None
 
     @property
     def clock(self) -> str:
@@ -49,9 +51,16 @@ class Holder:
             return time.strftime("%H:%M", then)
         return time.strftime("%Y-%m-%d %H:%M", then)
 
-
-def default_folder() -> Path:
-    return Path(tempfile.gettempdir()) / f"teach-locks-{os.getuid()}"
+    @property
+    def who(self) -> str:
+        """"process 123 (started 09:41)", with "of user NAME" when that is another user."""
+        if self.uid is None or self.uid == os.getuid():
+            return f"process {self.pid} (started {self.clock})"
+        try:
+            user = pwd.getpwuid(self.uid).pw_name
+        except KeyError:
+            user = str(self.uid)
+        return f"process {self.pid} of user {user} (started {self.clock})"
 
 
 def _note(message: str) -> None:
@@ -61,57 +70,43 @@ def _note(message: str) -> None:
 class ResourceLock:
     """An exclusive, non-blocking lock on one resource, usable as a context manager.
 
-    ``what`` names the resource in messages ("session quickstart"), ``busy`` says what the
-    holder does with it ("is open in"), ``advice`` what to do ("close it there first").
-    ``stale`` is set when the lock was taken over from a holder that no longer runs."""
+    ``file`` is the lock file, ``what`` names the resource in messages ("session quickstart"),
+    ``busy`` says what the holder does with it ("is open in"), ``advice`` what to do ("close it
+    there first"). ``stale`` is set when the lock was taken over from a holder that no longer runs."""
 
-    def __init__(self, key: str, what: str, path: str | Path | None = None, busy: str = "is open in",
-                 advice: str = "close it there first", folder: Path | None = None,
-                 note: Callable[[str], None] = _note):
-        self.key, self.what, self.path = key, what, path
+    def __init__(self, file: Path, what: str, path: str | Path | None = None, busy: str = "is open in",
+                 advice: str = "close it there first", note: Callable[[str], None] = _note):
+        self.file, self.what, self.path = file, what, path
         self.busy, self.advice, self.note = busy, advice, note
-        readable = re.sub(r"[^A-Za-z0-9_.-]+", "_", key)[-60:].strip("_.") or "lock"
-        digest = hashlib.sha256(key.encode("utf-8", "surrogateescape")).hexdigest()[:16]
-        self.folder = folder or default_folder()
-        self.file = self.folder / f"{readable}-{digest}.lock"
         self.stale: Holder | None = None
         self._fd: int | None = None
+        self._created: list[Path] = []
 
     def acquire(self) -> ResourceLock:
         """Take the lock or raise ``LockedError`` naming its holder; never waits."""
         if self._fd is not None:
             raise RuntimeError(f"{self.what}: this lock is already held by this object")
-        self._ensure_folder()
-        while True:
-            try:
-                fd = os.open(self.file, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC | os.O_NOFOLLOW, 0o600)
-            except OSError as exc:
-                raise TeachError(f"cannot lock {self.what}: {exc.strerror} ({self.file})", self.path) from None
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
-                holder = _read_holder(fd)
-                os.close(fd)
-                who = f"process {holder.pid} (started {holder.clock})" if holder else "another process"
-                raise LockedError(f"{self.what} {self.busy} {who}; {self.advice}", self.path) from None
-            if not _same_file(fd, self.file):  # the previous holder removed it after we opened it
-                os.close(fd)
-                continue
-            break
-        previous = _read_holder(fd)
+        self._created = self._make_folders(self.file.parent)
+        try:
+            fd, previous = self._take()
+        except BaseException:
+            self._remove_created()
+            raise
         if previous is not None and previous.pid != os.getpid():
             self.stale = previous
             state = "no longer runs" if not _running(previous.pid) else "no longer holds it"
-            self.note(f"{self.what} was left open by process {previous.pid} (started {previous.clock}), "
+            self.note(f"{self.what} was left open by {previous.who}, "
                       f"which {state}; taking it over")
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, (json.dumps({"pid": os.getpid(), "started": time.time(), "key": self.key}) + "\n").encode(),
-                  0)
+        note = {"pid": os.getpid(), "started": time.time(), "uid": os.getuid()}
+        with contextlib.suppress(OSError):  # the flock is the lock; the note only names its holder (a full disk)
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, (json.dumps(note) + "\n").encode(), 0)
         self._fd = fd
         return self
 
     def release(self) -> None:
-        """Give the lock up and remove its file (while still holding it, so no one else's is removed)."""
+        """Give the lock up and remove its file (while still holding it, so no one else's is removed),
+        then the folders taking it created, when they are still empty."""
         if self._fd is None:
             return
         with contextlib.suppress(OSError):
@@ -119,6 +114,7 @@ class ResourceLock:
                 os.unlink(self.file)
         os.close(self._fd)
         self._fd = None
+        self._remove_created()
 
     @property
     def held(self) -> bool:
@@ -131,15 +127,82 @@ class ResourceLock:
                  trace: TracebackType | None) -> None:
         self.release()
 
-    def _ensure_folder(self) -> None:
-        """The lock folder must be ours and private: anyone could create one in a shared /tmp."""
-        try:
-            self.folder.mkdir(mode=0o700, parents=True, exist_ok=True)
-            info = os.lstat(self.folder)
-        except OSError as exc:
-            raise TeachError(f"cannot lock {self.what}: {exc.strerror} ({self.folder})", self.path) from None
-        if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.getuid():
-            raise TeachError(f"cannot lock {self.what}: {self.folder} is not a folder of this user's", self.path)
+    def _take(self) -> tuple[int, Holder | None]:
+        """The locked file descriptor and the stale note found in it. Another user's note this
+        user may not write (a folder that is not group-writable) is replaced by a new file."""
+        previous: Holder | None = None
+        while True:
+            fd, writable = self._open()
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                holder = _read_holder(fd)
+                os.close(fd)
+                who = holder.who if holder else "another process"
+                raise LockedError(f"{self.what} {self.busy} {who}; {self.advice}", self.path) from None
+            if not _same_file(fd, self.file):  # the previous holder removed it after we opened it
+                os.close(fd)
+                continue
+            previous = _read_holder(fd) or previous
+            if writable:
+                return fd, previous
+            try:
+                os.unlink(self.file)
+            except OSError as exc:
+                raise TeachError(f"cannot lock {self.what}: {self.file} was left by another user and cannot be "
+                                 f"replaced ({exc.strerror}); remove it", self.path) from None
+            finally:
+                os.close(fd)
+
+    def _open(self) -> tuple[int, bool]:
+        """The lock file opened for writing (created when missing: never through a symbolic link,
+        never an existing file of another user's by O_CREAT), or read-only when this user may
+        only read it."""
+        flags = os.O_NOFOLLOW | os.O_CLOEXEC | os.O_NONBLOCK
+        while True:
+            try:
+                try:
+                    fd, writable = os.open(self.file, os.O_RDWR | flags), True
+                except PermissionError:
+                    fd, writable = os.open(self.file, os.O_RDONLY | flags), False
+                except FileNotFoundError:
+                    try:
+                        fd, writable = os.open(self.file, os.O_RDWR | os.O_CREAT | os.O_EXCL | flags, 0o600), True
+                    except FileExistsError:
+                        continue
+                    group = os.stat(self.file.parent).st_mode & stat.S_IWGRP
+                    os.fchmod(fd, 0o664 if group else 0o644)  # the group may take it over when it may write here
+            except OSError as exc:
+                raise TeachError(f"cannot lock {self.what}: {exc.strerror} ({self.file})", self.path) from None
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                os.close(fd)
+                raise TeachError(f"cannot lock {self.what}: {self.file} is not a regular file", self.path)
+            return fd, writable
+
+    def _make_folders(self, folder: Path) -> list[Path]:
+        """Create ``folder`` and its missing parents; the ones created, outermost first."""
+        missing = []
+        while not folder.exists() and folder != folder.parent:
+            missing.append(folder)
+            folder = folder.parent
+        created: list[Path] = []
+        for place in reversed(missing):
+            try:
+                place.mkdir()
+            except FileExistsError:
+                continue
+            except OSError as exc:
+                self._created = created
+                self._remove_created()
+                raise TeachError(f"cannot lock {self.what}: {exc.strerror} ({place})", self.path) from None
+            created.append(place)
+        return created
+
+    def _remove_created(self) -> None:
+        for place in reversed(self._created):
+            with contextlib.suppress(OSError):
+                place.rmdir()
+        self._created = []
 
 
 def _same_file(fd: int, path: Path) -> bool:
@@ -152,17 +215,17 @@ def _same_file(fd: int, path: Path) -> bool:
 
 
 def _read_holder(fd: int) -> Holder | None:
-    """The pid and start time written in a lock file, or None when it holds nothing readable."""
+    """The pid, start time and user written in a lock file, or None when it holds nothing readable."""
     try:
         data = json.loads(os.pread(fd, 4096, 0) or b"null")
     except (OSError, ValueError):
         return None
     if not isinstance(data, dict):
         return None
-    pid, started = data.get("pid"), data.get("started")
+    pid, started, uid = data.get("pid"), data.get("started"), data.get("uid")
     if isinstance(pid, bool) or not isinstance(pid, int) or pid <= 0 or not isinstance(started, (int, float)):
         return None
-    return Holder(pid, float(started))
+    return Holder(pid, float(started), uid if isinstance(uid, int) and not isinstance(uid, bool) else None)
 
 
 def _running(pid: int) -> bool:
@@ -176,27 +239,32 @@ def _running(pid: int) -> bool:
 
 
 def _key_path(path: str | Path) -> str:
-    """A path as a lock key: absolute, with symbolic links in its existing part resolved."""
+    """A path as the lock sees it: absolute, with symbolic links in its existing part resolved."""
     return str(Path(os.path.abspath(path)).resolve(strict=False))
 
 
-def session_lock(base: str | Path, session: str, folder: Path | None = None) -> ResourceLock:
-    """The lock of a teaching session: one session, one process."""
+def lock_file(resource: str | Path) -> Path:
+    """The lock file of a resource: ``.NAME.teach-lock`` beside it, however the path is spelled."""
+    place = Path(_key_path(resource))
+    return place.parent / f".{place.name}{SUFFIX}"
+
+
+def session_lock(base: str | Path, session: str) -> ResourceLock:
+    """The lock of a teaching session (beside its journal): one session, one process."""
     where = Path(base) / "recordings" / f"{session}.journal.json"
-    return ResourceLock(f"session:{_key_path(Path(base) / 'recordings')}/{session}", f"session {session}", where,
-                        folder=folder)
+    return ResourceLock(lock_file(where), f"session {session}", where)
 
 
-def set_lock(folder_of_set: str | Path, folder: Path | None = None) -> ResourceLock:
+def set_lock(folder_of_set: str | Path) -> ResourceLock:
     """The lock of a demonstration set that demonstrations are recorded into."""
-    return ResourceLock(f"set:{_key_path(folder_of_set)}", "this demonstration set", folder_of_set,
-                        busy="is being recorded into by", advice="wait until it has finished", folder=folder)
+    return ResourceLock(lock_file(folder_of_set), "this demonstration set", folder_of_set,
+                        busy="is being recorded into by", advice="wait until it has finished")
 
 
-def output_lock(path: str | Path, folder: Path | None = None) -> ResourceLock:
+def output_lock(path: str | Path) -> ResourceLock:
     """The lock of an output file or folder a command writes."""
-    return ResourceLock(f"output:{_key_path(path)}", "this output", path, busy="is being written by",
-                        advice="wait until it has finished", folder=folder)
+    return ResourceLock(lock_file(path), "this output", path, busy="is being written by",
+                        advice="wait until it has finished")
 
 
 @contextlib.contextmanager
@@ -213,7 +281,7 @@ Output = tuple[str, Path]
 
 
 @contextlib.contextmanager
-def claim_outputs(outputs: Sequence[Output], folder: Path | None = None) -> Iterator[None]:
+def claim_outputs(outputs: Sequence[Output]) -> Iterator[None]:
     """Check every output a command will write before it writes any (so a bad second output
     leaves the first unwritten), then hold a lock on each while the command runs."""
     from teach.fsutil import check_output, check_output_folder
@@ -227,6 +295,5 @@ def claim_outputs(outputs: Sequence[Output], folder: Path | None = None) -> Iter
             check_output(path)
         else:
             check_output_folder(path)
-    with holding(*(set_lock(path, folder) if kind == "set" else output_lock(path, folder)
-                   for kind, path in outputs)):
+    with holding(*(set_lock(path) if kind == "set" else output_lock(path) for kind, path in outputs)):
         yield

@@ -62,7 +62,7 @@ def holder(tmp_path):
 def test_a_locked_session_is_neither_replayed_nor_resumed(tmp_path, capsys, holder):
     dialogue = tmp_path / "keep.dialogue"
     dialogue.write_text(DIALOGUE, encoding="utf-8")
-    (tmp_path / "recordings").mkdir()
+    (tmp_path / "recordings").mkdir(exist_ok=True)  # the holder made it, for its lock
     before = snapshot(tmp_path)
     assert main(["replay", str(dialogue), "--no-record", "--base", str(tmp_path)]) == 2
     assert f"process {holder.pid}" in one_line(capsys.readouterr().err)

@@ -9,8 +9,13 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
+
+import pytest
 
 from teach.bt.xml import read_tree
+from teach.session import messages as m
+from teach.session.journal import DemoLearned
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.world.symbolic import SymbolicWorld
@@ -30,14 +35,14 @@ def test_sigkill_then_resume(ball, tmp_path):
     try:
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if journal.exists() and len(json.loads(journal.read_text())["events"]) >= 3:
+            if journal.exists() and sum(e["kind"] == "demo" for e in json.loads(journal.read_text())["events"]) >= 3:
                 break
             assert process.poll() is None, process.stderr.read().decode()
             time.sleep(0.05)
         os.kill(process.pid, signal.SIGKILL)
     finally:
         process.wait()
-    events = json.loads(journal.read_text())["events"]  # still valid JSON: written atomically
+    events = [e for e in json.loads(journal.read_text())["events"] if e["kind"] == "demo"]  # valid JSON: atomic
     assert len(events) >= 3
     demos = sorted((tmp_path / "demos" / "long").glob("demo-*.csv"))
     assert len(demos) >= len(events)  # every journalled demonstration is on disk
@@ -185,3 +190,71 @@ def test_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
         journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
         assert {p.name for p in (base / "demos" / "mj").glob("demo-*.csv")} == journalled
         print(f"MuJoCo kill at {moment} ms: {generation} generations and {thanked} answers acknowledged, kept")
+
+
+def _killed_while_running(command: list[str], base: Path, at_action: int) -> list[str]:
+    """Run ``command`` and SIGKILL it as soon as the teacher has seen the ``at_action``-th action
+    of a run begin; the whole transcript it printed."""
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
+                               env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
+    assert process.stdout is not None
+    lines, seen = [], 0
+    for line in process.stdout:
+        lines.append(line.rstrip("\n"))
+        seen += line.startswith("→ ")
+        if seen == at_action:
+            os.kill(process.pid, signal.SIGKILL)
+            break
+    lines += process.stdout.read().splitlines()  # what it printed before it died
+    process.wait()
+    return lines
+
+
+def _check_run_resumed(base: Path, session: str, transcript: list[str]) -> bool:
+    """Every action the teacher saw the robot begin in the run the kill cut is kept: the finished
+    ones as the open correction, the last as the one a resume sets the world up before; or the
+    run had ended and its end is on disk. No demonstration file is an orphan. True when the kill
+    came during a run."""
+    from teach.session.setup import opened_session
+
+    last_prompt = max(i for i, line in enumerate(transcript) if line.startswith("teach> "))
+    block = transcript[last_prompt + 1:]
+    announced = [line[2:] for line in block if line.startswith("→ ")]
+    cut = bool(announced) and not any(line.startswith("I did") for line in block)
+    journal = json.loads((base / "recordings" / f"{session}.journal.json").read_text())
+    with opened_session(Settings(session, base=base, record=False), resume=True, note=lambda _: None) as resumed:
+        kept = resumed.open.words if resumed.open is not None else []
+        if cut and journal["open_run"]:
+            assert resumed.domain.action(journal["open_run"]).label("en") == announced[-1]
+            assert kept == [m.ROBOT_DID_STEP("en", action=action) for action in announced[:-1]]
+        elif cut:  # the run had ended, not yet said: the correction holds them all, or the world is at its end
+            assert kept == [m.ROBOT_DID_STEP("en", action=action) for action in announced] or \
+                journal["events"][-1]["how"] == "run", (announced, journal)
+        events = resumed.journal.events
+    journalled = {e.file for e in events if isinstance(e, DemoLearned)}
+    assert {p.name for p in (base / "demos" / session).glob("demo-*.csv")} == journalled
+    return cut
+
+
+@pytest.mark.parametrize(("world", "kills", "most"), [("symbolic", 6, 40), ("mujoco", 2, 12)])
+def test_kills_during_runs_keep_every_step_the_robot_was_seen_to_do(tmp_path, world, kills, most):
+    """Runs of the plan the action definitions give, from changing starts, killed at seeded
+    moments while the robot acts (MuJoCo and symbolic)."""
+    import random
+
+    from conftest import BALL_DOMAIN
+
+    script = tmp_path / "runs.dialogue"
+    lines = [f"@world {world}", "@questions 0", f"model {BALL_DOMAIN}"]
+    for start in ["start BallFound", "reset 11", "start BinClose", "reset 12"] * 10:
+        lines += [start, "run", "cancel"]
+    script.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    cut = 0
+    for trial, at_action in enumerate(random.Random(16).sample(range(2, most), kills)):
+        base = tmp_path / f"trial-{trial}"
+        base.mkdir()
+        transcript = _killed_while_running([sys.executable, "-m", "teach.cli", "replay", str(script), "--no-record",
+                                            "--base", str(base)], base, at_action)
+        cut += _check_run_resumed(base, "runs", transcript)
+    print(f"{world}: {kills} kills during runs, {cut} cut a run the teacher had seen begin")
+    assert cut >= 1

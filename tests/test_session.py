@@ -68,7 +68,7 @@ def test_demonstration_learns_saves_and_replays(ball, tmp_path):
     domain, demos = read_demo_set(tmp_path / "demos" / "t")
     assert [d.actions for d in demos] == [(1, 2, 3, 4, 5)] and demos[0].reached_goal
     journal = json.loads((tmp_path / "recordings" / "t.journal.json").read_text())
-    assert [e["kind"] for e in journal["events"]] == ["demo"]
+    assert [e["kind"] for e in journal["events"]] == ["demo", "situation"]  # the world at its end, for a resume
     # every line of the dialogue reaches the observer
     assert ("teacher", SEQUENCE) in events.dialogue and any(s == "robot" for s, _ in events.dialogue)
 

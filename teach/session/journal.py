@@ -31,7 +31,7 @@ def parse_state_text(text: str) -> State:
 
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
-_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str}
+_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str}
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "demo": ({"kind": str, "file": str, "source": str}, {}),
     "undo": ({"kind": str}, {}),
@@ -40,6 +40,7 @@ _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
     "model_answer": ({"kind": str, "question": dict, "answer": str}, {}),
     "guided_action": ({"kind": str, "name": str, "motion": str}, {}),
+    "situation": ({"kind": str, "state": str, "how": str}, {"seed": int}),
 }
 
 
@@ -102,10 +103,28 @@ class GuidedActionTaught:
     motion: str
 
 
-Event = DemoLearned | Undone | ModelLoaded | Asked | Answered | ModelAnswered | GuidedActionTaught
+# --- the world's situation (issue 14: resume restores it)
+
+SITUATION_CAUSES = ("start", "reset", "run", "after")
+
+
+@dataclass(frozen=True)
+class Situated:
+    """The world is in ``state`` with no demonstration open: a resume sets that situation up
+    again when nothing came after it. ``how`` says what put it there: 'start', 'reset', the
+    end of a run, or "after" any other line (a finished or cancelled demonstration, an undo)."""
+
+    kind: ClassVar[str] = "situation"
+    state: str
+    how: str
+    seed: int | None = None
+    """The number of 'reset N': the same reset puts a world in exactly the same situation again."""
+
+
+Event = DemoLearned | Undone | ModelLoaded | Asked | Answered | ModelAnswered | GuidedActionTaught | Situated
 LEARNING_EVENTS = (DemoLearned, Answered, ModelLoaded, ModelAnswered)
 _BY_KIND: dict[str, type[Event]] = {cls.kind: cls for cls in (DemoLearned, Undone, ModelLoaded, Asked, Answered,
-                                                              ModelAnswered, GuidedActionTaught)}
+                                                              ModelAnswered, GuidedActionTaught, Situated)}
 
 
 def event_to_json(event: Event) -> dict[str, Any]:
@@ -127,6 +146,11 @@ def event_from_json(data: Any, where: Path, number: int) -> Event:
     file = checked.get("file")
     if kind == "demo" and isinstance(file, str) and (not file or "/" in file or "\\" in file or file.startswith(".")):
         raise FormatError(f"{place}: file: must name a file in the session's demos folder, got {file[:40]!r}", where)
+    if kind == "situation" and checked["how"] not in SITUATION_CAUSES:
+        known = ", ".join(SITUATION_CAUSES)
+        raise FormatError(f"{place}: how: must be one of {known}, got {str(checked['how'])[:40]!r}", where)
+    if isinstance(checked.get("seed"), int) and int(checked["seed"]) < 0:  # type: ignore[call-overload]
+        raise FormatError(f"{place}: seed: must be 0 or more, got {checked['seed']}", where)
     cls = _BY_KIND[str(kind)]
     return cls(**{k: v for k, v in checked.items() if k != "kind"})  # type: ignore[arg-type]
 
@@ -166,6 +190,9 @@ class Journal:
     """The open demonstration's steps as shown so far, ``[state, action, words]`` each, so a
     resume restores what the teacher saw acknowledged; ``open_state`` is the world after them."""
     open_state: str = ""
+    open_run: str = ""
+    """The action the robot had begun when the session ended in the middle of a run: then
+    ``open_steps`` are the steps it finished and ``open_state`` the world before that action."""
 
     def to_text(self) -> str:
         data = {f.name: getattr(self, f.name) for f in fields(self)}

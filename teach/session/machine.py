@@ -60,6 +60,7 @@ from teach.session.journal import (
     Journal,
     ModelAnswered,
     ModelLoaded,
+    Situated,
     Undone,
     effective_events,
     parse_state_text,
@@ -67,7 +68,7 @@ from teach.session.journal import (
 )
 from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
-from teach.session.settings import Settings
+from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.world.protocol import ActResult, Outcome, TeachingWorld, WorldEvent
@@ -138,6 +139,8 @@ class SessionManager:
         self._turn_questions = 0
         self.journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang,
                                           settings.questions, settings.world, settings.seed)
+        self.restored: list[Reply] = []  # what a resume set up again, said in greet
+        self._start_situation = state_text(world.state())
         self.store.prepare(domain)
         self.observer.on_domain(domain)
         self.guiding = Guiding(self, settings.label_questions)
@@ -186,8 +189,8 @@ class SessionManager:
                                                                       generation=self.generation)))
             if self.pruned is not None:
                 replies.append(self._tree_reply(self.pruned))
-        if self.open is not None and self.open.steps:
-            replies.append(Reply(ReplyKind.INFO, m.OPEN_RESTORED(self.lang, count=len(self.open.steps))))
+        replies += self.restored
+        self.restored = []
         replies.append(self._state_reply())
         self._turn = []
         return self._end_turn(replies)
@@ -387,8 +390,11 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         stop_after = _number(rest, self.lang)
         self.open = None
+        started: list[tuple[State, str]] = []
 
         def announce(action: str) -> None:
+            started.append((self.world.state(), action))
+            self._note_run(started)  # on disk before the teacher sees it: a kill mid-run keeps the steps done
             self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
                 self.lang)))])
 
@@ -400,11 +406,26 @@ class SessionManager:
                                 stop_after=stop_after, on_action=announce, on_event=heard)
         self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
-        if not result.steps and result.outcome is Outcome.SUCCESS and not unmet:
+        finished = result.outcome is Outcome.SUCCESS and not unmet
+        if not finished:  # what the robot did so far and what the teacher shows next become one correction,
+            self.open = _OpenDemo()  # and the world's events in the run (a slip) are external steps (-1) in it
+
+            def events_after(count: int) -> None:
+                for event in (event for after, event in result.events if after == count):
+                    self._add_event(event)
+
+            for number, (state, action) in enumerate(result.steps):
+                events_after(number)
+                self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
+                              m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
+            events_after(len(result.steps))
+        self._note_open_demonstration("run")  # how the run ended is on disk before the teacher hears of it
+        self.store.save_journal(self.journal)
+        if not result.steps and finished:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
         replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
-        if result.outcome is Outcome.SUCCESS and not unmet:
+        if finished:
             replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
             return replies + [self._state_reply()]
         if result.outcome is Outcome.INTERRUPTED:
@@ -413,19 +434,6 @@ class SessionManager:
             message = m.THOUGHT_DONE(self.lang, unmet=unmet)
         else:
             message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
-        # what the robot did so far and what the teacher shows next become one corrective demonstration
-        # and the world's events in the run (a slip) are external steps (-1) in it
-        self.open = _OpenDemo()
-
-        def events_after(count: int) -> None:
-            for event in (event for after, event in result.events if after == count):
-                self._add_event(event)
-
-        for number, (state, action) in enumerate(result.steps):
-            events_after(number)
-            self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
-                          m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
-        events_after(len(result.steps))
         replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
         if result.outcome in (Outcome.SUCCESS, Outcome.FAILURE):  # "I thought I was done", or nothing fits
             replies += self._ask_after_run()
@@ -451,6 +459,7 @@ class SessionManager:
         names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
         self.topic = self.phrases.topic_in(rest)  # "start ball found", then "go to it"
+        self._journal(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
         return [self._state_reply()]
 
     def _condition_names(self, text: str) -> list[str]:
@@ -495,7 +504,9 @@ class SessionManager:
         if self.open is not None and self.open.steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
         self.open = None
-        self.world.reset(_number(rest, self.lang))
+        seed = _number(rest, self.lang)
+        self.world.reset(seed)
+        self._journal(Situated(state_text(self.world.state()), "reset", seed))  # on disk before the teacher sees it
         return [self._state_reply()]
 
     def cmd_ask(self, rest: str) -> list[Reply]:
@@ -610,6 +621,7 @@ class SessionManager:
                 demo.add(Step(result.before, EXTERNAL_ACTION, len(demo.steps) + 1),
                          m.EVENT_STEP(self.lang, event=token.text))
                 self.observer.on_external(token.name)
+                self._save_open()
                 replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
             result = self.world.act(token.name)
@@ -629,6 +641,7 @@ class SessionManager:
                 continue
             demo = self._open_for_step()
             demo.add(Step(result.before, self.domain.action(token.name).id, len(demo.steps) + 1), label)
+            self._save_open()
             replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
@@ -653,6 +666,7 @@ class SessionManager:
         for event in result.events:
             self._add_event(event)
             replies.append(self._event_reply(event))
+        self._save_open()  # on disk before the teacher sees the event
         return replies
 
     def _add_event(self, event: WorldEvent) -> None:
@@ -836,6 +850,7 @@ class SessionManager:
 
     def _journal(self, *events: Event) -> None:
         self.journal.events.extend(events)
+        self._note_open_demonstration()  # a finished demonstration is never also journalled as open
         self.store.save_journal(self.journal)
 
     def _rebuild_from_journal(self) -> None:
@@ -900,32 +915,108 @@ class SessionManager:
             from teach.bt.xml import tree_to_xml
 
             manager.observer.on_tree(manager.generation, current, tree_to_xml(current), "resumed")
-        if manager.demos:
-            world.arrange(manager.demos[-1].steps[-1].state)
+        manager._restore_situation()
         manager._restore_open_demonstration()
         return manager
 
     # --- helpers ---------------------------------------------------------------------------
 
-    def _note_open_demonstration(self) -> None:
+    def _note_open_demonstration(self, how: str = "after") -> None:
         """Put the open demonstration's steps in the journal: every "✓" the teacher saw is on disk
-        before the next prompt, and a resume (after a kill or a quit) shows them again."""
+        before the next prompt, and a resume (after a kill or a quit) shows them again. With none
+        open, the world's situation is journalled when it changed (a demonstration finished or
+        cancelled, an undo), so a resume sets it up again."""
         steps = self.open.steps if self.open is not None else []
         words = self.open.words if self.open is not None else []
         self.journal.open_steps = [[state_text(step.state), step.action, words[i] if i < len(words) else ""]
                                    for i, step in enumerate(steps)]
         self.journal.open_state = state_text(self.world.state()) if steps else ""
+        self.journal.open_run = ""
+        if not steps and state_text(self.world.state()) != self._last_situation():
+            self.journal.events.append(Situated(state_text(self.world.state()), how))
+
+    def _save_open(self) -> None:
+        """The open demonstration on disk now: a "✓" shown while a line still runs (a live
+        driver shows each step at once) survives a kill during the line's next step."""
+        self._note_open_demonstration()
+        self.store.save_journal(self.journal)
+
+    def _note_run(self, started: list[tuple[State, str]]) -> None:
+        """Journal a run as it goes: the actions the robot finished (each ends as the next begins)
+        as the open steps, and the world before the action it has just begun, so a resume after a
+        kill mid-run reopens them as the corrective demonstration a stopped run would give."""
+        self.journal.open_steps = [
+            [state_text(state), self.domain.action(action).id,
+             m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang))]
+            for state, action in started[:-1]]
+        self.journal.open_state, self.journal.open_run = state_text(started[-1][0]), started[-1][1]
+        self.store.save_journal(self.journal)
+
+    def _last_situation(self) -> str:
+        """The world's situation as last journalled (its seeded start when none was)."""
+        for event in reversed(self.journal.events):
+            if isinstance(event, Situated):
+                return event.state
+        return self._start_situation
+
+    def _journalled_state(self, text: str, what: str) -> State:
+        state = parse_state_text(text)
+        if len(state) != len(self.domain.conditions):
+            raise FormatError(f"{what}: has {len(state)} values, not {len(self.domain.conditions)}",
+                              self.store.journal_path)
+        return state
+
+    def _restore_situation(self) -> None:
+        """Set the world up as the journal last saw it with no demonstration open, and say so. A
+        'reset N' is made again exactly; otherwise the conditions are arranged, which in MuJoCo
+        places the objects anew (the teacher is told)."""
+        last = next((e for e in reversed(self.journal.events) if isinstance(e, Situated)), None)
+        if last is None:
+            if self.demos:  # a journal from before situations were journalled
+                self.world.arrange(self.demos[-1].steps[-1].state)
+            return
+        state = self._journalled_state(last.state, f"events[{self.journal.events.index(last)}]: state")
+        exact = self.settings.world is not WorldKind.MUJOCO
+        try:
+            if last.seed is not None:
+                self.world.reset(last.seed)
+                exact = self.world.state() == state
+            if not exact or self.world.state() != state:
+                self.world.arrange(state)
+        except TeachError:  # the world cannot be put in that situation
+            situation = describe_situation(self.domain, state, self.lang)
+            self.restored = [Reply(ReplyKind.INFO, m.SITUATION_NOT_RESTORED(self.lang, situation=situation))]
+            return
+        text = m.SITUATION_RESTORED if exact else m.SITUATION_RESTORED_ANEW
+        self.restored = [Reply(ReplyKind.INFO, text(self.lang))]
 
     def _restore_open_demonstration(self) -> None:
-        if not self.journal.open_steps:
+        """Reopen the demonstration that was open when the session ended; a run the session ended
+        in becomes the correction its finished steps begin, the world set up before the action it
+        had begun."""
+        run = self.journal.open_run
+        if not self.journal.open_steps and not run:
             return
-        self.open = _OpenDemo()
-        for number, (state, action, words) in enumerate(self.journal.open_steps, 1):
-            self.open.add(Step(parse_state_text(str(state)), int(action), number), str(words))
+        if run and run not in self.domain.action_names:
+            raise FormatError(f"open_run: {run[:40]!r} is not an action of the domain", self.store.journal_path)
+        steps = [(self._journalled_state(str(state), f"open_steps[{number}]"), int(action), str(words))
+                 for number, (state, action, words) in enumerate(self.journal.open_steps)]
+        where = self._journalled_state(self.journal.open_state, "open_state")
         try:
-            self.world.arrange(parse_state_text(self.journal.open_state))
-        except TeachError:  # the world cannot be put back there: start from the last demonstration's end
-            self.open = None
+            self.world.arrange(where)
+        except TeachError:  # the world cannot be put back there: the last situation stays
+            return
+        self.open = _OpenDemo() if steps else None
+        for number, (state, action, words) in enumerate(steps, 1):
+            assert self.open is not None
+            self.open.add(Step(state, action, number), words)
+        if run:
+            label = self.domain.action(run).label(self.lang)
+            text = m.RUN_RESTORED(self.lang, action=label, count=len(steps)) if steps else \
+                m.RUN_RESTORED_NO_STEPS(self.lang, action=label)
+        else:
+            text = m.OPEN_RESTORED(self.lang, count=len(steps))
+        self.restored = [Reply(ReplyKind.INFO, text)]
 
     def _tree_reply(self, tree: Node, full: bool = False) -> Reply:
         """The tree in sentences of the session's language; the symbols too for a facilitator or 'show full'."""

@@ -396,3 +396,22 @@ WORDS_NOTHING_SIMPLE = Text("I check something I cannot say simply ('show full' 
                             "ich prüfe etwas, das ich nicht einfach sagen kann ('zeige ganz' zeigt es)")
 WORDS_SOME_CHECK = Text("a check I cannot say simply holds", "eine Prüfung gilt, die ich nicht einfach sagen kann")
 WORDS_NOT = Text("not {condition}", "nicht {condition}")
+# --- resume restores the situation and an unfinished run (issue 14, resume)
+SITUATION_RESTORED = Text("I set up the last situation again:", "Ich habe die letzte Situation wieder aufgebaut:")
+SITUATION_RESTORED_ANEW = Text("I set up the last situation again (the simulation placed everything anew: what holds "
+                               "is the same, the exact positions are not):",
+                               "Ich habe die letzte Situation wieder aufgebaut (die Simulation hat alles neu "
+                               "hingestellt: was gilt, ist dasselbe, die genauen Positionen nicht):")
+SITUATION_NOT_RESTORED = Text("I could not set up the last situation again ({situation}); we go on from here:",
+                              "Ich konnte die letzte Situation nicht wieder aufbauen ({situation}); wir machen von "
+                              "hier aus weiter:")
+RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {count} step(s) I had finished "
+                    "are the start of a correction ('steps' lists them, 'done' learns it, 'cancel' drops it); the "
+                    "world is set up as it was before {action}.",
+                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {count} Schritt(e), die ich "
+                    "fertig hatte, sind der Anfang einer Korrektur ('schritte' zeigt sie, 'fertig' lernt sie, "
+                    "'abbrechen' verwirft sie); die Welt ist wieder so wie vor {action}.")
+RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} had just begun): the world is set up "
+                             "as it was before it.",
+                             "Die Sitzung endete, während ich lief ({action} hatte gerade begonnen): die Welt ist "
+                             "wieder so wie davor.")
