@@ -36,7 +36,8 @@ class SessionStore:
         self.demo_dir.mkdir(parents=True, exist_ok=True)
         self.tree_dir.mkdir(parents=True, exist_ok=True)
         if domain.path is not None and not (self.demo_dir / "domain.toml").exists():
-            shutil.copyfile(domain.path, self.demo_dir / "domain.toml")
+            atomic_write_text(self.demo_dir / "domain.toml", read_text(domain.path, "domain file",
+                                                                       limits.MAX_DOMAIN_BYTES))
 
     def clear(self) -> None:
         """Forget an earlier session of the same name (a replay starts afresh; only called once
