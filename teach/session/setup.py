@@ -106,7 +106,8 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         if store.recording is not None:
             from teach.observe.rerun_writer import RerunLogger
 
-            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
+            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note,
+                                   lang=settings.lang)
             observer.observers.append(recorder)
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
