@@ -4,7 +4,8 @@ Run: .venv/bin/python bench/bench_log.py [--minutes 10] [--sim-minutes 2]
 
 Feeds the event stream of a session at realistic rates (per second of simulated time: 10
 scene frames of 15 shapes, 10 states, 10 ticks of a 16-node tree, 2 overview camera images of
-480x360 and 1 robot camera image of 320x240; a dialogue line, a question, a learner event or a new generation every 30 s) once
+480x360 and 1 robot camera image of 320x240; a dialogue line, a question, a learner event or a
+new generation every 30 s) once
 to a ``RerunLogger`` and once to the no-op ``Observer``, side by side, and prints:
 - the logging time, and its share of a live session's wall time (a live session runs in
   simulated real time, so ten minutes of simulated time take ten minutes);

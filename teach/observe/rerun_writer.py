@@ -336,9 +336,9 @@ class RerunLogger(Observer):
                   plain_values(outcome=outcome, run_actions=actions))
         for name, count in sorted(self._runs.items()):
             self._log(f"study/run_outcomes/{name}", rr.Scalars(float(count)))
-        self.clear_running()
+        self._clear_running()
 
-    def clear_running(self) -> None:
+    def _clear_running(self) -> None:
         """Nothing runs any more: the state panel must not keep the last action."""
         if self._last_state is not None and self._last_state[2]:
             names, values, _action = self._last_state

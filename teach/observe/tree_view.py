@@ -26,7 +26,8 @@ STATUS_COLOURS = {Status.SUCCESS: (60, 180, 75), Status.FAILURE: (220, 50, 47), 
 IDLE_COLOUR = (160, 160, 160)
 RUNNING_MARK = "▶ "
 
-LINE_CHARACTERS = 11  # a leaf label wraps at this width, so leaves stay narrow
+LINE_WIDTHS = (10, 12, 14, 18, 24)  # leaf labels wrap at one of these; the one that fits the panel best
+PANEL = (640.0, 480.0)  # the tree panel of a 1600x900 viewer, in pixels
 CHAR_WIDTH = 7.5      # graph-view units per character of rerun's label font (measured on screenshots)
 NODE_PADDING = 18.0   # the box around a label
 NODE_GAP = 14.0       # between neighbouring boxes on one level
@@ -41,11 +42,11 @@ def phrases(domain: Domain, lang: str) -> dict[str, str]:
     return named
 
 
-def display_label(node: Node, phrases: Mapping[str, str]) -> str:
-    """A node's label: the thesis symbol for control nodes, the phrase (wrapped) for leaves."""
+def display_label(node: Node, phrases: Mapping[str, str], width: int) -> str:
+    """A node's label: the thesis symbol for control nodes, the phrase (wrapped at ``width``) for leaves."""
     if isinstance(node, (Condition, Action)) and phrases.get(node.name):
         text = phrases[node.name] + ("?" if isinstance(node, Condition) else "")
-        return "\n".join(textwrap.wrap(text, LINE_CHARACTERS)) or node.name
+        return "\n".join(textwrap.wrap(text, width)) or node.name
     return symbol(node)
 
 
@@ -70,9 +71,17 @@ class TreeView:
         nodes = list(walk(tree))
         index = {node.uid: i for i, node in enumerate(nodes)}
         edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
-        labels = [display_label(n, phrases or {}) for n in nodes]
         actions = frozenset(i for i, node in enumerate(nodes) if isinstance(node, Action))
-        return cls(tree, index, [symbol(n) for n in nodes], labels, edges, layout(tree, index, labels), actions)
+        # wide trees read best with narrow leaves, deep ones with long lines: keep the largest scale
+        best: tuple[float, list[str], np.ndarray] | None = None
+        for width in LINE_WIDTHS:
+            labels = [display_label(n, phrases or {}, width) for n in nodes]
+            positions = layout(tree, index, labels)
+            scale = panel_scale(positions, labels)
+            if best is None or scale > best[0] + 1e-9:
+                best = (scale, labels, positions)
+        assert best is not None
+        return cls(tree, index, [symbol(n) for n in nodes], best[1], edges, best[2], actions)
 
     def colours(self, statuses: Mapping[int, Status]) -> list[tuple[int, int, int]]:
         """Each node's colour for one tick (``statuses`` by node uid; absent = not ticked)."""
@@ -90,6 +99,15 @@ class TreeView:
             if status is Status.RUNNING and i in self.actions:
                 labels[i] = RUNNING_MARK + labels[i]
         return labels
+
+
+def panel_scale(positions: np.ndarray, labels: list[str]) -> float:
+    """How large the graph view draws the tree when it fits the whole drawing into the panel."""
+    boxes = np.array([_box(label) for label in labels])
+    low = (positions - boxes / 2).min(axis=0)
+    high = (positions + boxes / 2).max(axis=0)
+    width, height = high - low
+    return float(min(PANEL[0] / width, PANEL[1] / height))
 
 
 def _box(label: str) -> tuple[float, float]:
