@@ -42,10 +42,10 @@ def _rows(path: Path, entity: str) -> list[dict[str, Any]]:
     for chunk in _chunks(path):
         if chunk.entity_path == entity:
             batch = chunk.to_record_batch()
-            names = [n for n in batch.schema.names if n not in ("rerun.controls.RowId", "log_time")]
+            names = [n for n in batch.schema.names if n != "log_time"]
             columns = {n: batch.column(n).to_pylist() for n in names}
             rows += [{n: columns[n][i] for n in names} for i in range(batch.num_rows)]
-    return rows
+    return sorted(rows, key=lambda row: row["rerun.controls.RowId"])  # row ids increase in logging order
 
 
 def _rgb(packed: int) -> tuple[int, int, int]:
@@ -105,8 +105,8 @@ def test_the_graph_is_coloured_and_labelled_at_each_step(recorded: Path, ball: D
     tree = colledanchise_tree()
     view = TreeView.of(tree, phrases(ball, "en"))
     nodes = list(walk(tree))
-    ticks = {row["step"]: row for row in _rows(recorded, "/tree/graph") if row.get("GraphNodes:colors")
-             and not row.get("GraphNodes:node_ids")}
+    rows = _rows(recorded, "/tree/graph")
+    ticks = {row["step"]: row for row in rows if row.get("GraphNodes:colors") and row.get("status")}
     assert sorted(ticks) == [1, 2]
     for step, running, failed in ((1, "FindBall", "BallFound"), (2, "ApproachBall", "BallClose")):
         colours = [_rgb(c) for c in ticks[step]["GraphNodes:colors"]]
@@ -169,10 +169,16 @@ def test_camera_and_study_entities_are_recorded(recorded: Path) -> None:
     assert share == [[0.5]]
 
 
-def test_the_state_panel_shows_nothing_running_after_a_run(recorded: Path) -> None:
-    states = read_recording(recorded).states
-    assert states[-2].action == "ApproachBall"
-    assert states[-1].action is None and states[-1].state == states[-2].state
+def test_nothing_shows_as_running_after_a_run(recorded: Path) -> None:
+    """Neither the state panel nor the graph keeps the last tick's running action once the run ends."""
+    contents = read_recording(recorded)
+    assert contents.states[-2].action == "ApproachBall"
+    assert contents.states[-1].action is None and contents.states[-1].state == contents.states[-2].state
+    assert len(contents.ticks) == 2  # the idle graph is no tick
+    graph = [row for row in _rows(recorded, "/tree/graph") if row.get("GraphNodes:colors")]
+    after_run = [row for row in graph if row["step"] == 2][-1]
+    assert {_rgb(c) for c in after_run["GraphNodes:colors"]} == {IDLE_COLOUR}
+    assert not any(label.startswith(RUNNING_MARK) for label in after_run["GraphNodes:labels"])
 
 
 def test_the_overview_camera_sees_ball_and_bin() -> None:

@@ -329,13 +329,17 @@ class RerunLogger(Observer):
                                            f"(generation {self._generation})", level="run"))
 
     def on_run_end(self, outcome: str, actions: int) -> None:
-        """The run's outcome, a count per outcome so far, and the state panel's running action cleared."""
+        """The run's outcome, a count per outcome so far; the graph goes idle and the state panel's
+        running action is cleared (the viewer would hold the last tick's until the next)."""
         self._runs[outcome] = self._runs.get(outcome, 0) + 1
         runs = sum(self._runs.values())
         self._log("study/runs", rr.TextLog(f"run {runs}: {outcome} after {actions} actions", level=outcome),
                   plain_values(outcome=outcome, run_actions=actions))
         for name, count in sorted(self._runs.items()):
             self._log(f"study/run_outcomes/{name}", rr.Scalars(float(count)))
+        if self._view is not None:
+            self._log("tree/graph", rr.GraphNodes.from_fields(colors=[IDLE_COLOUR] * len(self._view.labels),
+                                                              labels=self._view.labels))
         self._clear_running()
 
     def _clear_running(self) -> None:
