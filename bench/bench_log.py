@@ -4,7 +4,7 @@ Run: .venv/bin/python bench/bench_log.py [--minutes 10] [--sim-minutes 2]
 
 Feeds the event stream of a session at realistic rates (per second of simulated time: 10
 scene frames of 15 shapes, 10 states, 10 ticks of a 16-node tree, 2 overview camera images of
-480x360 and 1 robot camera image of 320x240; a dialogue line, a question, a learner event or a
+400x300 and 1 robot camera image of 320x240; a dialogue line, a question, a learner event or a
 new generation every 30 s) once
 to a ``RerunLogger`` and once to the no-op ``Observer``, side by side, and prints:
 - the logging time, and its share of a live session's wall time (a live session runs in
@@ -90,7 +90,7 @@ def run(observer: Observer, minutes: float) -> float:
     tree = reference_tree()
     states = [domain.state(names[:k]) for k in range(len(names) + 1)]
     images = [camera_image(i / CAMERA_HZ) for i in range(8)]  # rendering is not what we measure
-    overviews = [camera_image(i / CAMERA_HZ, 480, 360) for i in range(8)]
+    overviews = [camera_image(i / CAMERA_HZ, 400, 300) for i in range(8)]
     frames = int(minutes * 60 * FRAME_HZ)
     spent = 0.0
     start = time.perf_counter()

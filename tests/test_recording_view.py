@@ -186,11 +186,11 @@ def test_the_overview_camera_sees_ball_and_bin() -> None:
     from teach.sim.world import World
 
     with World(seed=0) as world:
-        image = world.camera_image(480, 360, "overview")
+        image = world.camera_image(400, 300, "overview")
         if image is None:
             pytest.skip("no offscreen OpenGL rendering here")
         robot = world.camera_image(320, 240)
-    assert image.shape == (360, 480, 3) and robot is not None and robot.shape == (240, 320, 3)
+    assert image.shape == (300, 400, 3) and robot is not None and robot.shape == (240, 320, 3)
     r, g, b = (image[..., i].astype(int) for i in range(3))
     ball = (r > 180) & (g > 50) & (g < 150) & (b < 60)
     bin_ = (g > r + 40) & (g > b + 40)

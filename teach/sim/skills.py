@@ -47,7 +47,7 @@ BIN_CLEARANCE = 0.5   # the chassis centre keeps this far from the bin's centre 
 MAX_SPEED = 1.0       # m/s
 MAX_TURN = 2.5        # rad/s
 FRAME_HZ = 10.0       # observer scene frames per simulated second
-CAMERAS = {"overview": (2.0, 480, 360), "robot": (1.0, 320, 240)}  # images per simulated second, size
+CAMERAS = {"overview": (2.0, 400, 300), "robot": (1.0, 320, 240)}  # images per simulated second, size
 
 RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
 
