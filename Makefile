@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test lint bench clean
+.PHONY: run test lint bench screenshots clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -26,6 +26,20 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
+
+# Not part of `make test`: needs chromium (apt-get install -y chromium) and takes a few minutes.
+SHOTLIB := build/screenshots-lib
+
+$(SHOTLIB)/.installed: $(STAMP)
+	$(BIN)/pip install --quiet --target $(SHOTLIB) playwright
+	touch $@
+
+recordings/quickstart.rrd:
+	$(MAKE) run
+
+screenshots: $(SHOTLIB)/.installed recordings/quickstart.rrd
+	command -v chromium >/dev/null || apt-get install -y chromium
+	PYTHONPATH=$(SHOTLIB) $(BIN)/python tools/screenshots.py recordings/quickstart.rrd
 
 clean:
 	rm -rf $(VENV) build *.egg-info

@@ -3,8 +3,9 @@
 Run: .venv/bin/python bench/bench_log.py [--minutes 10] [--sim-minutes 2]
 
 Feeds the event stream of a session at realistic rates (per second of simulated time: 10
-scene frames of 15 shapes, 10 states, 10 ticks of a 16-node tree, 2 camera images of
-320x240; a dialogue line, a question, a learner event or a new generation every 30 s) once
+scene frames of 15 shapes, 10 states, 10 ticks of a 16-node tree, 2 overview camera images of
+400x300 and 1 robot camera image of 320x240; a dialogue line, a question, a learner event or a
+new generation every 30 s) once
 to a ``RerunLogger`` and once to the no-op ``Observer``, side by side, and prints:
 - the logging time, and its share of a live session's wall time (a live session runs in
   simulated real time, so ten minutes of simulated time take ten minutes);
@@ -40,7 +41,7 @@ from teach.observe.scene import SceneShape  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 FRAME_HZ = 10
-CAMERA_HZ = 2
+CAMERA_HZ = 2  # the overview camera; the robot's own at half that
 
 
 def reference_tree() -> Sequence:
@@ -69,14 +70,14 @@ def shapes(t: float) -> list[SceneShape]:
     return scene
 
 
-def camera_image(t: float) -> np.ndarray:
-    """A smooth synthetic 320x240 view (floor, wall, a moving ball), compressible like a render."""
-    y, x = np.mgrid[0:240, 0:320]
-    image = np.zeros((240, 320, 3), dtype=np.uint8)
-    image[..., 0] = 120 + (y // 4)
-    image[..., 1] = 130 + (x // 8)
-    image[..., 2] = np.where(y < 100, 200, 90)
-    cx, cy = 160 + 80 * np.sin(t), 150
+def camera_image(t: float, width: int = 320, height: int = 240) -> np.ndarray:
+    """A smooth synthetic view (floor, wall, a moving ball), compressible like a render."""
+    y, x = np.mgrid[0:height, 0:width]
+    image = np.zeros((height, width, 3), dtype=np.uint8)
+    image[..., 0] = 120 + (y * 240 // height // 4)
+    image[..., 1] = 130 + (x * 320 // width // 8)
+    image[..., 2] = np.where(y < height * 5 // 12, 200, 90)
+    cx, cy = width / 2 + width / 4 * np.sin(t), height * 5 // 8
     ball = (x - cx) ** 2 + (y - cy) ** 2 < 20 ** 2
     image[ball] = (230, 40, 40)
     return image
@@ -89,6 +90,7 @@ def run(observer: Observer, minutes: float) -> float:
     tree = reference_tree()
     states = [domain.state(names[:k]) for k in range(len(names) + 1)]
     images = [camera_image(i / CAMERA_HZ) for i in range(8)]  # rendering is not what we measure
+    overviews = [camera_image(i / CAMERA_HZ, 400, 300) for i in range(8)]
     frames = int(minutes * 60 * FRAME_HZ)
     spent = 0.0
     start = time.perf_counter()
@@ -108,6 +110,8 @@ def run(observer: Observer, minutes: float) -> float:
         observer.on_tick(tree, result)
         observer.on_state(mapping, result.action)
         if frame % (FRAME_HZ // CAMERA_HZ) == 0:
+            observer.on_camera(overviews[frame % len(overviews)], "overview")
+        if frame % (2 * FRAME_HZ // CAMERA_HZ) == 0:
             observer.on_camera(images[frame % len(images)])
         if frame % 300 == 0:
             observer.on_dialogue("teacher", "grasp the ball")

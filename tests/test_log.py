@@ -60,7 +60,8 @@ def record_session(path: Path, ball: Domain) -> dict:
     for i, line in enumerate(demo_1.steps):
         at(0.1 * i)
         logger.on_scene(_shapes(0.1 * i))
-        logger.on_camera(np.full((24, 32, 3), 10 * i, dtype=np.uint8))
+        logger.on_camera(np.full((24, 32, 3), 10 * i, dtype=np.uint8), "overview")
+        logger.on_camera(np.full((24, 32, 3), 10 * i, dtype=np.uint8))  # the robot's own, beside it
         if line.action == -1:
             logger.on_external("BallDropped")
         result = tick_state(first, names, line.state)

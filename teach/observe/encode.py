@@ -3,60 +3,18 @@ recording, kept apart from what is recorded when."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import rerun as rr
 
-from teach.bt.nodes import Node, Status, children, walk
-from teach.bt.render import symbol
-
 if TYPE_CHECKING:
     from teach.domain import Domain
 
-STATUS_COLOURS = {Status.SUCCESS: (40, 170, 60), Status.FAILURE: (210, 50, 50), Status.RUNNING: (235, 170, 20)}
-IDLE_COLOUR = (150, 150, 150)
 SHAPE_ENTITIES = {"box": "scene/boxes", "sphere": "scene/spheres", "capsule": "scene/capsules",
                    "cylinder": "scene/cylinders"}
-
-
-@dataclass
-class TreeView:
-    """A tree as the graph shows it: node ids are pre-order positions, so they are stable."""
-
-    tree: Node
-    index: dict[int, int]
-    labels: list[str]
-    edges: list[tuple[str, str]]
-    positions: np.ndarray
-
-    @classmethod
-    def of(cls, tree: Node) -> TreeView:
-        nodes = list(walk(tree))
-        index = {node.uid: i for i, node in enumerate(nodes)}
-        edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
-        return cls(tree, index, [symbol(n) for n in nodes], edges, _layout(tree, index))
-
-
-def _layout(tree: Node, index: Mapping[int, int]) -> np.ndarray:
-    """Top-down tidy layout: leaves side by side, each parent centred over its children."""
-    positions = np.zeros((len(index), 2), dtype=np.float32)
-    next_leaf = [0.0]
-
-    def place(node: Node, level: int) -> float:
-        kids = children(node)
-        if kids:
-            x = sum(place(k, level + 1) for k in kids) / len(kids)
-        else:
-            x = next_leaf[0]
-            next_leaf[0] += 1.0
-        positions[index[node.uid]] = (x * 140.0, level * 110.0)
-        return x
-
-    place(tree, 0)
-    return positions
 
 
 @dataclass
@@ -147,9 +105,11 @@ def shape_batch(kind: str, geometry: list[tuple], where: np.ndarray, xyzw: np.nd
 
 
 def tick_columns(rows: list[tuple]) -> list[tuple[str, list[Any]]]:
-    """Ticks as columns: node colours on the graph, a text line, and the fields read back."""
-    colours, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows, strict=True)
-    columns = [*rr.GraphNodes.columns(colors=[c for row in colours for c in row]).partition(
+    """Ticks as columns: node colours and labels (the running action marked) on the graph, a text
+    line, and the fields read back."""
+    colours, shown, statuses, actions, generations, nodes, labels, trace_statuses = zip(*rows, strict=True)
+    columns = [*rr.GraphNodes.columns(colors=[c for row in colours for c in row],
+                                      labels=[label for row in shown for label in row]).partition(
                    [len(row) for row in colours]),
                *rr.TextLog.columns(text=[f"{s} {a}".rstrip() for s, a in zip(statuses, actions, strict=True)],
                                    level=statuses),

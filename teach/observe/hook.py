@@ -47,8 +47,9 @@ class Observer:
     def on_scene(self, shapes: Sequence[SceneShape]) -> None:
         """The 3D scene's shapes at the current sim time."""
 
-    def on_camera(self, image: Any) -> None:
-        """The robot's camera image (H×W×3 uint8) at the current sim time."""
+    def on_camera(self, image: Any, camera: str = "robot") -> None:
+        """A camera image (H×W×3 uint8) at the current sim time: the robot's own ("robot") or
+        the room's fixed overview ("overview")."""
 
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
         """A line of the dialogue; ``speaker`` is "teacher" or "robot"."""
@@ -71,6 +72,12 @@ class Observer:
 
     def on_external(self, name: str) -> None:
         """An external action (perturbation) nobody in the tree caused."""
+
+    def on_run_start(self, tree: Node) -> None:
+        """The robot starts running ``tree`` on its own."""
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        """The run ended with ``outcome`` after ``actions`` actions."""
 
     def checkpoint(self) -> None:
         """Make everything reported so far survive a crash; called before each new prompt."""
@@ -117,9 +124,9 @@ class Observers(Observer):
         for o in self.observers:
             o.on_scene(shapes)
 
-    def on_camera(self, image: Any) -> None:
+    def on_camera(self, image: Any, camera: str = "robot") -> None:
         for o in self.observers:
-            o.on_camera(image)
+            o.on_camera(image, camera)
 
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
         for o in self.observers:
@@ -148,6 +155,14 @@ class Observers(Observer):
     def on_external(self, name: str) -> None:
         for o in self.observers:
             o.on_external(name)
+
+    def on_run_start(self, tree: Node) -> None:
+        for o in self.observers:
+            o.on_run_start(tree)
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        for o in self.observers:
+            o.on_run_end(outcome, actions)
 
     def checkpoint(self) -> None:
         for o in self.observers:

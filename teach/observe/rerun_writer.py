@@ -6,13 +6,15 @@ BehaviorTree.CPP's file logger it writes what explains the rest first (blueprint
 tree), then the events. Entity paths are namespaced: ``scene/...`` and ``camera/image`` (the
 world), ``state`` (symbolic state and running action), ``state/external``, ``tree/graph`` (the
 tree, coloured by each tick, with the tick's trace), ``tree/xml``, ``dialogue``, ``learner/...``,
-``demos``. Each event row carries
+``demos``, and ``study/...`` (what a study leader plots afterwards: tree size and reproduced share
+per generation, the questions and what each changed, run outcomes). Each event row carries
 ``AnyValues`` with plain fields, so ``read_recording`` gets the session back without parsing
 display text; rows are put back in order by their rerun row ids, which increase monotonically
 within the logging process.
 
-rerun costs 50-270 µs per ``log`` call, so the scene is throttled to ``scene_hz`` and the camera
-to ``camera_hz`` frames per second of simulated time and each shape kind is one batched call.
+rerun costs 50-270 µs per ``log`` call, so the scene is throttled to ``scene_hz`` and each camera
+(``camera/image``: the room's overview, ``robot_camera/image``: the robot's own) to ``camera_hz``
+frames per second of simulated time, and each shape kind is one batched call.
 """
 
 from __future__ import annotations
@@ -32,28 +34,22 @@ import rerun as rr
 from teach.bt.nodes import Node
 from teach.display import has_display
 from teach.errors import TeachError
-from teach.observe.encode import (
-    IDLE_COLOUR,
-    SHAPE_ENTITIES,
-    STATUS_COLOURS,
-    Batch,
-    SceneLayout,
-    TreeView,
-    plain_values,
-    shape_batch,
-    step_label,
-    tick_columns,
-)
+from teach.observe.encode import SHAPE_ENTITIES, Batch, SceneLayout, plain_values, shape_batch, step_label, tick_columns
 from teach.observe.hook import Observer
 from teach.observe.layout import APPLICATION_ID, blueprint, default_recording_path
 from teach.observe.markdown import demonstration_document, domain_document, state_document
 from teach.observe.merge import keep_earlier, merge_into_place, print_note, put_back
+from teach.observe.tree_view import IDLE_COLOUR, TreeView, phrases
 
 if TYPE_CHECKING:
     from teach.bt.tick import TickResult
     from teach.demos import Demonstration
     from teach.domain import Domain
     from teach.observe.scene import SceneShape
+
+
+CAMERA_ENTITIES = {"overview": "camera/image", "robot": "robot_camera/image"}
+"""The room's overview is the main image (``camera/image``); the robot's own camera is beside it."""
 
 
 class RerunLogger(Observer):
@@ -66,7 +62,7 @@ class RerunLogger(Observer):
 
     def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *, resume: bool = False,
                  note: Callable[[str], None] = print_note, scene_hz: float = 10.0, camera_hz: float = 2.0,
-                 jpeg_quality: int = 80, batch_rows: int | None = None):
+                 jpeg_quality: int = 80, batch_rows: int | None = None, lang: str = "en"):
         if spawn and not has_display():
             raise TeachError("--spawn needs a display for the rerun viewer (no DISPLAY or WAYLAND_DISPLAY); "
                              "the recording is written without it, open it later with `teach review FILE --open`")
@@ -83,13 +79,15 @@ class RerunLogger(Observer):
         self._scene_period = 1.0 / scene_hz
         self._camera_period = 1.0 / camera_hz
         self._jpeg_quality = jpeg_quality
+        self._lang = lang
+        self._phrases: dict[str, str] = {}  # leaf labels in the session's language, once the domain is known
         self._batch_rows = batch_rows or (3 if spawn else 20)  # a live viewer should lag little
         self._rec = rr.RecordingStream(APPLICATION_ID, recording_id=session_name)
         self._rec.set_log_time_enabled(False)
         self._rec.set_log_tick_enabled(False)
         if spawn:
             self._rec.spawn(connect=False)
-            self._rec.set_sinks(rr.FileSink(self._part), rr.GrpcSink(), default_blueprint=blueprint())
+            self._rec.set_sinks(rr.FileSink(self._part), rr.GrpcSink(), default_blueprint=blueprint(live=True))
         else:
             self._rec.save(self._part, default_blueprint=blueprint())
         self._rec.send_recording_name(session_name)
@@ -101,7 +99,9 @@ class RerunLogger(Observer):
         self._view: TreeView | None = None
         self._generation = -1
         self._last_scene: float | None = None
-        self._last_camera: float | None = None
+        self._last_camera: dict[str, float] = {}
+        self._questions = 0
+        self._runs: dict[str, int] = {}
         self._scene_geometry: tuple = ()  # name, kind, size and colour of each shape, as last logged
         self._scene_columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]] | None = None
         self._closed = False
@@ -168,6 +168,7 @@ class RerunLogger(Observer):
     # --- vocabulary and trees ---------------------------------------------------------------
 
     def on_domain(self, domain: Domain) -> None:
+        self._phrases = phrases(domain, self._lang)
         names = list(domain.condition_names)
         self._log("domain", rr.TextDocument(domain_document(domain), media_type=rr.MediaType.MARKDOWN),
                   plain_values(name=domain.name, conditions=names, actions=list(domain.action_names),
@@ -181,17 +182,18 @@ class RerunLogger(Observer):
 
     def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         self._generation = generation
-        self._view = TreeView.of(tree)
+        self._view = TreeView.of(tree, self._phrases)
         self._log_graph(self._view)
         nodes = len(self._view.labels)
         self._log("tree/xml", rr.TextDocument(xml, media_type=rr.MediaType.TEXT))
         self._log("learner/generations",
                   rr.TextLog(f"generation {generation}: {nodes} nodes ({reason})", level="generation"),
                   plain_values(generation=generation, reason=reason, nodes=nodes, xml=xml))
+        self._log("study/tree_size", rr.Scalars(float(nodes)))
 
     def _log_graph(self, view: TreeView) -> None:
         self._log("tree/graph",
-                  rr.GraphNodes([str(i) for i in range(len(view.labels))], labels=view.labels,
+                  rr.GraphNodes([str(i) for i in range(len(view.labels))], labels=view.labels, show_labels=True,
                                 positions=view.positions, colors=[IDLE_COLOUR] * len(view.labels)),
                   rr.GraphEdges(view.edges, graph_type="directed"))
 
@@ -199,21 +201,18 @@ class RerunLogger(Observer):
         view = self._view
         if view is None or view.tree is not tree:
             if view is None or view.tree != tree:
-                view = TreeView.of(tree)
+                view = TreeView.of(tree, self._phrases)
                 self._log_graph(view)
-            else:
-                view = TreeView.of(tree)  # same shape, other uids: the graph stands, the index changes
+            else:  # same shape, other uids: the graph stands, the index changes
+                view = TreeView.of(tree, self._phrases)
             self._view = view
         statuses = result.statuses()
-        colours = [IDLE_COLOUR] * len(view.labels)
-        for uid, status in statuses.items():
-            if uid in view.index:
-                colours[view.index[uid]] = STATUS_COLOURS[status]
         trace = [(view.index[uid], status.name) for uid, status in result.trace if uid in view.index]
         action = result.action or ""
         self._queue("tree/graph", tick_columns,
-                    (colours, result.status.name, action, self._generation, [i for i, _ in trace],
-                     [view.labels[i] for i, _ in trace], [s for _, s in trace]))
+                    (view.colours(statuses), view.marked_labels(statuses), result.status.name, action,
+                     self._generation, [i for i, _ in trace], [view.names[i] for i, _ in trace],
+                     [s for _, s in trace]))
 
     # --- the world --------------------------------------------------------------------------
 
@@ -255,15 +254,17 @@ class RerunLogger(Observer):
                       flush=False)
         self._scene_geometry, self._scene_columns = geometry, layout.columns
 
-    def on_camera(self, image: Any) -> None:
+    def on_camera(self, image: Any, camera: str = "robot") -> None:
         sim_time = self._clock[2]
-        if not self._due(sim_time, self._last_camera, self._camera_period):
+        if not self._due(sim_time, self._last_camera.get(camera), self._camera_period):
             return
-        self._last_camera = sim_time
+        if sim_time is not None:
+            self._last_camera[camera] = sim_time
         jpeg = io.BytesIO()  # Pillow directly: a third of the time of rerun's Image(...).compress()
         PIL.Image.fromarray(np.ascontiguousarray(image, dtype=np.uint8)).save(jpeg, format="JPEG",
                                                                               quality=self._jpeg_quality)
-        self._log("camera/image", rr.EncodedImage(contents=jpeg.getvalue(), media_type="image/jpeg"), flush=False)
+        self._log(CAMERA_ENTITIES.get(camera, f"{camera}_camera/image"),
+                  rr.EncodedImage(contents=jpeg.getvalue(), media_type="image/jpeg"), flush=False)
 
     @staticmethod
     def _due(now: float | None, last: float | None, period: float) -> bool:
@@ -291,6 +292,10 @@ class RerunLogger(Observer):
         shown = f"{answer}  → {change}" if change else answer
         self._dialogue("answer", "teacher", shown, "answer", text=answer, question=question, answer=answer,
                        change=change)
+        self._questions += 1
+        self._log("study/questions", rr.TextLog(f"{self._questions}. {question} → {answer}: {change or '—'}",
+                                                level="question"))
+        self._log("study/questions_answered", rr.Scalars(float(self._questions)))
 
     def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
         from teach.demos import format_demonstration
@@ -316,6 +321,32 @@ class RerunLogger(Observer):
         mode = "lenient" if lenient else "strict"
         self._log("learner/replay", rr.TextLog(f"replay: reproduced {reproduced}/{total} ({mode})", level="replay"),
                   plain_values(reproduced=reproduced, total=total, lenient=lenient))
+        if isinstance(reproduced, int) and isinstance(total, int) and total:  # an observer never fails the session
+            self._log("study/reproduced_share", rr.Scalars(reproduced / total))
+
+    def on_run_start(self, tree: Node) -> None:
+        self._log("study/runs", rr.TextLog(f"run {sum(self._runs.values()) + 1} starts "
+                                           f"(generation {self._generation})", level="run"))
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        """The run's outcome, a count per outcome so far; the graph goes idle and the state panel's
+        running action is cleared (the viewer would hold the last tick's until the next)."""
+        self._runs[outcome] = self._runs.get(outcome, 0) + 1
+        runs = sum(self._runs.values())
+        self._log("study/runs", rr.TextLog(f"run {runs}: {outcome} after {actions} actions", level=outcome),
+                  plain_values(outcome=outcome, run_actions=actions))
+        for name, count in sorted(self._runs.items()):
+            self._log(f"study/run_outcomes/{name}", rr.Scalars(float(count)))
+        if self._view is not None:
+            self._log("tree/graph", rr.GraphNodes.from_fields(colors=[IDLE_COLOUR] * len(self._view.labels),
+                                                              labels=self._view.labels))
+        self._clear_running()
+
+    def _clear_running(self) -> None:
+        """Nothing runs any more: the state panel must not keep the last action."""
+        if self._last_state is not None and self._last_state[2]:
+            names, values, _action = self._last_state
+            self.on_state(dict(zip(names, values, strict=True)), None)
 
     def checkpoint(self) -> None:
         """Write what is queued to the file now, so a killed session keeps it."""

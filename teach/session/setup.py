@@ -111,7 +111,8 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         if store.recording is not None:
             from teach.observe.rerun_writer import RerunLogger
 
-            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note)
+            recorder = RerunLogger(store.recording, settings.session, spawn=settings.spawn, resume=resume, note=note,
+                                   lang=settings.lang)
             observer.observers.append(recorder)
             from teach.observe.btlog_writer import BtlogRecorder
 

@@ -47,7 +47,7 @@ BIN_CLEARANCE = 0.5   # the chassis centre keeps this far from the bin's centre 
 MAX_SPEED = 1.0       # m/s
 MAX_TURN = 2.5        # rad/s
 FRAME_HZ = 10.0       # observer scene frames per simulated second
-CAMERA_HZ = 2.0       # observer camera images per simulated second
+CAMERAS = {"overview": (2.0, 400, 300), "robot": (1.0, 320, 240)}  # images per simulated second, size
 
 RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
 
@@ -322,29 +322,33 @@ def skill_for(name: str) -> type[Skill]:
 
 class FrameClock:
     """Reports scene frames and camera images to an observer at fixed rates of simulated time;
-    ``on_frame`` runs after each scene frame (pacing to wall time, a viewer's redraw)."""
+    ``on_frame`` runs after each scene frame (pacing to wall time, a viewer's redraw). A change of
+    the running action is reported at once, so the observer never shows an action that ended."""
 
     def __init__(self, world: World, observer: Observer | None, on_frame: Callable[[], None] | None = None):
         self.world, self.observer, self.on_frame = world, observer, on_frame
         self.next_frame = world.sim_time
-        self.next_camera = world.sim_time
+        self.next_camera = dict.fromkeys(CAMERAS, world.sim_time)
+        self.action: str | None = None
 
     def __call__(self, action: str | None, force: bool = False) -> None:
-        """Report a frame if one is due (or ``force``): clock, state, scene, maybe a camera image."""
+        """Report a frame if one is due (or ``force``): clock, state, scene, maybe camera images."""
         world, observer = self.world, self.observer
-        if observer is None or (not force and world.sim_time + 1e-9 < self.next_frame):
+        if observer is None or (not force and action == self.action and world.sim_time + 1e-9 < self.next_frame):
             return
+        self.action = action
         self.next_frame = world.sim_time + 1.0 / FRAME_HZ
         observer.set_time(None, world.sim_time)
         observer.on_state(world.conditions(), action)
         observer.on_scene(world.shapes())
         if self.on_frame is not None:
             self.on_frame()
-        if world.sim_time + 1e-9 >= self.next_camera:
-            self.next_camera = world.sim_time + 1.0 / CAMERA_HZ
-            image = world.camera_image()
-            if image is not None:
-                observer.on_camera(image)
+        for camera, (hz, width, height) in CAMERAS.items():
+            if world.sim_time + 1e-9 >= self.next_camera[camera]:
+                self.next_camera[camera] = world.sim_time + 1.0 / hz
+                image = world.camera_image(width, height, camera)
+                if image is not None:
+                    observer.on_camera(image, camera)
 
 
 def run_skill(world: World, name: str, observer: Observer | None = None, max_seconds: float = 60.0,
@@ -368,4 +372,5 @@ def run_skill(world: World, name: str, observer: Observer | None = None, max_sec
             skill.halt()
             return RUNNING
     report(name)
+    report(None)  # the skill is over: nothing runs until the next one starts
     return status

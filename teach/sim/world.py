@@ -96,7 +96,8 @@ class World:
                      ("drive_x", "drive_y", "turn", "lift", "finger_left", "finger_right")}
         tan_v = math.tan(math.radians(m.cam_fovy[self._cam]) / 2)
         self._tan_view = (tan_v * 4 / 3, tan_v)  # the 4:3 image of camera_image's default size
-        self._renderer: Any = None
+        self._renderers: dict[tuple[int, int], Any] | None = {}  # None: no offscreen rendering here
+        self._cameras = {"robot": self._cam, "overview": m.camera("overview").id}
         self._time_before_reset = 0.0
         self._memory: np.ndarray | None = None
         self.rng = np.random.default_rng(seed)
@@ -411,19 +412,19 @@ class World:
                                      tuple(float(v) for v in m.geom_rgba[g])))  # type: ignore[arg-type]
         return shapes
 
-    def camera_image(self, width: int = 320, height: int = 240) -> np.ndarray | None:
-        """The robot camera's view (height x width x 3, uint8); None without offscreen rendering."""
-        if self._renderer is False:
+    def camera_image(self, width: int = 320, height: int = 240, camera: str = "robot") -> np.ndarray | None:
+        """A camera's view (height x width x 3, uint8): the robot's own ("robot") or the room's fixed
+        "overview"; None without offscreen rendering. One renderer per image size, kept."""
+        if self._renderers is None:
             return None
         try:
-            if self._renderer is None or (self._renderer.width, self._renderer.height) != (width, height):
-                if self._renderer is not None:
-                    self._renderer.close()
-                self._renderer = mujoco.Renderer(self.model, height, width)
-            self._renderer.update_scene(self.data, camera=self._cam)
-            return self._renderer.render().copy()
+            renderer = self._renderers.get((width, height))
+            if renderer is None:
+                renderer = self._renderers[(width, height)] = mujoco.Renderer(self.model, height, width)
+            renderer.update_scene(self.data, camera=self._cameras[camera])
+            return renderer.render().copy()
         except Exception:  # noqa: BLE001 - any GL failure means "no rendering here"
-            self._renderer = False
+            self.close()
             return None
 
     def open_viewer(self) -> Any:
@@ -433,9 +434,9 @@ class World:
         return mujoco.viewer.launch_passive(self.model, self.data)
 
     def close(self) -> None:
-        if self._renderer:
-            self._renderer.close()
-        self._renderer = False
+        for renderer in (self._renderers or {}).values():
+            renderer.close()
+        self._renderers = None
 
     def __enter__(self) -> World:
         return self

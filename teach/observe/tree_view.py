@@ -1,0 +1,172 @@
+"""The behaviour tree as rerun's graph view shows it: short labels in the session's language,
+BehaviorTree.CPP's status colours, and explicit positions from a compact top-down layout.
+
+rerun's graph view would otherwise lay the nodes out with forces (a tangle for 35 nodes), so
+positions are computed here: a tidy layered layout that packs subtrees by their per-level
+contours, so a shallow leaf sits beside a deep neighbour instead of widening the whole row.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from teach.bt.nodes import Action, Condition, Node, Status, children, walk
+from teach.bt.render import symbol
+
+if TYPE_CHECKING:
+    from teach.domain import Domain
+
+# Groot2's palette: success green, failure red, running orange, idle (not ticked) grey
+STATUS_COLOURS = {Status.SUCCESS: (60, 180, 75), Status.FAILURE: (220, 50, 47), Status.RUNNING: (245, 150, 20)}
+IDLE_COLOUR = (160, 160, 160)
+RUNNING_MARK = "▶ "
+
+LINE_WIDTHS = (10, 12, 14, 18, 24)  # leaf labels wrap at one of these; the one that fits the panel best
+PANEL = (640.0, 480.0)  # the tree panel of a 1600x900 viewer, in pixels
+CHAR_WIDTH = 7.5      # graph-view units per character of rerun's label font (measured on screenshots)
+NODE_PADDING = 18.0   # the box around a label
+NODE_GAP = 14.0       # between neighbouring boxes on one level
+LINE_HEIGHT = 16.0
+LEVEL_GAP = 34.0      # between a level's deepest box and the next level
+
+
+def phrases(domain: Domain, lang: str) -> dict[str, str]:
+    """Each condition's and action's first phrase in the session's language, for the leaves."""
+    named = {c.name: c.label(lang) for c in domain.conditions}
+    named.update((a.name, a.label(lang)) for a in domain.actions)
+    return named
+
+
+def display_label(node: Node, phrases: Mapping[str, str], width: int) -> str:
+    """A node's label: the thesis symbol for control nodes, the phrase (wrapped at ``width``) for leaves."""
+    if isinstance(node, (Condition, Action)) and phrases.get(node.name):
+        text = phrases[node.name] + ("?" if isinstance(node, Condition) else "")
+        return "\n".join(textwrap.wrap(text, width)) or node.name
+    return symbol(node)
+
+
+@dataclass
+class TreeView:
+    """A tree as the graph shows it: node ids are pre-order positions, so they are stable.
+
+    ``names`` are the nodes' symbols (what the recording's trace reads back); ``labels`` what
+    the viewer shows; ``actions`` the positions of the action nodes, for the running mark.
+    """
+
+    tree: Node
+    index: dict[int, int]
+    names: list[str]
+    labels: list[str]
+    edges: list[tuple[str, str]]
+    positions: np.ndarray
+    actions: frozenset[int]
+
+    @classmethod
+    def of(cls, tree: Node, phrases: Mapping[str, str] | None = None) -> TreeView:
+        nodes = list(walk(tree))
+        index = {node.uid: i for i, node in enumerate(nodes)}
+        edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
+        actions = frozenset(i for i, node in enumerate(nodes) if isinstance(node, Action))
+        # wide trees read best with narrow leaves, deep ones with long lines: keep the largest scale
+        best: tuple[float, list[str], np.ndarray] | None = None
+        for width in LINE_WIDTHS:
+            labels = [display_label(n, phrases or {}, width) for n in nodes]
+            positions = layout(tree, index, labels)
+            scale = panel_scale(positions, labels)
+            if best is None or scale > best[0] + 1e-9:
+                best = (scale, labels, positions)
+        assert best is not None
+        return cls(tree, index, [symbol(n) for n in nodes], best[1], edges, best[2], actions)
+
+    def colours(self, statuses: Mapping[int, Status]) -> list[tuple[int, int, int]]:
+        """Each node's colour for one tick (``statuses`` by node uid; absent = not ticked)."""
+        colours = [IDLE_COLOUR] * len(self.labels)
+        for uid, status in statuses.items():
+            if uid in self.index:
+                colours[self.index[uid]] = STATUS_COLOURS[status]
+        return colours
+
+    def marked_labels(self, statuses: Mapping[int, Status]) -> list[str]:
+        """The labels with the running action marked: the action node the tick left RUNNING."""
+        labels = list(self.labels)
+        for uid, status in statuses.items():
+            i = self.index.get(uid)
+            if status is Status.RUNNING and i in self.actions:
+                labels[i] = RUNNING_MARK + labels[i]
+        return labels
+
+
+def panel_scale(positions: np.ndarray, labels: list[str]) -> float:
+    """How large the graph view draws the tree when it fits the whole drawing into the panel."""
+    boxes = np.array([_box(label) for label in labels])
+    low = (positions - boxes / 2).min(axis=0)
+    high = (positions + boxes / 2).max(axis=0)
+    width, height = high - low
+    return float(min(PANEL[0] / width, PANEL[1] / height))
+
+
+def _box(label: str) -> tuple[float, float]:
+    lines = label.split("\n")
+    return max(len(line) for line in lines) * CHAR_WIDTH + NODE_PADDING, len(lines) * LINE_HEIGHT + NODE_PADDING
+
+
+def layout(tree: Node, index: Mapping[int, int], labels: list[str]) -> np.ndarray:
+    """Top-down tidy layout: each parent centred over its children, subtrees packed side by side
+    as closely as their contours (leftmost and rightmost box edge on each level) allow."""
+    boxes = [_box(label) for label in labels]
+    depth_of: dict[int, int] = {}
+
+    def depths(node: Node, depth: int) -> None:
+        depth_of[index[node.uid]] = depth
+        for kid in children(node):
+            depths(kid, depth + 1)
+
+    depths(tree, 0)
+    level_height = [0.0] * (max(depth_of.values()) + 1)
+    for i, depth in depth_of.items():
+        level_height[depth] = max(level_height[depth], boxes[i][1])
+    level_y = np.cumsum([0.0] + [h + LEVEL_GAP for h in level_height[:-1]])
+    x = np.zeros(len(labels), dtype=np.float64)
+
+    def place(node: Node) -> dict[int, tuple[float, float]]:
+        """Lay out the subtree with its root at x = 0; return its contour by depth."""
+        i = index[node.uid]
+        half = boxes[i][0] / 2
+        kids = children(node)
+        if not kids:
+            return {depth_of[i]: (-half, half)}
+        contour: dict[int, tuple[float, float]] = {}
+        members: list[list[int]] = []
+        offsets: list[float] = []
+        for kid in kids:
+            kid_contour = place(kid)
+            shift = 0.0 if not contour else max(
+                (contour[d][1] + NODE_GAP - kid_contour[d][0] for d in kid_contour if d in contour), default=0.0)
+            offsets.append(shift)
+            members.append(_subtree(kid, index))
+            for d, (low, high) in kid_contour.items():
+                old = contour.get(d)
+                contour[d] = (low + shift, high + shift) if old is None else (old[0], high + shift)
+        for shift, nodes in zip(offsets, members, strict=True):
+            x[nodes] += shift
+        centre = (x[index[kids[0].uid]] + x[index[kids[-1].uid]]) / 2
+        for nodes in members:
+            x[nodes] -= centre
+        contour = {d: (low - centre, high - centre) for d, (low, high) in contour.items()}
+        contour[depth_of[i]] = (-half, half)
+        return contour
+
+    place(tree)
+    positions = np.zeros((len(labels), 2), dtype=np.float32)
+    positions[:, 0] = x
+    positions[:, 1] = [level_y[depth_of[i]] for i in range(len(labels))]
+    return positions
+
+
+def _subtree(node: Node, index: Mapping[int, int]) -> list[int]:
+    return [index[n.uid] for n in walk(node)]
