@@ -73,12 +73,6 @@ class Observer:
     def on_external(self, name: str) -> None:
         """An external action (perturbation) nobody in the tree caused."""
 
-    def on_run_start(self, tree: Node) -> None:
-        """The robot starts running ``tree`` on its own."""
-
-    def on_run_end(self, outcome: str, actions: int) -> None:
-        """The run ended with ``outcome`` after ``actions`` actions."""
-
     def checkpoint(self) -> None:
         """Make everything reported so far survive a crash; called before each new prompt."""
 
@@ -155,14 +149,6 @@ class Observers(Observer):
     def on_external(self, name: str) -> None:
         for o in self.observers:
             o.on_external(name)
-
-    def on_run_start(self, tree: Node) -> None:
-        for o in self.observers:
-            o.on_run_start(tree)
-
-    def on_run_end(self, outcome: str, actions: int) -> None:
-        for o in self.observers:
-            o.on_run_end(outcome, actions)
 
     def checkpoint(self) -> None:
         for o in self.observers:
