@@ -213,11 +213,10 @@ def step_tree(contents: RecordingContents, step: int) -> RenderableType:
         note = Text(f"  no tick at step {step}: the tree as it stood, nothing ticked", style="dim")
     if graph_at < 0:
         return Text(f"  no tree yet at step {step}", style="dim")
-    running = tick.action if tick is not None else None
-    return Group(note, _graph_tree(contents.graphs[graph_at], statuses, running), _legend())
+    return Group(note, _graph_tree(contents.graphs[graph_at], statuses), _legend())
 
 
-def _graph_tree(graph: GraphRecord, statuses: dict[int, str], running: str | None) -> Tree:
+def _graph_tree(graph: GraphRecord, statuses: dict[int, str]) -> Tree:
     kids: dict[int, list[int]] = {}
     parents: set[int] = set()
     for parent, child in graph.edges:
@@ -227,9 +226,10 @@ def _graph_tree(graph: GraphRecord, statuses: dict[int, str], running: str | Non
 
     def line(node: int) -> Text:
         status = statuses.get(node)
-        if status == Status.RUNNING.name and node not in kids and graph.labels[node] == running:
-            return Text(f" {graph.labels[node]} ", style=_RUNNING_ACTION)
-        return Text(graph.labels[node], style=_STATUS_STYLES.get(status or "", "dim"))
+        label = " ".join(graph.labels[node].split())  # the viewer's labels are wrapped to fit its boxes
+        if status == Status.RUNNING.name and node not in kids:  # a running leaf: the action the robot does
+            return Text(f" {label} ", style=_RUNNING_ACTION)
+        return Text(label, style=_STATUS_STYLES.get(status or "", "dim"))
 
     top = Tree(line(root), guide_style="bright_black")
     stack, seen = [(root, top)], {root}

@@ -124,16 +124,16 @@ def test_the_tree_at_a_step_is_coloured_by_each_nodes_status_there(recording: Pa
     last = contents.ticks[-1]
     assert last.action == "ApproachBall" and last.step is not None
     styles = _styles(step_tree(contents, last.step))
-    assert styles["ApproachBall"] == {"bold black on yellow"}  # the running action
-    assert styles["(BallFound)"] == {"green"} and styles["(BallClose)"] == {"red"}
+    assert styles["go to the ball"] == {"bold black on yellow"}  # the running action, in the session's words
+    assert styles["you can see the ball?"] == {"green"} and styles["the ball is within reach?"] == {"red"}
     assert styles["→"] == {"yellow"} and styles["?"] == {"green", "yellow", "dim"}
-    assert styles["PlaceBall"] == styles["(BallPlaced)"] == {"dim"}  # not ticked
+    assert styles["put the ball in the bin"] == styles["the ball is in the bin?"] == {"dim"}  # not ticked
     # the first tick, on generation 0's tree: it finds the ball
     first = contents.ticks[0]
     assert first.step is not None
     early = _styles(step_tree(contents, first.step))
-    assert early["FindBall"] == {"bold black on yellow"} and early["(BallFound)"] == {"red"}
-    assert "ApproachBall" in early and early["ApproachBall"] == {"dim"}
+    assert early["find the ball"] == {"bold black on yellow"} and early["you can see the ball?"] == {"red"}
+    assert "go to the ball" in early and early["go to the ball"] == {"dim"}
 
 
 def test_a_step_without_ticks_shows_the_tree_as_it_stood(recording: Path) -> None:
@@ -141,7 +141,7 @@ def test_a_step_without_ticks_shows_the_tree_as_it_stood(recording: Path) -> Non
 
     contents = read_recording(recording)
     text = _plain(step_tree(contents, 1))
-    assert "no tick at step 1" in text and "FindBall" in text and "PlaceBall" not in text
+    assert "no tick at step 1" in text and "find the ball" in text and "put the ball in the bin" not in text
 
 
 def _plain(renderable: object) -> str:

@@ -296,8 +296,8 @@ def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], 
                                              _one(row, "lenient", bool), step))
     elif entity == "/tree/graph" and "status" in row:
         _tick_row(contents, row, step, sim_time)
-    elif entity == "/tree/graph" and "GraphNodes:labels" in row:
-        _graph_row(contents, row, step)
+    elif entity == "/tree/graph" and row.get("GraphNodes:node_ids") is not None:
+        _graph_row(contents, row, step)  # (a row with colours and labels only restyles the standing graph)
     elif entity == "/state":
         names = _many(row, "conditions", str, optional=True)
         values = _many(row, "values", bool, optional=True)
