@@ -572,3 +572,14 @@ def test_it_means_nothing_in_a_new_demonstration(ball, tmp_path):
     session.handle(SEQUENCE)
     session.handle("done")
     assert session.demos and session.topic is None
+
+
+@pytest.mark.parametrize(("lang", "line", "words"), [("en", "why grasp the ball", "demonstration 1, step 3"),
+                                                      ("de", "warum Ball greifen", "Vorführung 1, Schritt 3")])
+def test_why_names_demonstrations_and_steps_in_words(ball, tmp_path, lang, line, words):
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(SEQUENCE if lang == "en" else
+                   "Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, Ball in den Eimer legen")
+    session.handle("done" if lang == "en" else "fertig")
+    text = "\n".join(r.text for r in session.handle(line))
+    assert words in text and ".csv" not in text, text

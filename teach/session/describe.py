@@ -3,6 +3,7 @@ refused, which goal conditions are still missing."""
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING
 
 from teach.domain import Domain, Literal, State
@@ -38,7 +39,8 @@ def describe_update(update: Update, learned: list[str], domain: Domain, lang: st
 
 def explain_node(why: Explanation, domain: Domain, lang: str) -> str:
     """A node's reason in the teacher's words ("" for the tree's own structure)."""
-    sources = ", ".join(why.sources[:3]) + (" …" if len(why.sources) > 3 else "")
+    sources = ", ".join(source_words(source, lang) for source in why.sources[:3]) + (
+        " …" if len(why.sources) > 3 else "")
     condition = domain.condition(why.literal.name).label(lang, why.literal.value) if why.literal is not None else ""
     action = domain.action(why.action).label(lang) if why.action is not None else m.WHY_DONE_HERE(lang)
     if why.kind == "goal":
@@ -52,6 +54,25 @@ def explain_node(why: Explanation, domain: Domain, lang: str) -> str:
     if why.action is not None and why.literal is not None:
         return m.WHY_EFFECT(lang, action=action, condition=condition, sources=sources)
     return ""
+
+
+_DEMO_LINE = re.compile(r"^(?:imported .*\()?demo-(\d+)\.csv\)?(?::(\d+))?$")
+_ANSWER = re.compile(r"^answer to question (\d+)$")
+
+
+def source_words(source: str, lang: str) -> str:
+    """Where the learner saw something, for the teacher: "demo-002.csv:3" → "demonstration 2,
+    step 3", "answer to question 1" → "your answer to question 1" (anything else as it is)."""
+    demo = _DEMO_LINE.match(source)
+    if demo is not None:
+        number = int(demo.group(1))
+        if demo.group(2) is None:
+            return m.SOURCE_DEMO(lang, number=number)
+        return m.SOURCE_DEMO_STEP(lang, number=number, step=int(demo.group(2)))
+    answer = _ANSWER.match(source)
+    if answer is not None:
+        return m.SOURCE_ANSWER(lang, number=int(answer.group(1)))
+    return source
 
 
 def literals_label(text: str, domain: Domain, lang: str) -> str:

@@ -109,6 +109,9 @@ WHY_GOAL = Text("“{condition}” is part of the task: it held at the end of ev
                 "and you kept going while it did not ({sources})",
                 "„{condition}“ gehört zur Aufgabe: es galt am Ende jeder Vorführung, und du hast "
                 "weitergemacht, solange es nicht galt ({sources})")
+SOURCE_DEMO = Text("demonstration {number}", "Vorführung {number}")
+SOURCE_DEMO_STEP = Text("demonstration {number}, step {step}", "Vorführung {number}, Schritt {step}")
+SOURCE_ANSWER = Text("your answer to question {number}", "deine Antwort auf Frage {number}")
 WHY_PRE = Text("I {action} only when {condition}: that held every time you showed it ({sources})",
                "Ich mache „{action}“ nur, wenn gilt: {condition}; das galt jedes Mal, als du es gezeigt hast "
                "({sources})")

@@ -27,7 +27,7 @@ from teach.dialogue.completion import TeachCompleter, command_words
 from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
-from teach.session.replies import Reply
+from teach.session.replies import Reply, ReplyKind
 from teach.terminal.view import prompt, render_reply, toolbar
 
 
@@ -44,6 +44,8 @@ class Terminal:
             history=FileHistory(str(history)) if history else InMemoryHistory(),
             bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
         self._interrupt = threading.Event()
+        self._keys_guiding = False  # in the guide mode, driven by keys
+        self._last_state = ""  # the state line last shown
         self._typed = ""  # what a letter typed in the guide mode starts the next line with
 
     def run(self) -> None:
@@ -68,6 +70,10 @@ class Terminal:
         return toolbar(self.manager) + extra
 
     def _show(self, reply: Reply) -> None:
+        if self._keys_guiding and reply.kind is ReplyKind.STATE and reply.text == self._last_state:
+            return  # steering with the keys: the state line again only when it changed
+        if reply.kind is ReplyKind.STATE:
+            self._last_state = reply.text
         self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
 
     def _on_interrupt(self) -> None:
@@ -103,17 +109,21 @@ class Terminal:
     def _guide_mode(self) -> None:
         """Keys drive the robot, one ``guide …`` line each, until Esc (or Ctrl-C, Ctrl-D) or a
         typed letter; the state line after each shows what changed."""
-        while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
-            key = self._guide_key()
-            if key in _LEAVE:
-                self.manager.handle("guide stop")
-                return
-            if key.startswith(_TYPED):
-                self._typed = key[len(_TYPED):]
-                return
-            line = self.manager.guiding.line_for_key(key)
-            if line is not None:
-                self.manager.handle(line)
+        self._keys_guiding = True
+        try:
+            while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
+                key = self._guide_key()
+                if key in _LEAVE:
+                    self.manager.handle("guide stop")
+                    return
+                if key.startswith(_TYPED):
+                    self._typed = key[len(_TYPED):]
+                    return
+                line = self.manager.guiding.line_for_key(key)
+                if line is not None:
+                    self.manager.handle(line)
+        finally:
+            self._keys_guiding = False
 
     def _guide_key(self) -> str:
         """One key press of the guide mode, by ``Guide.key``'s name (a letter as ``_TYPED`` + it)."""
@@ -131,7 +141,8 @@ class Terminal:
 
         text = FormattedTextControl(lambda: m.GUIDE_MODE_ON(self.manager.lang))
         app: Application[str] = Application(layout=Layout(Window(text, height=1)), key_bindings=bindings,
-                                            input=self.prompt.input, output=self.prompt.output)
+                                            input=self.prompt.input, output=self.prompt.output,
+                                            erase_when_done=True)  # the hint stays on one line, not one per key
         try:
             return app.run()
         except EOFError:
