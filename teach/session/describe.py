@@ -39,7 +39,7 @@ def describe_update(update: Update, learned: list[str], domain: Domain, lang: st
 
 def explain_node(why: Explanation, domain: Domain, lang: str) -> str:
     """A node's reason in the teacher's words ("" for the tree's own structure)."""
-    sources = ", ".join(source_words(source, lang) for source in why.sources[:3]) + (
+    sources = "; ".join(source_words(source, lang) for source in why.sources[:3]) + (
         " …" if len(why.sources) > 3 else "")
     condition = domain.condition(why.literal.name).label(lang, why.literal.value) if why.literal is not None else ""
     action = domain.action(why.action).label(lang) if why.action is not None else m.WHY_DONE_HERE(lang)
