@@ -838,9 +838,10 @@ class SessionManager:
             self._journal(*events)
         report = replay(pruned, self.domain, self.demos)
         self.observer.on_replay(report.reproduced, report.total)
-        summary = m.GENERATION(self.lang, generation=self.generation, nodes=size(pruned),
-                               unpruned=size(self.learning.tree), path=path, reproduced=report.reproduced,
-                               total=report.total)
+        # node counts and the file are for the facilitator; the teacher hears what it means
+        summary = (m.GENERATION if self.facilitator else m.GENERATION_PLAIN)(
+            self.lang, generation=self.generation, nodes=size(pruned), unpruned=size(self.learning.tree), path=path,
+            reproduced=report.reproduced, total=report.total)
         replies = self._flush([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
         if ask:
             replies += self._maybe_ask()

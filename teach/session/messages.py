@@ -92,6 +92,10 @@ GENERATION = Text("Generation {generation}: {nodes} nodes ({unpruned} before pru
                   "I reproduce {reproduced} of {total} demonstrations.",
                   "Generation {generation}: {nodes} Knoten ({unpruned} vor dem Beschneiden), gespeichert als {path}. "
                   "Ich kann {reproduced} von {total} Vorführungen nachmachen.")
+GENERATION_PLAIN = Text("Generation {generation} saved: I can do {reproduced} of your {total} demonstrations just "
+                        "as you showed them.",
+                        "Generation {generation} gespeichert: ich kann {reproduced} von deinen {total} Vorführungen so "
+                        "nachmachen, wie du sie gezeigt hast.")
 LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {steps} gelernt")
 ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
