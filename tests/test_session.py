@@ -64,7 +64,7 @@ def test_demonstration_learns_saves_and_replays(ball, tmp_path):
     # the tree is shown at once, saved as a generation, and replayed against the demonstrations
     assert "tree" in kinds(replies) and events.trees == [1]
     assert (tmp_path / "trees" / "t" / "gen-01.xml").is_file()
-    assert any("reproduce 1 of 1" in r.text for r in replies)
+    assert any("I can do 1 of your 1 demonstrations" in r.text for r in replies)
     domain, demos = read_demo_set(tmp_path / "demos" / "t")
     assert [d.actions for d in demos] == [(1, 2, 3, 4, 5)] and demos[0].reached_goal
     journal = json.loads((tmp_path / "recordings" / "t.journal.json").read_text())

@@ -16,6 +16,7 @@ class Verb(Enum):
     DONE = auto()
     CANCEL = auto()
     UNDO = auto()
+    REDO = auto()
     PERTURB = auto()
     RUN = auto()
     STOP = auto()
@@ -50,6 +51,7 @@ COMMANDS: tuple[Command, ...] = (
     Command(Verb.DONE, ("done", "fertig"), m.USAGE_DONE, m.HELP_DONE),
     Command(Verb.CANCEL, ("cancel", "abbrechen"), m.USAGE_CANCEL, m.HELP_CANCEL),
     Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), m.USAGE_UNDO, m.HELP_UNDO_TO_STEP),
+    Command(Verb.REDO, ("redo", "wiederholen", "wiederherstellen"), m.USAGE_REDO, m.HELP_REDO),
     Command(Verb.STEPS, ("steps", "schritte"), m.USAGE_STEPS, m.HELP_STEPS),
     Command(Verb.GUIDE, ("guide", "fuhren"), m.USAGE_GUIDE, m.HELP_GUIDE),
     Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), m.USAGE_PERTURB, m.HELP_PERTURB),

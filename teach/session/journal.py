@@ -35,6 +35,7 @@ _HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_s
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "demo": ({"kind": str, "file": str, "source": str}, {}),
     "undo": ({"kind": str}, {}),
+    "redo": ({"kind": str}, {}),
     "model": ({"kind": str, "file": str}, {}),
     "asked": ({"kind": str}, {"state": str, "model_question": dict}),
     "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
@@ -57,6 +58,13 @@ class Undone:
     """The last learning event no longer counts."""
 
     kind: ClassVar[str] = "undo"
+
+
+@dataclass(frozen=True)
+class Redone:
+    """The learning event the last undo took back counts again."""
+
+    kind: ClassVar[str] = "redo"
 
 
 @dataclass(frozen=True)
@@ -121,10 +129,10 @@ class Situated:
     """The number of 'reset N': the same reset puts a world in exactly the same situation again."""
 
 
-Event = DemoLearned | Undone | ModelLoaded | Asked | Answered | ModelAnswered | GuidedActionTaught | Situated
+Event = DemoLearned | Undone | Redone | ModelLoaded | Asked | Answered | ModelAnswered | GuidedActionTaught | Situated
 LEARNING_EVENTS = (DemoLearned, Answered, ModelLoaded, ModelAnswered)
-_BY_KIND: dict[str, type[Event]] = {cls.kind: cls for cls in (DemoLearned, Undone, ModelLoaded, Asked, Answered,
-                                                              ModelAnswered, GuidedActionTaught, Situated)}
+_BY_KIND: dict[str, type[Event]] = {cls.kind: cls for cls in (DemoLearned, Undone, Redone, ModelLoaded, Asked,
+                                                              Answered, ModelAnswered, GuidedActionTaught, Situated)}
 
 
 def event_to_json(event: Event) -> dict[str, Any]:
@@ -156,17 +164,31 @@ def event_from_json(data: Any, where: Path, number: int) -> Event:
 
 
 def effective_events(events: list[Event]) -> list[Event]:
-    """The journal's learning events with every undone one removed."""
+    """The journal's learning events with every undone one removed (and every redone one back)."""
+    return _replayed(events)[0]
+
+
+def redoable(events: list[Event]) -> list[Event]:
+    """What a 'redo' would bring back, last undone last: empty once something new was learned."""
+    return _replayed(events)[1]
+
+
+def _replayed(events: list[Event]) -> tuple[list[Event], list[Event]]:
     kept: list[Event] = []
+    undone: list[Event] = []
     for event in events:
         if isinstance(event, Undone):
             while kept and _skipped(kept[-1]):
                 kept.pop()  # a skipped question taught nothing: an undo takes back what did teach
             if kept:
-                kept.pop()
+                undone.append(kept.pop())
+        elif isinstance(event, Redone):
+            if undone:
+                kept.append(undone.pop())
         elif isinstance(event, LEARNING_EVENTS):
             kept.append(event)
-    return kept
+            undone.clear()  # something new: what was undone before it stays undone
+    return kept, undone
 
 
 def _skipped(event: Event) -> bool:

@@ -60,10 +60,12 @@ from teach.session.journal import (
     Journal,
     ModelAnswered,
     ModelLoaded,
+    Redone,
     Situated,
     Undone,
     effective_events,
     parse_state_text,
+    redoable,
     state_text,
 )
 from teach.session.learning import Learning
@@ -107,6 +109,21 @@ class _OpenDemo:
         return removed
 
 
+@dataclass(frozen=True)
+class _StepsTakenBack:
+    """What 'undo N' took from the open demonstration, so 'redo' can put it back while nothing
+    happened since: the open demonstration still ends where they began and the world is as the
+    undo left it."""
+
+    first: int
+    steps: tuple[Step, ...]
+    words: tuple[str, ...]
+    world_after: State
+    """The world when the undo was said (after the steps): a redo puts it back there."""
+    arranged: State
+    """The world the undo left (before the steps)."""
+
+
 class SessionManager:
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
@@ -144,6 +161,7 @@ class SessionManager:
         self.store.prepare(domain)
         self.observer.on_domain(domain)
         self.guiding = Guiding(self, settings.label_questions)
+        self._taken_back: _StepsTakenBack | None = None  # what 'redo' can put back into the open demonstration
 
     # --- what drivers and tests read --------------------------------------------------------
 
@@ -363,11 +381,45 @@ class SessionManager:
         if not 1 <= first <= count:
             raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
         undone = "; ".join(self.open.words[first - 1:])
+        steps, words, world_after = tuple(self.open.steps[first - 1:]), tuple(self.open.words[first - 1:]), \
+            self.world.state()
         self.world.arrange(self.open.take_back(first).state)
+        self._taken_back = _StepsTakenBack(first, steps, words, world_after, self.world.state())
         if not self.open.steps:
             self.open = None
         text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
         return [Reply(ReplyKind.INFO, text(self.lang, first=first, last=count, steps=undone)), self._state_reply()]
+
+    def cmd_redo(self, rest: str) -> list[Reply]:
+        """Bring back what the last undo took: steps of the open demonstration, else the last
+        demonstration or answer, as long as nothing new happened after the undo."""
+        if self.mode is Mode.ASKING:
+            return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
+        taken, self._taken_back = self._taken_back, None
+        open_steps = len(self.open.steps) if self.open is not None else 0
+        if taken is not None and open_steps == taken.first - 1 and self.world.state() == taken.arranged:
+            if self.open is None:
+                self.open = _OpenDemo()
+            for step, words in zip(taken.steps, taken.words, strict=True):
+                self.open.add(step, words)
+            self.world.arrange(taken.world_after)
+            self._save_open()
+            text = m.REDONE_STEPS(self.lang, first=taken.first, last=len(self.open.steps), steps="; ".join(taken.words))
+            return [Reply(ReplyKind.INFO, text), self._state_reply()]
+        back = redoable(self.journal.events)
+        if not back or open_steps:
+            return [Reply(ReplyKind.ERROR, m.NOTHING_TO_REDO(self.lang))]
+        self._journal(Redone())
+        self.store.bring_back_redone(self.journal)
+        self._rebuild_from_journal()
+        event = back[-1]
+        if isinstance(event, DemoLearned):
+            text = m.REDONE_DEMONSTRATION(self.lang, name=Path(event.file).stem)
+        elif isinstance(event, Answered):
+            text = m.REDONE_ANSWER(self.lang, question=event.question)
+        else:
+            text = m.REDONE_LEARNING(self.lang)
+        return self._flush([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def cmd_steps(self, rest: str) -> list[Reply]:
         if self.open is None or not self.open.steps:
@@ -1060,6 +1112,7 @@ class SessionManager:
 SessionManager._handlers = {
     Verb.HELP: SessionManager.cmd_help, Verb.DEMONSTRATE: SessionManager.cmd_demonstrate,
     Verb.DONE: SessionManager.cmd_done, Verb.CANCEL: SessionManager.cmd_cancel, Verb.UNDO: SessionManager.cmd_undo,
+    Verb.REDO: SessionManager.cmd_redo,
     Verb.PERTURB: SessionManager.cmd_perturb, Verb.RUN: SessionManager.cmd_run, Verb.STOP: SessionManager.cmd_stop,
     Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
     Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,

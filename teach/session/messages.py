@@ -43,6 +43,15 @@ NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say
 DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
 UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
+NOTHING_TO_REDO = Text("Nothing to redo: 'redo' brings back what the last 'undo' took, until you do something new.",
+                       "Nichts wiederherzustellen: 'wiederherstellen' bringt zurück, was das letzte 'zurück' "
+                       "genommen hat, solange du nichts Neues tust.")
+REDONE_STEPS = Text("Back again: steps {first} to {last} ({steps}).",
+                    "Wieder da: Schritte {first} bis {last} ({steps}).")
+REDONE_DEMONSTRATION = Text("Back again: demonstration {name}, learned again.",
+                            "Wieder da: Vorführung {name}, wieder gelernt.")
+REDONE_LEARNING = Text("Back again: what the last undo took.", "Wieder da: was das letzte Zurücknehmen genommen hat.")
+REDONE_ANSWER = Text("Back again: your answer to “{question}”.", "Wieder da: deine Antwort auf „{question}“.")
 UNDONE_DEMONSTRATION = Text("Undone: demonstration {name} (set aside, not learned).",
                             "Rückgängig: Vorführung {name} (beiseitegelegt, nicht gelernt).")
 UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: deine Antwort auf „{question}“.")
@@ -250,6 +259,8 @@ WORD_EITHER = Text("either", "egal")
 SAY_IT_ANOTHER_WAY = Text("Say it another way, please.", "Sag es bitte anders.")
 HELP_UNDO_TO_STEP = Text("undo the last step (N: steps N to the end), demonstration or answer",
                          "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen")
+HELP_REDO = Text("take back the last undo (steps, a demonstration or an answer)",
+                 "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)")
 HELP_STEPS = Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen")
 OPEN_STEPS = Text("The steps so far:", "Die Schritte bisher:")
 NO_OPEN_STEPS = Text("No demonstration is open: there are no steps yet.",
@@ -272,6 +283,7 @@ USAGE_DEMONSTRATE = Text("demonstrate [steps]", "zeigen [Schritte]")
 USAGE_DONE = Text("done", "fertig")
 USAGE_CANCEL = Text("cancel", "abbrechen")
 USAGE_UNDO = Text("undo [N]", "zurück [N]")
+USAGE_REDO = Text("redo", "wiederherstellen")
 USAGE_STEPS = Text("steps", "schritte")
 USAGE_PERTURB = Text("perturb EVENT", "stören EREIGNIS")
 USAGE_RUN = Text("run [N]", "los [N]")

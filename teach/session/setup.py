@@ -130,6 +130,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         raise
     if resume:  # only once the journal has been learned again: a failed resume moves nothing
         store.retire_undone(manager.journal)
+        store.bring_back_redone(manager.journal)
         for moved in store.set_aside_orphans(manager.journal):
             note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
     return manager

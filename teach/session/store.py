@@ -75,6 +75,18 @@ class SessionStore:
         return self._move_aside([self.demo_dir / name for name in sorted(undone) if (self.demo_dir / name).is_file()],
                                 UNDONE)
 
+    def bring_back_redone(self, journal: Journal) -> list[Path]:
+        """Move the demonstrations a redo brought back out of ``undone/`` again (the reverse of
+        ``retire_undone``; also on resume, after a kill between the journal line and the move)."""
+        kept = {event.file for event in effective_events(journal.events) if isinstance(event, DemoLearned)}
+        back = []
+        for name in sorted(kept):
+            aside, home = self.demo_dir / UNDONE / name, self.demo_dir / name
+            if aside.is_file() and not home.exists():
+                aside.replace(home)
+                back.append(home)
+        return back
+
     def _move_aside(self, paths: list[Path], folder: str) -> list[Path]:
         if not paths:
             return []
