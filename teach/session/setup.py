@@ -128,6 +128,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         store.forget_folders(missing)
         raise
     if resume:  # only once the journal has been learned again: a failed resume moves nothing
+        store.remove_interrupted_writes()
         store.retire_undone(manager.journal)
         for moved in store.set_aside_orphans(manager.journal):
             note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
