@@ -13,9 +13,10 @@ from pathlib import Path
 
 import pytest
 
+from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
 from teach.session import messages as m
-from teach.session.journal import DemoLearned
+from teach.session.journal import Answered, DemoLearned
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.world.symbolic import SymbolicWorld
@@ -102,94 +103,193 @@ def _acknowledged(transcript: str) -> tuple[int, int]:
     return thanked, max(generations, default=0)
 
 
-def test_twenty_kills_at_random_moments_lose_nothing_acknowledged(tmp_path):
-    """A scripted session answered by an oracle is killed at 20 seeded random moments; each is
-    resumed. Every answer it thanked for and every generation it announced is in the resumed
-    journal, and the demonstrations folder holds exactly the journalled demonstrations."""
-    import random
+KILL_DIALOGUE = """@world mujoco
+@questions 5
+@seed 3
+find the ball
+go to the ball
+grasp the ball
+go to the bin
+put the ball in the bin
+done
+start BinClose
+find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin
+done
+reset 11
+run
+reset 12
+run 3
+knock the ball away
+find the ball
+go to the ball
+grasp the ball
+go to the bin
+put the ball in the bin
+done
+show
+"""
 
+
+def _taught(manager: SessionManager) -> list[object]:
+    """What a session learned from, in order: each demonstration's states and actions, each
+    answer's situation and action (the learner is deterministic in these)."""
+    from teach.session.journal import effective_events
+
+    taught: list[object] = []
+    for event in effective_events(manager.journal.events):
+        if isinstance(event, DemoLearned):
+            demo = manager.store.read_demonstration(event.file, manager.domain)
+            taught.append([(step.state, step.action) for step in demo.steps])
+        elif isinstance(event, Answered):
+            taught.append((event.state, event.answer))
+    return taught
+
+
+def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
+    """A scripted MuJoCo session (steps one by one and a line at once, runs, a correction, questions
+    answered by an oracle) is killed with SIGKILL at 20 seeded moments, placed by the line the
+    session printed last before them (so a loaded machine moves them little) and a delay after
+    it. Each is resumed and finishes the dialogue. Every "Thank you", "Generation N", "✓" and "→"
+    the teacher saw is on disk (journal, CSVs, generation files) and no file is an orphan. Where
+    the journal on disk is the one the unkilled session had between two lines, the learner
+    rebuilt from it equals the unkilled one's at that point; and when the resumed session learned
+    from what the unkilled one did (the same demonstrations and answers: in MuJoCo a resume
+    places the objects anew, so the world may go another way), it ends with the same tree."""
+    import random
+    from collections import Counter
+    from concurrent.futures import ThreadPoolExecutor
+
+    from conftest import BALL_DOMAIN
+    from killed_session import drive, journal_key, kill_after_marker, run_cut, since_last_prompt, sys_command
+
+    from teach.dialogue.model_repair import ModelOracle
+    from teach.dialogue.oracle import oracle_from_model
+    from teach.dialogue.script import read_script
+    from teach.domain import load_domain
     from teach.session.setup import opened_session
 
     script = tmp_path / "kill.dialogue"
-    lines = ["@world symbolic", "@questions 5", SEQUENCE, "done"]
-    for start in ["BallFound", "BinClose", "BallFound BallClose", ""] * 100:
-        lines += [f"start {start}" if start else "reset", SEQUENCE if "BallFound" not in start else
-                  "go to the ball, grasp the ball, go to the bin, put the ball in the bin", "done"]
-    script.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    from conftest import BALL_DOMAIN
+    script.write_text(KILL_DIALOGUE, encoding="utf-8")
+    lines = [text for _, text in read_script(script).lines]
+    oracle = oracle_from_model(BALL_DOMAIN, load_domain(BALL_DOMAIN))
+    model_oracle = ModelOracle(load_domain(BALL_DOMAIN))
 
-    moments = random.Random(14).sample(range(1500, 6000, 50), KILLS)
-    checked, most_thanked, set_aside = 0, 0, 0
-    for trial, moment in enumerate(moments):
-        base = tmp_path / f"trial-{trial}"
-        out = base / "transcript.txt"
-        base.mkdir()
-        with out.open("w") as transcript:
-            process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay", str(script), "--no-record",
-                                        "--base", str(base), "--oracle-model", str(BALL_DOMAIN)],
-                                       stdout=transcript, stderr=subprocess.DEVNULL,
-                                       env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
-            time.sleep(moment / 1000)
-            os.kill(process.pid, signal.SIGKILL)
-            process.wait()
-        thanked, generation = _acknowledged(out.read_text(encoding="utf-8"))
-        journal = base / "recordings" / "kill.journal.json"
-        if not journal.exists():
-            assert generation == 0  # killed before the session opened: nothing was acknowledged
-            continue
-        notes: list[str] = []
-        settings = Settings("kill", world=WorldKind.SYMBOLIC, base=base, record=False)
-        with opened_session(settings, resume=True, note=notes.append) as resumed:
-            events = resumed.journal.events
-            answers = [e for e in events if e.kind == "answer" and getattr(e, "answer", "") != "skip"]
-            learned = [e for e in events if e.kind in ("demo", "answer")]
-            assert len(answers) >= thanked, (trial, moment)
-            assert len(learned) >= generation, (trial, moment)
-            assert resumed.budget.used >= len(answers)
-        demos = base / "demos" / "kill"
-        journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
-        assert {p.name for p in demos.glob("demo-*.csv")} == journalled, (trial, moment, notes)
-        checked += 1
-        most_thanked = max(most_thanked, thanked)
-        set_aside += len(notes)
-    print(f"{checked} kills resumed, up to {most_thanked} answers thanked for, {set_aside} demonstrations set aside")
-    assert most_thanked > 0  # some kills came after answers were thanked for
-    assert checked >= KILLS // 2  # most kills hit a running session, not its start-up
+    # the unkilled session, its journal after every line: where a killed one may go on from
+    between: dict[int, str] = {}
+    tree_between: dict[int, Node | None] = {}
 
+    def note_between(index: int) -> None:
+        if index not in between:
+            between[index], tree_between[index] = journal_key(manager.store.journal_path), manager.pruned
 
-def test_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
-    """The same promise in the MuJoCo world, at two seeded moments of the quickstart dialogue."""
-    import random
+    reference = Settings("kill", questions=5, seed=3, world=WorldKind.MUJOCO, base=tmp_path / "reference",
+                         record=False)
+    with opened_session(reference, note=lambda _: None) as manager:
+        drive(manager, lines, 0, oracle, model_oracle, note_between)
+        expected_tree, expected_taught = manager.pruned, _taught(manager)
+    assert expected_tree is not None and sum(isinstance(t, list) for t in expected_taught) == 3
 
-    from conftest import BALL_DOMAIN, ROOT
+    # the CLI session unkilled: how long it takes from its first line, on this machine now
+    def replay(base: Path) -> list[str]:
+        return sys_command("replay", str(script), "--no-record", "--base", str(base),
+                           "--oracle-model", str(BALL_DOMAIN))
 
-    from teach.session.setup import opened_session
-
-    for trial, moment in enumerate(random.Random(15).sample(range(4000, 12000, 100), 2)):
-        base = tmp_path / f"trial-{trial}"
-        base.mkdir()
-        out = base / "transcript.txt"
-        with out.open("w") as transcript:
-            process = subprocess.Popen([sys.executable, "-m", "teach.cli", "replay",
-                                        str(ROOT / "dialogues" / "quickstart.dialogue"), "--session", "mj",
-                                        "--no-record", "--base", str(base), "--oracle-model", str(BALL_DOMAIN)],
-                                       stdout=transcript, stderr=subprocess.DEVNULL,
-                                       env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
-            time.sleep(moment / 1000)
-            os.kill(process.pid, signal.SIGKILL)
-            process.wait()
-        thanked, generation = _acknowledged(out.read_text(encoding="utf-8"))
-        if not (base / "recordings" / "mj.journal.json").exists():
-            assert generation == 0
-            continue
-        settings = Settings("mj", base=base, record=False)
-        with opened_session(settings, resume=True, note=lambda _: None) as resumed:
-            events = resumed.journal.events
-        assert sum(e.kind == "answer" for e in events) >= thanked
-        assert sum(e.kind in ("demo", "answer") for e in events) >= generation
-        journalled = {e.file for e in events if e.kind == "demo"}  # type: ignore[union-attr]
-        assert {p.name for p in (base / "demos" / "mj").glob("demo-*.csv")} == journalled
-        print(f"MuJoCo kill at {moment} ms: {generation} generations and {thanked} answers acknowledged, kept")
+    timed = kill_after_marker(replay(tmp_path / "trial-tm"))  # the name as long as each trial's: same lines
+    assert timed.started and any(line.startswith("Saved:") for line in timed.transcript), timed.transcript
+    duration = timed.times[-1]
+    # half the kills one in each tenth of the session's time (steps and runs take most of it), half
+    # each in another turn (a line typed or answered and all it does: learning, questions), at a
+    # random moment of it
+    turns = [i for i, line in enumerate(timed.transcript) if line.startswith(("teach> ", "answer> "))]
+    ends = [timed.times[i] for i in turns[1:]] + [duration]
+    rng = random.Random(14)
+    moments = sorted([(slot + rng.random()) / (KILLS // 2) * duration for slot in range(KILLS // 2)] +
+                     [timed.times[turns[turn]] + rng.random() * (ends[turn] - timed.times[turns[turn]])
+                      for turn in rng.sample(range(len(turns)), KILLS - KILLS // 2)])
+    phases: Counter[str] = Counter()
+    resumed_count, rebuilt, compared, retyped, set_aside, interrupted = 0, 0, 0, 0, 0, 0
+    thanked_most, generation_most = 0, 0
+    bases = [tmp_path / f"trial-{trial:02d}" for trial in range(KILLS)]
+    after_lines = [max(i for i, when in enumerate(timed.times) if when <= moment) for moment in moments]
+    # the next session is run and killed while this one is resumed and checked (two processes, two cores)
+    killer = ThreadPoolExecutor(max_workers=1)
+    kills = [killer.submit(kill_after_marker, replay(base), line, moment - timed.times[line])
+             for base, line, moment in zip(bases, after_lines, moments, strict=True)]
+    try:
+        for trial, (moment, base, kill) in enumerate(zip(moments, bases, kills, strict=True)):
+            killed = kill.result()
+            assert killed.started, killed.transcript
+            phases[killed.phase] += 1
+            transcript = "\n".join(killed.transcript)
+            thanked, generation = _acknowledged(transcript)
+            journal = base / "recordings" / "kill.journal.json"
+            where = (trial, round(moment, 2), killed.last_seen)
+            if not journal.exists():  # killed in the first step: nothing acknowledged, nothing on disk
+                assert generation == 0 and "✓" not in transcript, where
+                assert not [*base.glob("demos/kill/demo-*"), *base.glob("trees/kill/gen-*")], where
+                continue
+            interrupted += len(list(base.rglob(".*.tmp")))  # an atomic write the kill cut short
+            typed = killed.typed
+            on_disk = journal_key(journal)
+            go_on = typed if on_disk == between.get(typed - 1) else typed - 1 if on_disk == between.get(typed - 2) \
+                else None
+            rebuilt += go_on is not None
+            after_generation = transcript.rsplit("\nGeneration ", 1)[-1].splitlines()
+            seen_steps = [line[2:] for line in after_generation if line.startswith("✓ ") and "(nothing" not in line]
+            cut_run = run_cut(killed.transcript)
+            notes: list[str] = []
+            with opened_session(Settings("kill", base=base, record=False), resume=True, note=notes.append) as resumed:
+                events = resumed.journal.events
+                answers = [e for e in events if isinstance(e, Answered) and e.answer != "skip"]
+                learned = [e for e in events if isinstance(e, DemoLearned) or e in answers]
+                assert len(answers) >= thanked, where
+                assert len(learned) >= generation and resumed.generation >= generation, where
+                if generation:
+                    assert (base / "trees" / "kill" / f"gen-{generation:02d}.xml").is_file(), where
+                if go_on is not None:  # the learner rebuilt from the journal is the one the kill ended
+                    assert resumed.pruned == tree_between[go_on - 1], where
+                words = resumed.open.words if resumed.open is not None else []
+                if cut_run and resumed.journal.open_run:  # the run's finished actions open the correction
+                    did = [m.ROBOT_DID_STEP("en", action=action) for action in cut_run]
+                    begun = resumed.domain.action(resumed.journal.open_run).label("en")
+                    # the last action seen begun is the one a resume sets the world up before, or it had
+                    # ended and the next begun (journalled, killed before its "→" was printed)
+                    assert (words, begun) == (did[:-1], cut_run[-1]) or words == did, where
+                elif resumed.open is not None:  # the steps shown since the last generation are the open ones
+                    assert words[len(words) - len(seen_steps):] == seen_steps, where
+                elif seen_steps:  # or a demonstration the kill kept from being announced holds them
+                    labels = [resumed.domain.actions[s.action - 1].label("en") for s in resumed.demos[-1].steps
+                              if s.action > 0]
+                    assert labels[len(labels) - len(seen_steps):] == seen_steps, where
+                journalled = {e.file for e in events if isinstance(e, DemoLearned)}
+                assert {p.name for p in (base / "demos" / "kill").glob("demo-*.csv")} == journalled, (where, notes)
+                shown = [line[2:] for line in since_last_prompt(killed.transcript) if line.startswith("✓ ")]
+                parts = lines[typed - 1].split(", ")
+                if go_on is None and len(parts) > len(shown) > 0 and words == shown:
+                    # killed within a line of steps: the teacher types the steps not yet acknowledged
+                    resumed.handle(", ".join(parts[len(shown):]))
+                    go_on = typed
+                    retyped += 1
+                drive(resumed, lines, typed if go_on is None else go_on, oracle, model_oracle)
+                if _taught(resumed) == expected_taught:  # the world and the questions went as unkilled
+                    assert resumed.pruned == expected_tree, where
+                    compared += 1
+                events = resumed.journal.events
+            journalled = {e.file for e in events if isinstance(e, DemoLearned)}
+            assert {p.name for p in (base / "demos" / "kill").glob("demo-*.csv")} == journalled, where
+            assert not list(base.rglob(".*.tmp")), where  # the resume removed them: no orphans
+            resumed_count += 1
+            set_aside += len(notes)
+            thanked_most, generation_most = max(thanked_most, thanked), max(generation_most, generation)
+    finally:  # a failed check stops the kills still to come
+        killer.shutdown(cancel_futures=True)
+    print(f"{KILLS} kills over {duration:.1f} s of session: {dict(sorted(phases.items()))}; {resumed_count} resumed, "
+          f"{rebuilt} rebuilt the unkilled learner of that point, {compared} learned what the unkilled one did "
+          f"and ended with its tree ({retyped} after retyping the rest of a line); up to {thanked_most} answers "
+          f"and generation {generation_most} acknowledged; {set_aside} unjournalled demonstrations set aside, "
+          f"{interrupted} cut-short writes removed")
+    assert resumed_count >= KILLS - 4 and thanked_most > 0 and generation_most >= 5
+    assert len(phases) >= 4  # the kills spread over steps, runs, learning, questions, the journal's saves
 
 
 def _killed_while_running(command: list[str], base: Path, at_action: int) -> list[str]:
@@ -224,12 +324,12 @@ def _check_run_resumed(base: Path, session: str, transcript: list[str]) -> bool:
     journal = json.loads((base / "recordings" / f"{session}.journal.json").read_text())
     with opened_session(Settings(session, base=base, record=False), resume=True, note=lambda _: None) as resumed:
         kept = resumed.open.words if resumed.open is not None else []
-        if cut and journal["open_run"]:
-            assert resumed.domain.action(journal["open_run"]).label("en") == announced[-1]
-            assert kept == [m.ROBOT_DID_STEP("en", action=action) for action in announced[:-1]]
+        did = [m.ROBOT_DID_STEP("en", action=action) for action in announced]
+        if cut and journal["open_run"]:  # or the last one seen had ended and the next begun, not yet shown
+            begun = resumed.domain.action(journal["open_run"]).label("en")
+            assert (kept, begun) == (did[:-1], announced[-1]) or kept == did, (announced, journal)
         elif cut:  # the run had ended, not yet said: the correction holds them all, or the world is at its end
-            assert kept == [m.ROBOT_DID_STEP("en", action=action) for action in announced] or \
-                journal["events"][-1]["how"] == "run", (announced, journal)
+            assert kept == did or journal["events"][-1]["how"] == "run", (announced, journal)
         events = resumed.journal.events
     journalled = {e.file for e in events if isinstance(e, DemoLearned)}
     assert {p.name for p in (base / "demos" / session).glob("demo-*.csv")} == journalled
@@ -258,3 +358,22 @@ def test_kills_during_runs_keep_every_step_the_robot_was_seen_to_do(tmp_path, wo
         cut += _check_run_resumed(base, "runs", transcript)
     print(f"{world}: {kills} kills during runs, {cut} cut a run the teacher had seen begin")
     assert cut >= 1
+
+
+def test_a_resume_removes_the_writes_a_kill_cut_short(tmp_path):
+    """A kill inside the atomic writer leaves its fsynced temporary file (``.NAME.*.tmp``) beside
+    the journal or a generation: the resume removes it, and only the session's own."""
+    from teach.session.setup import opened_session
+
+    script = tmp_path / "cut.dialogue"
+    script.write_text(f"@world symbolic\n@questions 0\n{SEQUENCE}\ndone\n", encoding="utf-8")
+    subprocess.run([sys.executable, "-m", "teach.cli", "replay", str(script), "--no-record", "--base", str(tmp_path)],
+                   check=True, capture_output=True, timeout=120)
+    cut_short = [tmp_path / "recordings" / ".cut.journal.json.a1b2c3.tmp",
+                 tmp_path / "trees" / "cut" / ".gen-02.xml.x.tmp", tmp_path / "demos" / "cut" / ".demo-002.csv.y.tmp"]
+    others = tmp_path / "recordings" / ".other.journal.json.a1b2c3.tmp"  # another session's write, maybe under way
+    for path in [*cut_short, others]:
+        path.write_text("half", encoding="utf-8")
+    with opened_session(Settings("cut", base=tmp_path, record=False), resume=True, note=lambda _: None) as resumed:
+        assert len(resumed.demos) == 1
+    assert [path for path in cut_short if path.exists()] == [] and others.exists()

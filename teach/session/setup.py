@@ -129,6 +129,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         store.forget_folders(missing)
         raise
     if resume:  # only once the journal has been learned again: a failed resume moves nothing
+        store.remove_interrupted_writes()
         store.retire_undone(manager.journal)
         store.bring_back_redone(manager.journal)
         for moved in store.set_aside_orphans(manager.journal):

@@ -66,6 +66,16 @@ class SessionStore:
         return self._move_aside([p for p in sorted(self.demo_dir.glob("demo-*.csv")) if p.name not in named],
                                 ORPHANED)
 
+    def remove_interrupted_writes(self) -> None:
+        """Delete what atomic writes a kill cut short left (``.NAME.*.tmp``, never renamed onto
+        NAME): no reader takes them, and left alone they pile up beside the session's files.
+        Only called holding the session's lock, so no write of this session is under way."""
+        found = sorted(self.journal_path.parent.glob(f".{self.journal_path.name}.*.tmp"))
+        for folder in (self.demo_dir, self.tree_dir):
+            found += sorted(folder.glob(".*.tmp"))
+        for path in found:
+            path.unlink(missing_ok=True)
+
     def retire_undone(self, journal: Journal) -> list[Path]:
         """Move the demonstrations an undo took back into ``undone/``, so ``teach learn`` on the
         folder trains only on what the session learned (also on resume, after a kill between the
