@@ -155,3 +155,27 @@ if __name__ == "__main__":  # the child process: one scenario, its result as one
     sys.path.insert(0, str(HERE))
     print(json.dumps(_scenario(sys.argv[1])), flush=True)
     os._exit(0)  # the viewer's thread still holds the display: leave without tearing it down
+
+
+def test_the_watch_reports_a_pushed_ball_once_it_rests_and_the_robot_feels_a_push_on_its_fingers() -> None:
+    """Without a viewer: forces set as its ``sync`` sets them (``xfrc_applied``)."""
+    from teach.sim.hand import ObjectWatch, robot_wrench
+    from teach.sim.world import CONTROL_STEPS, World
+
+    world = World(seed=0)
+    world.arrange({"BallFound": True, "BallClose": True, "BallGrasped": False, "BinClose": False,
+                   "BallPlaced": False}, seed=3)
+    watch = ObjectWatch(world, CONTROL_STEPS * world.model.opt.timestep)
+    ball, before = world.model.body("ball").id, world.state()
+    moves = []
+    for period in range(150):  # 0.4 s of a 0.3 N push sideways, then let go
+        world.data.xfrc_applied[ball] = (0.0, 0.3, 0, 0, 0, 0) if period < 20 else 0.0
+        moves += watch.update()
+        assert watch.busy == (not moves)
+        world.step(CONTROL_STEPS)
+    assert len(moves) == 1 and moves[0].thing == "ball" and moves[0].before == before
+    assert moves[0].after == world.state() != before
+    finger = world.model.body("finger_left").id
+    world.data.xfrc_applied[finger] = (0.0, 10.0, 0, 0, 0, 0)  # sideways on a finger ahead of the base: a turn
+    fx, fy, torque = robot_wrench(world)
+    assert (fx, fy) == (0.0, 10.0) and torque != 0.0
