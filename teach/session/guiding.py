@@ -36,6 +36,7 @@ from teach.session.journal import GuidedActionTaught
 from teach.session.replies import Reply, ReplyKind
 
 if TYPE_CHECKING:
+    from teach.session.hand import HandFollower
     from teach.session.machine import SessionManager
     from teach.sim.guide import Guide, Sample
     from teach.sim.guided_skill import GuidedMotion
@@ -75,6 +76,7 @@ class Guiding:
         self.pending: _Due | None = None  # the labelling question open now
         self.deferred: str | None = None  # the line that ended guidance, carried out after the answers
         self.used = False          # guiding happened in this session (the toolbar then shows both budgets)
+        self.hand: HandFollower | None = None  # following the teacher's hand in the viewer (``guide hand``)
 
     @property
     def lang(self) -> str:
@@ -103,7 +105,7 @@ class Guiding:
             replies += self.manager.cmd_demonstrate("")
         if self.guide is None:
             self.segmenter, self.labelled = Segmenter(), 0
-            self.guide = world.start_guiding(self.segmenter.add)
+            self.guide = world.start_guiding(self._feed)
             self.used = True
         return replies
 
@@ -124,10 +126,30 @@ class Guiding:
             command = parse_guide_line(f"guide {rest}")
         except FormatError as error:
             raise TeachError(error.message) from None
+        if command.verb == "hand":
+            return self.follow_hand(command.amount)
         replies = self.manager._flush(self.begin())
         assert self.guide is not None
         self.guide.run(command)
         return replies + self.label(final=False)
+
+    def _feed(self, sample: Sample) -> None:
+        """A guided sample to the segmenter, unless the teacher's hand is moving the ball or the
+        bin: that change is theirs (an external step), not the robot's."""
+        if self.segmenter is not None and (self.hand is None or not self.hand.holds_segmenting):
+            self.segmenter.add(sample)
+
+    def follow_hand(self, seconds: float) -> list[Reply]:
+        """``guide hand``: follow the teacher's drag in the MuJoCo viewer (``teach.session.hand``)."""
+        from teach.session.hand import HandFollower
+
+        if getattr(self.manager.world, "viewer", None) is None:
+            return [Reply(ReplyKind.ERROR, m.HAND_NEEDS_VIEWER(self.lang))]
+        replies = self.manager._flush(self.begin())
+        assert self.guide is not None and self.segmenter is not None
+        if self.hand is None or self.hand.guide is not self.guide:
+            self.hand = HandFollower(self, self.guide)
+        return replies + self.hand.follow(seconds)
 
     def line_for_key(self, name: str) -> str | None:
         """The ``guide …`` line a key of the terminal's guide mode stands for (``Guide.key``
@@ -141,6 +163,8 @@ class Guiding:
         """Guidance is over: a change within its hold time counts, and everything is labelled."""
         if self.guide is None or self.segmenter is None:
             return []
+        if self.hand is not None:
+            self.hand.finish()
         self.segmenter.finish()
         self.guide = None
         return self.label(final=True)
@@ -169,6 +193,8 @@ class Guiding:
             else:
                 self._leave_out(due, "robot (no labelling questions left)")
                 replies.append(Reply(ReplyKind.INFO, m.LABEL_DROPPED(self.lang, change=self._change(due))))
+        if self.pending is None and self.hand is not None:
+            replies += self.hand.after_labels()
         if self.pending is None and not self.active and self.segmenter is not None:
             self.segmenter = None
         return self.manager._flush(replies)

@@ -434,3 +434,16 @@ RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} ha
                              "as it was before it.",
                              "Die Sitzung endete, während ich lief ({action} hatte gerade begonnen): die Welt ist "
                              "wieder so wie davor.")
+# --- guiding by dragging in the MuJoCo viewer (issue 12, viewer)
+HAND_NEEDS_VIEWER = Text("'guide hand' follows your drag in the MuJoCo viewer: start the session with --viewer.",
+                         "'führen hand' folgt deinem Ziehen im MuJoCo-Viewer: starte die Sitzung mit --viewer.")
+HAND_FOLLOWING = Text("I follow your hand in the viewer: double-click the robot, then Ctrl + right-drag moves me and "
+                      "Ctrl + left-drag turns me; drag the ball or the bin the same way. Let go when you are done.",
+                      "Ich folge deiner Hand im Viewer: doppelklicke auf den Roboter, dann bewegt mich Strg + "
+                      "Rechtsziehen und Strg + Linksziehen dreht mich; Ball und Eimer ziehst du genauso. Lass los, "
+                      "wenn du fertig bist.")
+HAND_THE_BALL = Text("the ball", "den Ball")
+HAND_THE_BIN = Text("the bin", "den Eimer")
+HAND_MOVED = Text("you moved {thing}", "du hast {thing} bewegt")
+HAND_MOVED_NOTHING = Text("You moved {thing}, but nothing changed for me: not recorded.",
+                          "Du hast {thing} bewegt, aber für mich hat sich nichts geändert: nicht aufgezeichnet.")

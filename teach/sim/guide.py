@@ -10,7 +10,9 @@ records a ``Sample`` (the symbolic state, the bodies' poses and the commands) an
 its listener, so a segmenter can cut the motion online.
 
 In the MuJoCo viewer the teacher drags the robot instead (Ctrl + drag): ``by_hand`` follows the
-force on the base. Script lines: ``guide forward 0.4``, ``guide turn -30``, ``guide lift 0.25``, ``guide close``
+force on the robot's bodies (``guide hand 10``: for 10 s; the session's ``guide hand`` alone follows
+until the hand lets go, ``teach.session.hand``).
+Script lines: ``guide forward 0.4``, ``guide turn -30``, ``guide lift 0.25``, ``guide close``
 (German: ``führen vor 0.4``, ``führen drehen -30``, ``führen heben 0.25``, ``führen schließen``).
 Keys (``Guide.key``): up/down move 10 cm, left/right turn 15 degrees, pageup/pagedown move
 the lift 5 cm, space opens or closes the fingers.
@@ -71,18 +73,20 @@ class GuideCommand:
     amount: float = 0.0
 
     def __str__(self) -> str:
-        return f"guide {self.verb}" if self.verb in ("open", "close") else f"guide {self.verb} {self.amount:g}"
+        if self.verb in ("open", "close") or (self.verb == "hand" and self.amount == 0):
+            return f"guide {self.verb}"
+        return f"guide {self.verb} {self.amount:g}"
 
 
 VERBS: dict[str, str] = {"forward": "forward", "back": "back", "turn": "turn", "lift": "lift", "open": "open",
-                         "close": "close", "wait": "wait",
+                         "close": "close", "wait": "wait", "hand": "hand",
                          "vor": "forward", "vorwärts": "forward", "zurück": "back", "drehen": "turn",
                          "heben": "lift", "öffnen": "open", "schließen": "close", "warten": "wait",
                          "vorwarts": "forward", "zuruck": "back", "offnen": "open", "schliessen": "close"}
 KEYWORDS = ("guide", "führen", "fuhren")
 _LIMITS = {"forward": (-MAX_DISTANCE, MAX_DISTANCE, "metres"), "back": (-MAX_DISTANCE, MAX_DISTANCE, "metres"),
            "turn": (-MAX_TURN, MAX_TURN, "degrees"), "lift": (0.0, LIFT_TOP, "metres (absolute height)"),
-           "wait": (0.0, MAX_WAIT, "seconds")}
+           "wait": (0.0, MAX_WAIT, "seconds"), "hand": (0.0, MAX_WAIT, "seconds")}
 
 
 def is_guide_line(text: str) -> bool:
@@ -103,6 +107,8 @@ def parse_guide_line(text: str, path: str | Path | None = None, line: int | None
         raise fail(f"guide what? say one of {', '.join(sorted(set(VERBS.values())))} (got {' '.join(words[1:])!r})")
     verb = VERBS[words[1].lower()]
     arguments = words[2:]
+    if verb == "hand" and not arguments:
+        return GuideCommand("hand", 0.0)  # follow the hand until it lets go
     if verb in ("open", "close"):
         if arguments:
             raise fail(f"'guide {verb}' takes no number (got {' '.join(arguments)!r})")
@@ -142,6 +148,7 @@ class Guide:
         self.finger_target = FINGER_CLOSED if world.finger_closure() > FINGER_CLOSED / 2 else FINGER_OPEN
         self._dt = CONTROL_STEPS * world.model.opt.timestep
         self.doing = "guide"  # what the recording shows as running: the command being carried out
+        self._robot: tuple[int, ...] | None = None  # the robot's bodies, found on the first hand period
         self.sample((0.0, 0.0))
 
     # --- sampling --------------------------------------------------------------------------
@@ -174,7 +181,7 @@ class Guide:
         actions: dict[str, Callable[[], None]] = {
             "forward": lambda: self.forward(command.amount), "turn": lambda: self.turn(command.amount),
             "lift": lambda: self.lift(command.amount), "open": self.open, "close": self.close,
-            "wait": lambda: self.wait(command.amount)}
+            "wait": lambda: self.wait(command.amount), "hand": lambda: self.by_hand(command.amount)}
         self.doing = str(command)
         actions[command.verb]()
 
@@ -259,18 +266,41 @@ class Guide:
             self._period(0.0, 0.0)
 
     def by_hand(self, seconds: float) -> None:
-        """Follow a hand on the robot for ``seconds``: the external force and torque on the base
-        (the MuJoCo viewer's Ctrl+drag, or ``World.push_base``) set its speed and turn rate,
-        as a compliant robot arm follows the hand that guides it."""
-        base = self.world.model.body("base").id
+        """Follow a hand on the robot for ``seconds`` of simulated time."""
         for _ in range(round(seconds / self._dt)):
-            fx, fy, _, _, _, torque = (float(v) for v in self.world.data.xfrc_applied[base])
-            yaw = self.world.base_pose()[2]
-            along = fx * math.cos(yaw) + fy * math.sin(yaw)
-            forward = max(-SPEED, min(SPEED, along / HAND_DAMPING))
-            turn = max(-TURN_SPEED, min(TURN_SPEED, torque / HAND_TURN_DAMPING))
-            self._period(forward, turn)
+            self.hand_period()
         self._stop()
+
+    def hand_period(self) -> None:
+        """One control period following a hand on the robot: the external force and torque on
+        its bodies (the MuJoCo viewer's Ctrl+drag, or ``World.push_base``; ``teach.sim.hand``)
+        set its speed and turn rate, as a compliant robot follows the hand that guides it."""
+        from teach.sim.hand import robot_bodies, robot_wrench
+
+        if self._robot is None:
+            self._robot = robot_bodies(self.world)
+        fx, fy, torque = robot_wrench(self.world, self._robot)
+        yaw = self.world.base_pose()[2]
+        along = fx * math.cos(yaw) + fy * math.sin(yaw)
+        forward = max(-SPEED, min(SPEED, along / HAND_DAMPING))
+        turn = max(-TURN_SPEED, min(TURN_SPEED, torque / HAND_TURN_DAMPING))
+        # the hand is measured, not felt: only the drives move the robot (admittance control), so the
+        # viewer's stiff spring cannot fling it; the force stays for the next period's reading
+        rows = list(self._robot)
+        xfrc = self.world.data.xfrc_applied
+        held = xfrc[rows].copy()
+        xfrc[rows] = 0.0
+        self.world.drive(forward, turn)
+        self.world.set_lift(self.lift_target)
+        self.world.set_fingers(self.finger_target)
+        self.world.step(CONTROL_STEPS)
+        xfrc[rows] = held
+        self.sample((forward, turn))
+
+    @property
+    def period(self) -> float:
+        """Seconds of simulated time per control period."""
+        return self._dt
 
     def _stop(self) -> None:
         self.world.drive(0.0, 0.0)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from typing import Any
 
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import TickResult, tick
@@ -75,15 +76,22 @@ class MujocoWorld:
         self.observer = observer or Observer()
         self.ticker: Ticker = tick
         self._frame_steps: list[Callable[[], None]] = []  # after each scene frame: pace, redraw
+        self.viewer: Any = None  # the MuJoCo viewer's handle with --viewer: the teacher's hand drags in it
         if pace > 0:
             self._frame_steps.append(_Pacer(self.world, pace))
         if viewer:
             if not has_display():
                 raise TeachError("--viewer needs a display (DISPLAY is not set); recordings still show the scene")
-            self._frame_steps.append(self.world.open_viewer().sync)
+            self.viewer = self.world.open_viewer()
+            self._frame_steps.append(self.viewer.sync)
         self._on_frame = self._after_frame if self._frame_steps else None
         self.frames = FrameClock(self.world, self.observer, self._on_frame)
         self.events = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}
+
+    def after_each_frame(self, step: Callable[[], None]) -> None:
+        """Run ``step`` after every scene frame too (a scripted mouse in the viewer, a screenshot)."""
+        self._frame_steps.append(step)
+        self._on_frame = self.frames.on_frame = self._after_frame
 
     def _after_frame(self) -> None:
         for step in self._frame_steps:
@@ -152,6 +160,8 @@ class MujocoWorld:
         return result
 
     def close(self) -> None:
+        if self.viewer is not None:
+            self.viewer.close()
         self.world.close()
 
     # --- guiding (issue 12): the teacher moves the robot's body ----------------------------
