@@ -27,7 +27,7 @@ lint: $(STAMP)
 bench: $(STAMP)
 	for b in bench/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
 
-# Not part of `make test`: needs chromium (apt-get install -y chromium) and takes a few minutes.
+# Not part of `make test`: needs chromium, Xvfb and ImageMagick (installed with apt-get when missing); a few minutes.
 SHOTLIB := build/screenshots-lib
 
 $(SHOTLIB)/.installed: $(STAMP)
@@ -40,6 +40,8 @@ recordings/quickstart.rrd:
 screenshots: $(SHOTLIB)/.installed recordings/quickstart.rrd
 	command -v chromium >/dev/null || apt-get install -y chromium
 	PYTHONPATH=$(SHOTLIB) $(BIN)/python tools/screenshots.py recordings/quickstart.rrd
+	command -v Xvfb >/dev/null && command -v import >/dev/null || apt-get install -y xvfb imagemagick xdotool
+	$(BIN)/python tools/viewer_screenshot.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info
