@@ -876,18 +876,18 @@ class SessionManager:
 
     def _after_learning(self, ask: bool, started: float | None = None,
                         events: list[Event] | None = None) -> list[Reply]:
-        """Prune, save the generation, then commit ``events`` to the journal (so a journalled
-        event always has its generation on disk), then show, replay and maybe ask."""
+        """Commit ``events`` to the journal, then prune, save the generation, show, replay and
+        maybe ask. Journal first, as for answers: a kill between the two leaves a learned event
+        whose generation the teacher never saw (a resume learns it again), never a generation
+        file no journalled event explains."""
         from teach.replay import replay
 
+        if events:
+            self._journal(*events)
         if not self.learning.has_behaviour:  # only goal states so far: there is no behaviour to show yet
-            if events:
-                self._journal(*events)
             return self._flush([Reply(ReplyKind.INFO, m.GOAL_ONLY(self.lang))])
         pruned = self.learning.prune()
         path = self.learning.save_generation(pruned, "learned from demonstrations and answers")
-        if events:
-            self._journal(*events)
         report = replay(pruned, self.domain, self.demos)
         self.observer.on_replay(report.reproduced, report.total)
         # node counts and the file are for the facilitator; the teacher hears what it means
