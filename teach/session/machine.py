@@ -352,23 +352,20 @@ class SessionManager:
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
-        before = effective_events(self.journal.events)
         self._journal(Undone())
-        after = {id(event) for event in effective_events(self.journal.events)}
-        taken_back = [event for event in before if id(event) not in after and not _skip_answer(event)]
         self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
-        head = self._flush([Reply(ReplyKind.INFO, self._undone_text(taken_back))])
-        return head + self._after_learning(ask=False)
+        taken_back = redoable(self.journal.events)[-1]  # what this undo took (a skipped question never counts)
+        text = self._learning_text(taken_back, m.UNDONE_DEMONSTRATION, m.UNDONE_ANSWER, m.UNDONE_LEARNING)
+        return self._flush([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
-    def _undone_text(self, taken_back: list[Event]) -> str:
-        """What an undo took back, in words: the demonstration's number or the question answered."""
-        event = taken_back[-1] if taken_back else None
+    def _learning_text(self, event: Event, demo: m.Text, answer: m.Text, other: m.Text) -> str:
+        """What an undo or redo moved, in words: the demonstration's name or the question answered."""
         if isinstance(event, DemoLearned):
-            return m.UNDONE_DEMONSTRATION(self.lang, name=Path(event.file).stem)
+            return demo(self.lang, name=Path(event.file).stem)
         if isinstance(event, Answered):
-            return m.UNDONE_ANSWER(self.lang, question=event.question)
-        return m.UNDONE_LEARNING(self.lang)
+            return answer(self.lang, question=event.question)
+        return other(self.lang)
 
     def _undo_steps(self, rest: str) -> list[Reply]:
         """Take back steps N.. of the open demonstration (the last one without N): the world goes
@@ -380,11 +377,11 @@ class SessionManager:
             first = count
         if not 1 <= first <= count:
             raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
-        undone = "; ".join(self.open.words[first - 1:])
         steps, words, world_after = tuple(self.open.steps[first - 1:]), tuple(self.open.words[first - 1:]), \
             self.world.state()
         self.world.arrange(self.open.take_back(first).state)
         self._taken_back = _StepsTakenBack(first, steps, words, world_after, self.world.state())
+        undone = "; ".join(words)
         if not self.open.steps:
             self.open = None
         text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
@@ -412,13 +409,7 @@ class SessionManager:
         self._journal(Redone())
         self.store.bring_back_redone(self.journal)
         self._rebuild_from_journal()
-        event = back[-1]
-        if isinstance(event, DemoLearned):
-            text = m.REDONE_DEMONSTRATION(self.lang, name=Path(event.file).stem)
-        elif isinstance(event, Answered):
-            text = m.REDONE_ANSWER(self.lang, question=event.question)
-        else:
-            text = m.REDONE_LEARNING(self.lang)
+        text = self._learning_text(back[-1], m.REDONE_DEMONSTRATION, m.REDONE_ANSWER, m.REDONE_LEARNING)
         return self._flush([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def cmd_steps(self, rest: str) -> list[Reply]:
@@ -1126,10 +1117,6 @@ _OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME
                   Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
 _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
-
-
-def _skip_answer(event: Event) -> bool:
-    return isinstance(event, Answered) and event.answer == "skip"
 
 
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:

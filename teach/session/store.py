@@ -80,7 +80,7 @@ class SessionStore:
         """Move the demonstrations an undo took back into ``undone/``, so ``teach learn`` on the
         folder trains only on what the session learned (also on resume, after a kill between the
         journal line and the move)."""
-        kept = {event.file for event in effective_events(journal.events) if isinstance(event, DemoLearned)}
+        kept = _learned_files(journal)
         undone = {event.file for event in journal.events if isinstance(event, DemoLearned)} - kept
         return self._move_aside([self.demo_dir / name for name in sorted(undone) if (self.demo_dir / name).is_file()],
                                 UNDONE)
@@ -88,9 +88,8 @@ class SessionStore:
     def bring_back_redone(self, journal: Journal) -> list[Path]:
         """Move the demonstrations a redo brought back out of ``undone/`` again (the reverse of
         ``retire_undone``; also on resume, after a kill between the journal line and the move)."""
-        kept = {event.file for event in effective_events(journal.events) if isinstance(event, DemoLearned)}
         back = []
-        for name in sorted(kept):
+        for name in sorted(_learned_files(journal)):
             aside, home = self.demo_dir / UNDONE / name, self.demo_dir / name
             if aside.is_file() and not home.exists():
                 aside.replace(home)
@@ -183,3 +182,8 @@ class SessionStore:
             raise FormatError("no such session journal (was the session id right?)", self.journal_path)
         return Journal.from_text(read_text(self.journal_path, "session journal", limits.MAX_JSON_BYTES),
                                  self.journal_path)
+
+
+def _learned_files(journal: Journal) -> set[str]:
+    """The demonstration files the journal's learning holds (undone ones left out, redone ones in)."""
+    return {event.file for event in effective_events(journal.events) if isinstance(event, DemoLearned)}
