@@ -24,7 +24,7 @@ from teach.bt.render import STYLES, render_tree
 from teach.bt.xml import tree_from_xml
 from teach.errors import TeachError
 from teach.observe.btlog_writer import run_logs
-from teach.observe.reader import DemoRecord, GraphRecord, QuestionRecord, RecordingContents
+from teach.observe.reader import DemoRecord, GenerationRecord, GraphRecord, QuestionRecord, RecordingContents
 
 
 @dataclass(frozen=True)
@@ -60,9 +60,12 @@ def _run(path: Path) -> RunRecord:
     return RunRecord(path, outcome, tuple(started), seconds, len(log.transitions))
 
 
-def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: int | None = None) -> Group:
-    """Everything a researcher reviews, in session order within each section; with ``step``,
-    also the tree at that step coloured by each node's status there."""
+def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: int | None = None,
+            tick: int | None = None) -> Group:
+    """Everything a researcher reviews, in session order within each section, each event with
+    its place on the recording's timelines ("step 5 · tick 20": ``--step 5`` or ``--tick 20``
+    shows the tree there); with ``step`` or ``tick``, also the tree there coloured by each node's
+    status."""
     parts: list[RenderableType] = [_header(contents)]
     parts += [Text("\nDemonstrations", style="bold underline")]
     parts += [_demonstration(d, contents.conditions) for d in contents.demonstrations] or [Text("  none")]
@@ -74,6 +77,8 @@ def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: i
         parts += [Text("\nTicks", style="bold underline"), _ticks(contents)]
     if step is not None:
         parts += [Text(f"\nTree at step {step}", style="bold underline"), step_tree(contents, step)]
+    if tick is not None:
+        parts += [Text(f"\nTree at tick {tick}", style="bold underline"), tick_tree(contents, tick)]
     parts += [Text("\nRuns (.btlog files for Groot2)", style="bold underline"), _runs(runs)]
     parts += [Text("\nFinal tree", style="bold underline"), _final_tree(contents)]
     parts += [Text("\nReplay", style="bold underline"), _replay(contents)]
@@ -97,10 +102,22 @@ def _count(number: int, noun: str) -> str:
     return f"{number} {noun}{'' if number == 1 else 's'}"
 
 
+def where(step: int | None, moment: int | None) -> str:
+    """An event's place on the timelines, as ``--step`` and ``--tick`` take them."""
+    return " · ".join(part for part in ("" if step is None else f"step {step}",
+                                        "" if moment is None else f"tick {moment}") if part)
+
+
+def _at(step: int | None, moment: int | None) -> Text:
+    shown = where(step, moment)
+    return Text(f"[{shown}] " if shown else "", style="cyan")
+
+
 def _demonstration(demo: DemoRecord, conditions: tuple[str, ...]) -> RenderableType:
     robot = [a for a in demo.actions if a not in ("goal", "external")]
     ending = "goal reached" if demo.reached_goal else "no goal line"
-    title = Text.assemble((demo.name, "bold"), f": {' → '.join(robot) or '(no actions)'} ({ending})")
+    title = Text.assemble(_at(demo.step, demo.moment), (demo.name, "bold"),
+                          f": {' → '.join(robot) or '(no actions)'} ({ending})")
     table = Table(box=None, padding=(0, 2), show_header=True, header_style="dim")
     table.add_column("#", justify="right")
     table.add_column("state (true conditions)")
@@ -114,34 +131,62 @@ def _demonstration(demo: DemoRecord, conditions: tuple[str, ...]) -> RenderableT
 
 
 def _questions(contents: RecordingContents) -> RenderableType:
+    """Each question as a paragraph (a table squeezes a long question into a narrow column)."""
     if not contents.questions:
         return Text("  none asked")
-    table = Table(box=None, padding=(0, 2), header_style="dim")
-    for column in ("#", "question", "left", "answer", "what it changed"):
-        table.add_column(column)
+    parts: list[RenderableType] = []
     for number, q in enumerate(contents.questions, 1):
-        table.add_row(str(number), q.question, str(q.budget_left) if q.budget_left >= 0 else "",
-                      q.answer if q.answer is not None else Text("(unanswered)", style="dim"), q.change or "")
-    return table
+        left = f" ({q.budget_left} left)" if q.budget_left >= 0 else ""
+        parts.append(Text.assemble(f"  {number}. ", _at(q.step, q.moment), q.question, (left, "dim")))
+        if q.answer is None:
+            parts.append(Text("     → (unanswered)", style="dim"))
+        else:
+            parts.append(Text.assemble("     → ", _at(q.answer_step, q.answer_moment), (q.answer, "bold"),
+                                       f": {q.change}" if q.change else ""))
+    return Group(*parts)
+
+
+_EVENTS = {"specialize": "from a demonstration", "answer": "from an answer"}
+
+
+def generation_reason(contents: RecordingContents, generation: GenerationRecord) -> str:
+    """Why a generation was saved, from what the recording shows just before it in its turn: the
+    latest demonstration or answer ("the first tree" for the first), else the session's reason."""
+    first = "the first tree, " if generation is contents.generations[0] else ""
+    if generation.step is None or generation.moment is None:
+        return first + generation.reason
+    causes: list[tuple[int, int, str]] = []  # (moment, answers after demonstrations at one moment, words)
+    for demo in contents.demonstrations:
+        if demo.step == generation.step and demo.moment is not None and demo.moment <= generation.moment:
+            causes.append((demo.moment, 0, f"from demonstration {demo.name}"))
+    for number, q in enumerate(contents.questions, 1):
+        if q.answer_step == generation.step and q.answer_moment is not None and q.answer_moment <= generation.moment:
+            causes.append((q.answer_moment, 1, f"from the answer to question {number} ({q.answer})"))
+    if causes:
+        return first + max(causes)[2]
+    return first + generation.reason.split(": ", 1)[-1]
 
 
 def _generations(contents: RecordingContents) -> RenderableType:
     if not contents.generations:
         return Text("  none")
     table = Table(box=None, padding=(0, 2), header_style="dim")
-    for column in ("generation", "nodes", "step", "why"):
+    for column in ("generation", "nodes", "step", "tick", "why"):
         table.add_column(column)
     for g in contents.generations:
-        table.add_row(str(g.generation), str(g.nodes), "" if g.step is None else str(g.step), g.reason)
+        table.add_row(str(g.generation), str(g.nodes), "" if g.step is None else str(g.step),
+                      "" if g.moment is None else str(g.moment), generation_reason(contents, g))
     return table
 
 
 def _learner_events(contents: RecordingContents) -> RenderableType:
+    """Which learner learned what, in order, each at its place on the timelines."""
     lines = []
-    for e in contents.learner_events:
+    for number, e in enumerate(contents.learner_events, 1):
         shown = [name for name in e.removed if name not in e.detail]  # the detail often names them already
         removed = f"  removed: {', '.join(shown)}" if shown else ""
-        lines.append(Text.assemble(("  " + e.event, "bold"), f": {e.detail}{removed}"))
+        who = f"{e.learner}, {_EVENTS.get(e.event, e.event)}" if e.learner else e.event
+        lines.append(Text.assemble(f"  {number}. ", _at(e.step, e.moment), (who, "bold"), f": {e.detail}{removed}"))
     return Group(*lines)
 
 
@@ -149,15 +194,17 @@ _MAX_RUNS = 20
 
 
 def _ticks(contents: RecordingContents) -> RenderableType:
-    """What the ticks did, run-length encoded: the action that ran (or the root's status) and how often."""
+    """What the ticks did, run-length encoded: the action that ran (or the root's status), how
+    often, and from which tick on (``--tick N`` shows the tree there)."""
     runs: list[list] = []
     for tick in contents.ticks:
         what = tick.action or tick.status
         if runs and runs[-1][0] == what:
             runs[-1][1] += 1
         else:
-            runs.append([what, 1])
-    shown = " → ".join(f"{what} ×{count}" if count > 1 else what for what, count in runs[:_MAX_RUNS])
+            runs.append([what, 1, tick.moment])
+    shown = " → ".join((f"{what} ×{count}" if count > 1 else what) + ("" if at is None else f" (tick {at})")
+                       for what, count, at in runs[:_MAX_RUNS])
     more = f" → … ({len(runs) - _MAX_RUNS} more)" if len(runs) > _MAX_RUNS else ""
     return Text(f"  {_count(len(contents.ticks), 'tick')}: {shown}{more}")
 
@@ -184,6 +231,30 @@ _STATUS_STYLES = {status.name: style for status, style in STYLES.items()}
 _RUNNING_ACTION = "bold black on yellow"
 
 
+def tick_tree(contents: RecordingContents, moment: int) -> RenderableType:
+    """The tree at ``moment`` of the ``tick`` timeline as the viewer shows it: at a tick, the tree
+    that ran coloured by that tick; at any other moment, the current generation, nothing ticked."""
+    last = contents.last_moment
+    if not 0 <= moment <= last:
+        raise TeachError(f"--tick {moment} is outside the recording (its ticks: 0–{last})", contents.path)
+    tick = contents.tick_at(moment)
+    if tick is not None:
+        index = contents.ticks.index(tick)
+        statuses = {node: status for node, (_, status) in zip(tick.nodes, tick.trace, strict=True)}
+        note = Text(f"  tick {moment} (step {tick.step}): the tree that ran, root {tick.status}"
+                    + (f", running {tick.action}" if tick.action else ""))
+        graph_at = contents.tick_graphs[index]
+        if graph_at >= 0:
+            return Group(note, _graph_tree(contents.graphs[graph_at], statuses), _legend())
+    earlier = [g for g in contents.generation_graphs if g.moment is not None and g.moment <= moment]
+    if not earlier:
+        return Text(f"  no tree yet at tick {moment}", style="dim")
+    generation = [g for g in contents.generations if g.moment is not None and g.moment <= moment]
+    name = f"generation {generation[-1].generation}" if generation else "the current generation"
+    return Group(Text(f"  no tick at tick {moment}: {name} as it stood, nothing ticked", style="dim"),
+                 _graph_tree(earlier[-1], {}), _legend())
+
+
 def session_steps(contents: RecordingContents) -> list[int]:
     """Every step something was logged at, in order."""
     steps = {line.step for line in contents.dialogue} | {t.step for t in contents.ticks} | \
@@ -207,10 +278,11 @@ def step_tree(contents: RecordingContents, step: int) -> RenderableType:
         note = Text(f"  last of {len(ticked)} tick{'s' if len(ticked) != 1 else ''} at step {step}: "
                     f"root {tick.status}" + (f", running {tick.action}" if tick.action else ""))
     else:
-        earlier = [i for i, g in enumerate(contents.graphs) if g.step is not None and g.step <= step]
-        graph_at = earlier[-1] if earlier else -1
-        statuses, tick = {}, None
-        note = Text(f"  no tick at step {step}: the tree as it stood, nothing ticked", style="dim")
+        earlier = [g for g in contents.generation_graphs if g.step is not None and g.step <= step]
+        if not earlier:
+            return Text(f"  no tree yet at step {step}", style="dim")
+        return Group(Text(f"  no tick at step {step}: the tree as it stood, nothing ticked", style="dim"),
+                     _graph_tree(earlier[-1], {}), _legend())
     if graph_at < 0:
         return Text(f"  no tree yet at step {step}", style="dim")
     return Group(note, _graph_tree(contents.graphs[graph_at], statuses), _legend())

@@ -113,7 +113,7 @@ def test_tree_comes_first(recorded: tuple[Path, dict]) -> None:
     contents = read_recording(recorded[0])
     # after the static domain, the first things logged are the tree (a note that there is none yet, then
     # the first generation's graph and XML), before any dialogue, state or scene
-    assert contents.first_entities[:4] == ("/tree/xml", "/tree/graph", "/tree/xml", "/learner/generations")
+    assert contents.first_entities[:4] == ("/tree/xml", "/tree/generation", "/tree/xml", "/learner/generations")
     assert contents.session == "test-session" and contents.has_blueprint
     assert contents.domain_name == "ball-in-bin"
     assert contents.conditions[0] == "BallFound" and "PlaceBall" in contents.actions

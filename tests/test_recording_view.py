@@ -83,21 +83,26 @@ def recorded(tmp_path_factory: pytest.TempPathFactory, ball: Domain) -> Path:
     return path
 
 
-def test_the_blueprint_shows_cameras_tree_and_study_plots(recorded: Path) -> None:
+def test_the_blueprint_shows_cameras_trees_documents_and_study_plots(recorded: Path) -> None:
     views = set()
     for chunk in _chunks(recorded, blueprint=True):
-        if chunk.entity_path.startswith("/view/") and not chunk.entity_path.endswith("ViewContents"):
-            batch = chunk.to_record_batch()
+        batch = chunk.to_record_batch()
+        if chunk.entity_path.startswith("/view/") and "ViewBlueprint:class_identifier" in batch.schema.names:
             for kind, name, origin in zip(*(batch.column(f"ViewBlueprint:{c}").to_pylist()
                                              for c in ("class_identifier", "display_name", "space_origin")),
                                           strict=True):
                 views.add((kind[0], name[0], origin[0]))
     for expected in [("2D", "Camera", "camera"), ("2D", "Robot camera", "robot_camera"),
-                     ("3D", "Scene", "scene"), ("Graph", "Behaviour tree", "tree/graph"),
+                     ("3D", "Scene", "scene"), ("Graph", "Tree that ran (coloured at each tick)", "tree/graph"),
+                     ("Graph", "Current generation (what the robot learned)", "tree/generation"),
+                     ("TextDocument", "Dialogue", "dialogue/transcript"),
+                     ("TextDocument", "Questions asked", "study/questions_asked"),
+                     ("TextDocument", "Learner and events", "learner/document"),
+                     ("TextDocument", "Legend", "legend"),
                      ("TimeSeries", "Tree size", "study/tree_size"),
                      ("TimeSeries", "Reproduced", "study/reproduced_share"),
                      ("TimeSeries", "Run outcomes", "study/run_outcomes"),
-                     ("TextLog", "Questions asked", "study/questions"), ("TextLog", "Runs", "study/runs")]:
+                     ("TextLog", "Runs", "study/runs"), ("TextLog", "Ticks", "tree/graph")]:
         assert expected in views
 
 

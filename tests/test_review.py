@@ -44,12 +44,12 @@ def test_summary_lists_everything_in_order(recording: Path) -> None:
     assert "kept (BallGrasped)" in text
     # generations with node counts: 0 has 5 nodes, 1 and 2 the 16-node reference tree
     rows = [line.split() for line in text.splitlines() if line.strip()[:1].isdigit() and "nodes" not in line]
-    assert ["0", "5", "0", "start"] in rows and ["2", "16"] == next(r[:2] for r in rows if r[:1] == ["2"] and
-                                                                    r[-1] == "answer")
+    assert ["0", "5", "0", "0", "the", "first", "tree,", "start"] in rows
+    assert ["2", "16"] == next(r[:2] for r in rows if r[:1] == ["2"] and r[-1] == "(no)")
     assert "removed: (BallFound), FindBall" in text
     # the ticks, run-length encoded: generation 0 runs FindBall until the ball is found, then ApproachBall in
     # the other seven states of demo-001; the final tree approaches the ball it sees
-    assert "9 ticks: FindBall → ApproachBall ×8" in text
+    assert "9 ticks: FindBall (tick 3) → ApproachBall ×8 (tick 4)" in text
     # the final tree rendered with the thesis's symbols, and the replay result
     tree = text[text.index("Final tree"):text.index("Replay")]
     assert "→" in tree and "(BallPlaced)" in tree and "PlaceBall" in tree
@@ -142,6 +142,28 @@ def test_a_step_without_ticks_shows_the_tree_as_it_stood(recording: Path) -> Non
     contents = read_recording(recording)
     text = _plain(step_tree(contents, 1))
     assert "no tick at step 1" in text and "find the ball" in text and "put the ball in the bin" not in text
+
+
+def test_a_tick_shows_the_tree_that_ran_there_and_other_moments_the_generation(recording: Path) -> None:
+    from teach.review import tick_tree
+
+    contents = read_recording(recording)
+    last = contents.ticks[-1]
+    assert last.moment is not None
+    text = _plain(tick_tree(contents, last.moment))
+    assert f"tick {last.moment} (step {last.step}): the tree that ran, root RUNNING, running ApproachBall" in text
+    before = contents.generations[0].moment
+    assert before is not None
+    text = _plain(tick_tree(contents, before))
+    assert f"no tick at tick {before}: generation 0 as it stood, nothing ticked" in text
+
+
+def test_cli_tick_outside_the_recording_is_one_line(recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    last = read_recording(recording).last_moment
+    assert main(["review", str(recording), "--tick", str(last + 1)]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.count("\n") == 1
+    assert f"--tick {last + 1} is outside the recording (its ticks: 0–{last})" in captured.err
 
 
 def _plain(renderable: object) -> str:

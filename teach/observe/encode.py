@@ -23,6 +23,7 @@ class Batch:
 
     columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]]
     steps: list[int] = field(default_factory=list)
+    moments: list[int] = field(default_factory=list)
     times: list[float | None] = field(default_factory=list)
     rows: list[tuple] = field(default_factory=list)
 

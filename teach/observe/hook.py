@@ -63,9 +63,9 @@ class Observer:
     def on_answer(self, question: str, answer: str, change: str) -> None:
         """The teacher's answer and what it changed in the tree."""
 
-    def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
+    def on_learner(self, event: str, detail: str, removed: Sequence[str] = (), learner: str = "") -> None:
         """What a demonstration ("specialize") or an answer ("answer") changed, in words;
-        ``removed`` names the guards it removed."""
+        ``removed`` names the guards it removed, ``learner`` the learner that learned it."""
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         """Replay of all demonstrations so far against the current tree."""
@@ -138,9 +138,9 @@ class Observers(Observer):
         for o in self.observers:
             o.on_answer(question, answer, change)
 
-    def on_learner(self, event: str, detail: str, removed: Sequence[str] = ()) -> None:
+    def on_learner(self, event: str, detail: str, removed: Sequence[str] = (), learner: str = "") -> None:
         for o in self.observers:
-            o.on_learner(event, detail, removed)
+            o.on_learner(event, detail, removed, learner)
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         for o in self.observers:

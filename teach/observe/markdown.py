@@ -35,3 +35,17 @@ def demonstration_document(name: str, domain: Domain, states: Sequence[str], lab
     table += [f"| {i} | " + " | ".join(state) + f" | {label} |"
               for i, (state, label) in enumerate(zip(states, labels, strict=True), 1)]
     return f"# {name}\n\n" + "\n".join(table)
+
+
+_MARKDOWN_SPECIALS = str.maketrans({c: "\\" + c for c in "\\`*_[]#<>|~"})
+
+
+def escaped(text: str) -> str:
+    """``text`` shown as it is in a markdown document (its line breaks kept)."""
+    return text.translate(_MARKDOWN_SPECIALS).replace("\n", "  \n")
+
+
+def newest_first(title: str, entries: Sequence[str], empty: str) -> str:
+    """A panel of recent entries (markdown each), the newest at the top where a panel opens."""
+    body = "\n\n".join(reversed(entries)) if entries else f"*{empty}*"
+    return f"### {title}\n\n{body}"

@@ -24,6 +24,7 @@ class DemoRecord:
     reached_goal: bool
     csv: str
     step: int | None
+    moment: int | None = None
 
 
 @dataclass
@@ -34,6 +35,9 @@ class QuestionRecord:
     change: str | None = None
     step: int | None = None
     answer_step: int | None = None
+    moment: int | None = None
+    """The ``tick`` timeline's moment of the question (``answer_moment``: of its answer)."""
+    answer_moment: int | None = None
 
 
 @dataclass(frozen=True)
@@ -43,6 +47,7 @@ class GenerationRecord:
     nodes: int
     xml: str
     step: int | None
+    moment: int | None = None
 
 
 @dataclass(frozen=True)
@@ -56,6 +61,8 @@ class TickRecord:
     """(node label, status) in the order the tick finished them (post-order)."""
     nodes: tuple[int, ...] = ()
     """The graph's node index of each ``trace`` entry (pre-order positions in the ticked tree)."""
+    moment: int | None = None
+    """Its own moment on the ``tick`` timeline."""
 
 
 @dataclass(frozen=True)
@@ -65,6 +72,7 @@ class GraphRecord:
     step: int | None
     labels: tuple[str, ...]
     edges: tuple[tuple[int, int], ...]
+    moment: int | None = None
 
 
 @dataclass(frozen=True)
@@ -73,6 +81,9 @@ class LearnerRecord:
     detail: str
     removed: tuple[str, ...]
     step: int | None
+    moment: int | None = None
+    learner: str = ""
+    """The learner that learned it ("" in recordings from before it was named)."""
 
 
 @dataclass(frozen=True)
@@ -81,6 +92,20 @@ class ReplayRecord:
     total: int
     lenient: bool
     step: int | None
+    moment: int | None = None
+
+
+@dataclass
+class RunSpan:
+    """A run of the tree: its ticks are the moments after ``started`` up to ``ended`` (where its
+    outcome is logged)."""
+
+    number: int
+    started: int | None
+    step: int | None
+    ended: int | None = None
+    outcome: str | None = None
+    actions: int | None = None
 
 
 @dataclass(frozen=True)
@@ -91,6 +116,7 @@ class DialogueRecord:
     text: str
     budget_left: int | None
     step: int | None
+    moment: int | None = None
 
 
 @dataclass(frozen=True)
@@ -99,6 +125,7 @@ class StateRecord:
     sim_time: float | None
     state: dict[str, bool]
     action: str | None
+    moment: int | None = None
 
 
 @dataclass
@@ -120,12 +147,17 @@ class RecordingContents:
     replays: list[ReplayRecord] = field(default_factory=list)
     ticks: list[TickRecord] = field(default_factory=list)
     graphs: list[GraphRecord] = field(default_factory=list)
-    """Every tree graph logged, in order (a new one whenever the ticked tree changed)."""
+    """Every graph of the run view (the tree that ran), in order (a new one whenever it changed)."""
     tick_graphs: list[int] = field(default_factory=list)
     """For each tick, the index in ``graphs`` of the graph it was drawn on (-1: none yet)."""
+    generation_graphs: list[GraphRecord] = field(default_factory=list)
+    """Every graph of the teaching view: one per tree generation."""
+    run_view_colours: list[tuple[int | None, tuple[tuple[int, int, int], ...]]] = field(default_factory=list)
+    """Each time the run view was coloured: its moment and every node's (r, g, b)."""
     states: list[StateRecord] = field(default_factory=list)
     dialogue: list[DialogueRecord] = field(default_factory=list)
     externals: list[tuple[int | None, str]] = field(default_factory=list)
+    runs: list[RunSpan] = field(default_factory=list)
     scene_frames: int = 0
     camera_frames: int = 0
     first_entities: tuple[str, ...] = ()
@@ -135,9 +167,27 @@ class RecordingContents:
     def final_tree_xml(self) -> str | None:
         return self.generations[-1].xml if self.generations else None
 
+    @property
+    def last_moment(self) -> int:
+        moments = [m for m in (*(t.moment for t in self.ticks), *(d.moment for d in self.dialogue),
+                               *(g.moment for g in self.generations)) if m is not None]
+        return max(moments, default=0)
 
-_EVENT_ENTITIES = ("/tree/graph", "/tree/xml", "/learner/generations", "/learner/events",
-                   "/learner/replay", "/dialogue", "/demos", "/state", "/state/external", "/domain")
+    def colours_at(self, moment: int) -> tuple[tuple[int, int, int], ...]:
+        """The run view's node colours as the viewer shows them at ``moment`` (the latest logged by then)."""
+        shown: tuple[tuple[int, int, int], ...] = ()
+        for at, colours in self.run_view_colours:
+            if at is not None and at > moment:
+                break
+            shown = colours
+        return shown
+
+    def tick_at(self, moment: int) -> TickRecord | None:
+        return next((t for t in self.ticks if t.moment == moment), None)
+
+
+_EVENT_ENTITIES = ("/tree/graph", "/tree/generation", "/study/runs", "/tree/xml", "/learner/generations",
+                   "/learner/events", "/learner/replay", "/dialogue", "/demos", "/state", "/state/external", "/domain")
 _FRAME_ENTITIES = tuple("/" + e for e in SHAPE_ENTITIES.values())
 
 
@@ -196,7 +246,7 @@ def _rows(chunk: Any, only: tuple[str, ...] | None = None) -> list[tuple[bytes, 
     """Each row of a chunk as ``{column: value}`` (component values stay lists), with its row id."""
     batch = chunk.to_record_batch()
     names = [n for n in batch.schema.names if n not in ("rerun.controls.RowId", "log_time", "log_tick")
-             and (only is None or n in only)]
+             and (only is None or n in only or n == "tick")]
     columns = {n: batch.column(n).to_pylist() for n in names}
     if "sim_time" in columns:
         columns["sim_time"] = [None if v is None else v.total_seconds() for v in columns["sim_time"]]
@@ -214,6 +264,11 @@ Kind = type | tuple[type, ...]
 
 def _shown(value: Any) -> str:
     return repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+
+
+def _rgb(packed: int) -> tuple[int, int, int]:
+    """rerun's packed 0xRRGGBBAA colour as (r, g, b)."""
+    return (packed >> 24) & 255, (packed >> 16) & 255, (packed >> 8) & 255
 
 
 def _typed(value: Any, kind: Kind, name: str) -> Any:
@@ -264,6 +319,8 @@ def _fill(contents: RecordingContents, rows: list[tuple[bytes, str, dict[str, An
         try:
             if step is not None:
                 _typed(step, int, "step")
+            if row.get("tick") is not None:
+                _typed(row["tick"], int, "tick")
             if step is None and entity != "/domain":
                 continue  # static display settings
             if step is not None and len(first) < 8 and (not first or first[-1] != entity):
@@ -280,6 +337,7 @@ def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], 
     sim_time = row.get("sim_time")
     if sim_time is not None:
         _typed(sim_time, float, "sim_time")
+    moment = row.get("tick")
     if entity == "/domain" and "conditions" in row:
         contents.domain_name = _one(row, "name", str)
         contents.conditions = tuple(_many(row, "conditions", str))
@@ -287,23 +345,34 @@ def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], 
         contents.goal = tuple(_many(row, "goal", str, optional=True))
     elif entity == "/learner/generations":
         contents.generations.append(GenerationRecord(_one(row, "generation", int), _one(row, "reason", str),
-                                                     _one(row, "nodes", int), _one(row, "xml", str), step))
+                                                     _one(row, "nodes", int), _one(row, "xml", str), step, moment))
     elif entity == "/learner/events":
         contents.learner_events.append(LearnerRecord(_one(row, "event", str), _one(row, "detail", str),
-                                                     tuple(_many(row, "removed", str, optional=True)), step))
+                                                     tuple(_many(row, "removed", str, optional=True)), step, moment,
+                                                     _one(row, "learner", str) if row.get("learner") else ""))
     elif entity == "/learner/replay":
         contents.replays.append(ReplayRecord(_one(row, "reproduced", int), _one(row, "total", int),
-                                             _one(row, "lenient", bool), step))
-    elif entity == "/tree/graph" and "status" in row:
+                                             _one(row, "lenient", bool), step, moment))
+    if entity == "/tree/graph" and row.get("GraphNodes:colors") is not None:
+        colours = tuple(_many(row, "GraphNodes:colors", int))
+        contents.run_view_colours.append((moment, tuple(_rgb(c) for c in colours)))
+    if entity == "/tree/graph" and "status" in row:
         _tick_row(contents, row, step, sim_time)
-    elif entity == "/tree/graph" and row.get("GraphNodes:node_ids") is not None:
-        _graph_row(contents, row, step)  # (a row with colours and labels only restyles the standing graph)
+    elif entity in ("/tree/graph", "/tree/generation") and row.get("GraphNodes:node_ids") is not None:
+        _graph_row(contents, row, step, entity)  # (a row with colours and labels only restyles the standing graph)
+    elif entity == "/study/runs" and row.get("run") is not None:
+        if row.get("outcome") is None:
+            contents.runs.append(RunSpan(_one(row, "run", int), moment, step))
+        elif contents.runs and contents.runs[-1].number == _one(row, "run", int):
+            run = contents.runs[-1]
+            run.ended, run.outcome = moment, _one(row, "outcome", str)
+            run.actions = _one(row, "run_actions", int)
     elif entity == "/state":
         names = _many(row, "conditions", str, optional=True)
         values = _many(row, "values", bool, optional=True)
         _same_length(("conditions", "values"), names, values)
         contents.states.append(StateRecord(step, sim_time, dict(zip(names, values, strict=True)),
-                                           _one(row, "action", str) or None))
+                                           _one(row, "action", str) or None, moment))
     elif entity == "/state/external":
         contents.externals.append((step, _one(row, "external", str)))
     elif entity == "/demos":
@@ -311,7 +380,7 @@ def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], 
         labels = tuple(_many(row, "step_labels", str))
         _same_length(("states", "step_labels"), list(states), list(labels))
         contents.demonstrations.append(DemoRecord(_one(row, "name", str), states, labels,
-                                                  _one(row, "reached_goal", bool), _one(row, "csv", str), step))
+                                                  _one(row, "reached_goal", bool), _one(row, "csv", str), step, moment))
     elif entity == "/dialogue":
         _dialogue_row(contents, row, step, open_questions)
 
@@ -329,11 +398,11 @@ def _tick_row(contents: RecordingContents, row: Mapping[str, Any], step: int | N
     _same_length(_TRACE, nodes, labels, statuses)
     contents.ticks.append(TickRecord(step, sim_time, _one(row, "generation", int), _one(row, "status", str),
                                      _one(row, "action", str) or None, tuple(zip(labels, statuses, strict=True)),
-                                     tuple(nodes)))
+                                     tuple(nodes), row.get("tick")))
     contents.tick_graphs.append(len(contents.graphs) - 1)
 
 
-def _graph_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None) -> None:
+def _graph_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None, entity: str) -> None:
     labels = _many(row, "GraphNodes:labels", str)
     ids = _many(row, "GraphNodes:node_ids", str)
     _same_length(("node labels", "node ids"), labels, ids)
@@ -344,7 +413,8 @@ def _graph_row(contents: RecordingContents, row: Mapping[str, Any], step: int | 
         if not all(isinstance(end, str) and end in index for end in ends):
             raise _WrongValue(f"an edge joins {_shown(ends)}, not two of the graph's nodes")
         edges.append((index[ends[0]], index[ends[1]]))
-    contents.graphs.append(GraphRecord(step, tuple(labels), tuple(edges)))
+    graphs = contents.graphs if entity == "/tree/graph" else contents.generation_graphs
+    graphs.append(GraphRecord(step, tuple(labels), tuple(edges), row.get("tick")))
 
 
 def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int | None,
@@ -352,10 +422,11 @@ def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int
     kind = _one(row, "kind", str)
     budget = _one(row, "budget_left", int)
     text = _one(row, "text", str)
+    moment = row.get("tick")
     contents.dialogue.append(DialogueRecord(kind, _one(row, "speaker", str), text,
-                                            None if budget < 0 else budget, step))
+                                            None if budget < 0 else budget, step, moment))
     if kind == "question":
-        record = QuestionRecord(text, budget, step=step)
+        record = QuestionRecord(text, budget, step=step, moment=moment)
         contents.questions.append(record)
         open_questions.append(record)
     elif kind == "answer":
@@ -368,5 +439,6 @@ def _dialogue_row(contents: RecordingContents, row: Mapping[str, Any], step: int
         else:
             open_questions.remove(match)
         match.answer_step = step
+        match.answer_moment = moment
         match.answer = _one(row, "answer", str)
         match.change = _one(row, "change", str)

@@ -36,9 +36,12 @@ from teach.display import has_display
 from teach.errors import TeachError
 from teach.observe.encode import SHAPE_ENTITIES, Batch, SceneLayout, plain_values, shape_batch, step_label, tick_columns
 from teach.observe.hook import Observer
-from teach.observe.layout import APPLICATION_ID, blueprint, default_recording_path
+from teach.observe.layout import APPLICATION_ID, GENERATION_PANEL, blueprint, default_recording_path
+from teach.observe.legend import legend_document
 from teach.observe.markdown import demonstration_document, domain_document, state_document
 from teach.observe.merge import keep_earlier, merge_into_place, print_note, put_back
+from teach.observe.moments import Moments, Opened
+from teach.observe.panels import Panels
 from teach.observe.tree_view import IDLE_COLOUR, TreeView, phrases
 
 if TYPE_CHECKING:
@@ -87,21 +90,26 @@ class RerunLogger(Observer):
         self._rec.set_log_tick_enabled(False)
         if spawn:
             self._rec.spawn(connect=False)
-            self._rec.set_sinks(rr.FileSink(self._part), rr.GrpcSink(), default_blueprint=blueprint(live=True))
+            self._rec.set_sinks(rr.FileSink(self._part), rr.GrpcSink(), default_blueprint=blueprint())
         else:
             self._rec.save(self._part, default_blueprint=blueprint())
         self._rec.send_recording_name(session_name)
         self._clock: tuple[int, int, float | None] = (0, 0, None)  # version, step, sim_time
+        self._moments = Moments()  # the `tick` timeline: every tick, demonstration step and line its own moment
         self._sim_time: float | None = None  # the last sim_time given: rerun's clocks are sticky too
         self._batches: dict[str, Batch] = {}
         self._last_state: tuple | None = None
         self._stamped = -1  # the clock version rerun was last told
-        self._view: TreeView | None = None
+        self._view: TreeView | None = None  # the current generation (the teaching view)
+        self._run_view: TreeView | None = None  # the tree that runs (the run view, coloured by its ticks)
+        self._coloured = False  # the run view shows a tick's colours: cleared when the next moment is no tick
         self._generation = -1
         self._last_scene: float | None = None
         self._last_camera: dict[str, float] = {}
         self._questions = 0
+        self._panels = Panels()
         self._runs: dict[str, int] = {}
+        self._run_started = (0, 0)  # the (step, moment) the current run started at
         self._scene_geometry: tuple = ()  # name, kind, size and colour of each shape, as last logged
         self._scene_columns: Callable[[list[tuple]], list[tuple[str, list[Any]]]] | None = None
         self._closed = False
@@ -116,13 +124,29 @@ class RerunLogger(Observer):
             self._sim_time = sim_time
         self._stamp()
 
+    def _moment(self, opened: bool) -> None:
+        """A new moment on the ``tick`` timeline began (``opened``): the run view's colours belonged
+        to the tick before, so a moment that is no tick shows the tree idle."""
+        if not opened:
+            return
+        self._clock = (self._clock[0] + 1, *self._clock[1:])
+        if self._coloured and self._moments.opened is not Opened.TICK:
+            self._idle_run_view()
+
+    def _idle_run_view(self) -> None:
+        self._coloured = False
+        if self._run_view is not None:
+            self._log("tree/graph", rr.GraphNodes.from_fields(colors=[IDLE_COLOUR] * len(self._run_view.labels),
+                                                              labels=self._run_view.labels))
+
     def _stamp(self) -> None:
-        """Bring rerun's clock up to the session's before logging (once per clock change)."""
+        """Bring rerun's clocks up to the session's before logging (once per clock change)."""
         version, step, sim_time = self._clock
         if self._stamped == version:
             return
         self._stamped = version
         self._rec.set_time("step", sequence=step)
+        self._rec.set_time("tick", sequence=self._moments.now)
         if sim_time is not None:
             self._rec.set_time("sim_time", duration=sim_time)
 
@@ -147,6 +171,7 @@ class RerunLogger(Observer):
         if batch is None:
             batch = self._batches[stream] = Batch(columns)
         batch.steps.append(self._clock[1])
+        batch.moments.append(self._moments.now)
         batch.times.append(self._sim_time)
         batch.rows.append(row)
         if len(batch.rows) >= self._batch_rows:
@@ -159,7 +184,7 @@ class RerunLogger(Observer):
 
     def _send(self, stream: str) -> None:
         batch = self._batches.pop(stream)
-        indexes = [rr.TimeColumn("step", sequence=batch.steps)]
+        indexes = [rr.TimeColumn("step", sequence=batch.steps), rr.TimeColumn("tick", sequence=batch.moments)]
         if batch.times[0] is not None:
             indexes.append(rr.TimeColumn("sim_time", duration=[t for t in batch.times if t is not None]))
         for entity, columns in batch.columns(batch.rows):
@@ -176,36 +201,55 @@ class RerunLogger(Observer):
                   static=True)
         self._log("state", rr.SeriesLines(names=names, interpolation_mode="StepAfter"), static=True)
         self._log("scene", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)  # MuJoCo's convention
+        self._log("legend", rr.TextDocument(legend_document(self._lang), media_type=rr.MediaType.MARKDOWN),
+                  static=True)
+        for entity in ("study/tree_size", "study/questions_answered"):  # counts: whole numbers, as steps from 0
+            self._log(entity, rr.SeriesLines(interpolation_mode="StepAfter"), static=True)
+            self._log(entity, rr.Scalars(0.0))
         if self._view is None:  # the tree comes first in every recording, even before there is one
             self._log("tree/xml", rr.TextDocument("No tree yet: the robot learns its first behaviour tree from the "
                                                   "first demonstration.", media_type=rr.MediaType.TEXT))
 
     def on_tree(self, generation: int, tree: Node, xml: str, reason: str) -> None:
         self._generation = generation
-        self._view = TreeView.of(tree, self._phrases)
-        self._log_graph(self._view)
+        self._view = TreeView.of(tree, self._phrases, GENERATION_PANEL)
+        self._log_graph("tree/generation", self._view)
         nodes = len(self._view.labels)
         self._log("tree/xml", rr.TextDocument(xml, media_type=rr.MediaType.TEXT))
         self._log("learner/generations",
                   rr.TextLog(f"generation {generation}: {nodes} nodes ({reason})", level="generation"),
                   plain_values(generation=generation, reason=reason, nodes=nodes, xml=xml))
         self._log("study/tree_size", rr.Scalars(float(nodes)))
+        self._learner_panel(f"generation {generation}: {nodes} nodes ({reason})")
 
-    def _log_graph(self, view: TreeView) -> None:
-        self._log("tree/graph",
+    def _learner_panel(self, text: str) -> None:
+        self._log("learner/document", rr.TextDocument(self._panels.learner(self._moments.now, text),
+                                                      media_type=rr.MediaType.MARKDOWN))
+
+    def _log_graph(self, entity: str, view: TreeView) -> None:
+        self._log(entity,
                   rr.GraphNodes([str(i) for i in range(len(view.labels))], labels=view.labels, show_labels=True,
                                 positions=view.positions, colors=[IDLE_COLOUR] * len(view.labels)),
                   rr.GraphEdges(view.edges, graph_type="directed"))
 
-    def on_tick(self, tree: Node, result: TickResult) -> None:
-        view = self._view
+    def _running(self, tree: Node) -> TreeView:
+        """The run view of ``tree``, its graph logged when the tree that runs changed shape."""
+        view = self._run_view
         if view is None or view.tree is not tree:
             if view is None or view.tree != tree:
                 view = TreeView.of(tree, self._phrases)
-                self._log_graph(view)
+                self._log_graph("tree/graph", view)
             else:  # same shape, other uids: the graph stands, the index changes
                 view = TreeView.of(tree, self._phrases)
-            self._view = view
+            self._run_view = view
+        return view
+
+    def on_tick(self, tree: Node, result: TickResult) -> None:
+        """Each tick is a moment of its own: the run view coloured by it, cleared at the next moment
+        that is no tick."""
+        self._moment(self._moments.tick())
+        view = self._running(tree)
+        self._coloured = True
         statuses = result.statuses()
         trace = [(view.index[uid], status.name) for uid, status in result.trace if uid in view.index]
         action = result.action or ""
@@ -217,7 +261,9 @@ class RerunLogger(Observer):
     # --- the world --------------------------------------------------------------------------
 
     def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
-        """Logged when the state or the action changes (the viewer holds a value until the next)."""
+        """Logged when the state or the action changes (the viewer holds a value until the next); a
+        demonstration's action starting to move opens its moment."""
+        self._moment(self._moments.action(action))
         names = list(state)
         values = [bool(state[n]) for n in names]
         key = (tuple(names), tuple(values), action)
@@ -229,8 +275,10 @@ class RerunLogger(Observer):
                   plain_values(conditions=names or None, values=values or None, action=action or ""), flush=False)
 
     def on_external(self, name: str) -> None:
+        self._moment(self._moments.action(f"external {name}"))  # the line that reports it joins its moment
         self._log("state/external", rr.TextLog(f"external action: {name}", level="EXTERNAL"),
                   plain_values(external=name))
+        self._learner_panel(f"external action: {name}")
 
     def on_scene(self, shapes: Seq[SceneShape]) -> None:
         sim_time = self._clock[2]
@@ -275,6 +323,8 @@ class RerunLogger(Observer):
 
     def _dialogue(self, kind: str, speaker: str, shown: str, level: str, *, text: str = "",
                   budget_left: int | None = None, question: str = "", answer: str = "", change: str = "") -> None:
+        if kind != "answer":  # an answer is the teacher's line just logged: it shares its moment
+            self._moment(self._moments.line(speaker == "teacher"))
         self._log("dialogue", rr.TextLog(shown, level=level),
                   plain_values(kind=kind, speaker=speaker, text=text,
                                budget_left=-1 if budget_left is None else budget_left,
@@ -283,10 +333,19 @@ class RerunLogger(Observer):
     def on_dialogue(self, speaker: str, text: str, budget_left: int | None = None) -> None:
         shown = text if budget_left is None else f"{text}  [questions left: {budget_left}]"
         self._dialogue("line", speaker, shown, speaker, text=text, budget_left=budget_left)
+        self._transcript(speaker, text)
+
+    def _transcript(self, speaker: str, text: str) -> None:
+        self._log("dialogue/transcript", rr.TextDocument(self._panels.line(self._moments.now, speaker, text),
+                                                         media_type=rr.MediaType.MARKDOWN))
 
     def on_question(self, question: str, budget_left: int) -> None:
         self._dialogue("question", "robot", f"{question}  [questions left: {budget_left}]", "question",
                        text=question, budget_left=budget_left, question=question)
+        self._transcript("robot", f"{question} (questions left: {budget_left})")
+        self._log("study/questions_asked", rr.TextDocument(self._panels.question(self._moments.now, question,
+                                                                                 budget_left),
+                                                           media_type=rr.MediaType.MARKDOWN))
 
     def on_answer(self, question: str, answer: str, change: str) -> None:
         shown = f"{answer}  → {change}" if change else answer
@@ -296,6 +355,8 @@ class RerunLogger(Observer):
         self._log("study/questions", rr.TextLog(f"{self._questions}. {question} → {answer}: {change or '—'}",
                                                 level="question"))
         self._log("study/questions_answered", rr.Scalars(float(self._questions)))
+        self._log("study/questions_asked", rr.TextDocument(self._panels.answer(answer, change),
+                                                           media_type=rr.MediaType.MARKDOWN))
 
     def on_demonstration(self, name: str, demo: Demonstration, domain: Domain) -> None:
         from teach.demos import format_demonstration
@@ -311,11 +372,14 @@ class RerunLogger(Observer):
                           reached_goal=demo.reached_goal, csv=format_demonstration(demo)))
         self._log("demos/table", rr.TextDocument(demonstration_document(name, domain, states, labels),
                                                  media_type=rr.MediaType.MARKDOWN))
+        self._learner_panel(f"demonstration {name}: {' → '.join(robot) or '(no actions)'} ({ending})")
 
-    def on_learner(self, event: str, detail: str, removed: Seq[str] = ()) -> None:
-        text = f"{event}: {detail}" + (f" (removed {', '.join(removed)})" if removed else "")
+    def on_learner(self, event: str, detail: str, removed: Seq[str] = (), learner: str = "") -> None:
+        text = (f"{learner} · " if learner else "") + f"{event}: {detail}" + (
+            f" (removed {', '.join(removed)})" if removed else "")
         self._log("learner/events", rr.TextLog(text, level=event),
-                  plain_values(event=event, detail=detail, removed=list(removed) or None))
+                  plain_values(event=event, detail=detail, removed=list(removed) or None, learner=learner or None))
+        self._learner_panel(text)
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         mode = "lenient" if lenient else "strict"
@@ -323,23 +387,38 @@ class RerunLogger(Observer):
                   plain_values(reproduced=reproduced, total=total, lenient=lenient))
         if isinstance(reproduced, int) and isinstance(total, int) and total:  # an observer never fails the session
             self._log("study/reproduced_share", rr.Scalars(reproduced / total))
+        self._learner_panel(f"replay: reproduced {reproduced}/{total} ({mode})")
+
+    def _log_at(self, moment: tuple[int, int], entity: str, value: float) -> None:
+        """A scalar at an earlier (step, moment)."""
+        self._flush()
+        self._rec.send_columns(entity, indexes=[rr.TimeColumn("step", sequence=[moment[0]]),
+                                                rr.TimeColumn("tick", sequence=[moment[1]])],
+                               columns=rr.Scalars.columns(scalars=[value]))
 
     def on_run_start(self, tree: Node) -> None:
-        self._log("study/runs", rr.TextLog(f"run {sum(self._runs.values()) + 1} starts "
-                                           f"(generation {self._generation})", level="run"))
+        self._moments.run_starts()
+        self._run_started = (self._clock[1], self._moments.now)
+        self._running(tree)
+        number = sum(self._runs.values()) + 1
+        self._log("study/runs", rr.TextLog(f"run {number} starts (generation {self._generation})", level="run"),
+                  plain_values(run=number))
 
     def on_run_end(self, outcome: str, actions: int) -> None:
-        """The run's outcome, a count per outcome so far; the graph goes idle and the state panel's
-        running action is cleared (the viewer would hold the last tick's until the next)."""
+        """The run's outcome, a count per outcome so far, at the moment after its last tick: the run
+        view goes idle and the state panel's running action is cleared there (the viewer would hold
+        the last tick's until the next)."""
+        self._moment(self._moments.run_ends())
+        if outcome not in self._runs:  # a count that starts from 0 where the first run started, drawn as steps
+            self._log(f"study/run_outcomes/{outcome}", rr.SeriesLines(names=outcome, interpolation_mode="StepAfter"),
+                      static=True)
+            self._log_at(self._run_started, f"study/run_outcomes/{outcome}", 0.0)
         self._runs[outcome] = self._runs.get(outcome, 0) + 1
         runs = sum(self._runs.values())
         self._log("study/runs", rr.TextLog(f"run {runs}: {outcome} after {actions} actions", level=outcome),
-                  plain_values(outcome=outcome, run_actions=actions))
+                  plain_values(run=runs, outcome=outcome, run_actions=actions))
         for name, count in sorted(self._runs.items()):
             self._log(f"study/run_outcomes/{name}", rr.Scalars(float(count)))
-        if self._view is not None:
-            self._log("tree/graph", rr.GraphNodes.from_fields(colors=[IDLE_COLOUR] * len(self._view.labels),
-                                                              labels=self._view.labels))
         self._clear_running()
 
     def _clear_running(self) -> None:

@@ -17,6 +17,7 @@ import numpy as np
 
 from teach.bt.nodes import Action, Condition, Node, Status, children, walk
 from teach.bt.render import symbol
+from teach.observe.layout import RUN_TREE_PANEL
 
 if TYPE_CHECKING:
     from teach.domain import Domain
@@ -27,12 +28,11 @@ IDLE_COLOUR = (160, 160, 160)
 RUNNING_MARK = "▶ "
 
 LINE_WIDTHS = (10, 12, 14, 18, 24)  # leaf labels wrap at one of these; the one that fits the panel best
-PANEL = (640.0, 480.0)  # the tree panel of a 1600x900 viewer, in pixels
 CHAR_WIDTH = 7.5      # graph-view units per character of rerun's label font (measured on screenshots)
 NODE_PADDING = 18.0   # the box around a label
 NODE_GAP = 14.0       # between neighbouring boxes on one level
 LINE_HEIGHT = 16.0
-LEVEL_GAP = 34.0      # between a level's deepest box and the next level
+LEVEL_GAP = 22.0      # between a level's deepest box and the next level
 
 
 def phrases(domain: Domain, lang: str) -> dict[str, str]:
@@ -67,7 +67,10 @@ class TreeView:
     actions: frozenset[int]
 
     @classmethod
-    def of(cls, tree: Node, phrases: Mapping[str, str] | None = None) -> TreeView:
+    def of(cls, tree: Node, phrases: Mapping[str, str] | None = None,
+           panel: tuple[float, float] = RUN_TREE_PANEL) -> TreeView:
+        """The view of ``tree`` whose labels wrap at the width that draws it largest in ``panel``
+        (the graph view's size in pixels)."""
         nodes = list(walk(tree))
         index = {node.uid: i for i, node in enumerate(nodes)}
         edges = [(str(index[n.uid]), str(index[k.uid])) for n in nodes for k in children(n)]
@@ -77,7 +80,7 @@ class TreeView:
         for width in LINE_WIDTHS:
             labels = [display_label(n, phrases or {}, width) for n in nodes]
             positions = layout(tree, index, labels)
-            scale = panel_scale(positions, labels)
+            scale = panel_scale(positions, labels, panel)
             if best is None or scale > best[0] + 1e-9:
                 best = (scale, labels, positions)
         assert best is not None
@@ -101,13 +104,13 @@ class TreeView:
         return labels
 
 
-def panel_scale(positions: np.ndarray, labels: list[str]) -> float:
+def panel_scale(positions: np.ndarray, labels: list[str], panel: tuple[float, float] = RUN_TREE_PANEL) -> float:
     """How large the graph view draws the tree when it fits the whole drawing into the panel."""
     boxes = np.array([_box(label) for label in labels])
     low = (positions - boxes / 2).min(axis=0)
     high = (positions + boxes / 2).max(axis=0)
     width, height = high - low
-    return float(min(PANEL[0] / width, PANEL[1] / height))
+    return float(min(panel[0] / width, panel[1] / height))
 
 
 def _box(label: str) -> tuple[float, float]:

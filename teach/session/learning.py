@@ -22,6 +22,9 @@ from teach.observe.hook import Observer
 from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
 
+LEARNER_NAME = "model-based learner"
+"""How the recording names the learner below (``teach review`` says which learner learned what)."""
+
 
 def make_learner(domain: Domain) -> Learner:
     return Learner(domain)
@@ -44,7 +47,7 @@ class Learning:
         self.asked: set[State] = set()
         self.pruned: Node | None = None
         self.generation = self.store.last_generation()
-        self._learned_actions: set[str] = set()
+        self._learned_actions: list[str] = []
 
     @property
     def has_behaviour(self) -> bool:
@@ -62,7 +65,9 @@ class Learning:
         """Learn and keep a demonstration (never refused: contradictions become conflicts)."""
         before = self._actions()
         update = self.learner.update(demo, source=source)
-        self._learned_actions = self._actions() - before
+        shown = [self.domain.action(s.action).name for s in demo.steps
+                 if s.action not in (GOAL_ACTION, EXTERNAL_ACTION)]
+        self._learned_actions = _in_order(self._actions() - before, shown)
         self.demos.append(demo)
         for step in demo.steps:
             if step.action == GOAL_ACTION:
@@ -78,7 +83,7 @@ class Learning:
             update = self.learner.resolve(state, answer, source)
         else:
             update = self.learner.teach_step(state, answer, source=source)
-        self._learned_actions = self._actions() - before
+        self._learned_actions = _in_order(self._actions() - before, [answer] if answer else [])
         self.labels[state] = answer
         return update
 
@@ -116,12 +121,12 @@ class Learning:
         return path
 
     def describe(self, update: Update, lang: str) -> str:
-        return describe_update(update, sorted(self._learned_actions), self.domain, lang)
+        return describe_update(update, self._learned_actions, self.domain, lang)
 
     def report(self, event: str, update: Update, lang: str) -> str:
         """Tell the observer what an update changed; returns it in words."""
         change = self.describe(update, lang)
-        self.observer.on_learner(event, change, [])
+        self.observer.on_learner(event, change, [], learner=LEARNER_NAME)
         return change
 
     def why(self, name: str, lang: str) -> list[str] | None:
@@ -129,3 +134,9 @@ class Learning:
         nodes = [n for n in walk(self.learner.tree) if isinstance(n, Action | Condition) and n.name == name]
         lines = [explain_node(self.learner.why(node.uid), self.domain, lang) for node in nodes]
         return list(dict.fromkeys(line for line in lines if line)) or None
+
+
+def _in_order(new: set[str], shown: list[str]) -> list[str]:
+    """The actions new in the tree in the order they were shown (any others after, by name)."""
+    ordered = [name for name in dict.fromkeys(shown) if name in new]
+    return ordered + sorted(new - set(ordered))
