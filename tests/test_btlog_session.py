@@ -37,6 +37,20 @@ class Run:
         self.outcome = ""
         self.actions = -1
 
+    def started_ticks(self) -> list[tuple[float | None, TickResult]]:
+        """The ticks a .btlog keeps: all but a last tick that started an action the session dropped
+        (a run stopped by 'run N' as its next action started)."""
+        starts, last = 0, None
+        for _, result in self.ticks:
+            starts += result.action is not None and result.action != last
+            last = result.action
+        final = self.ticks[-1][1] if self.ticks else None
+        before = self.ticks[-2][1].action if len(self.ticks) > 1 else None
+        if (self.outcome == "interrupted" and final is not None and final.action is not None
+                and final.action != before and starts > self.actions):
+            return self.ticks[:-1]
+        return self.ticks
+
 
 class RunCollector(Observer):
     def __init__(self) -> None:
@@ -82,7 +96,7 @@ def _script(run: Run) -> list[tuple[dict[str, bool], dict[str, Status]]]:
     """What each leaf answered in each tick of the run (leaves our tick did not reach: as log_tick has it)."""
     leaves = [n for n in walk(run.tree) if isinstance(n, (Condition, Action))]
     script = []
-    for _, result in run.ticks:
+    for _, result in run.started_ticks():
         visited = dict(result.trace)
         conditions = {n.name: False for n in leaves if isinstance(n, Condition)}
         actions = {n.name: Status.RUNNING for n in leaves if isinstance(n, Action)}
@@ -96,11 +110,12 @@ def _script(run: Run) -> list[tuple[dict[str, bool], dict[str, Status]]]:
 
 
 def _tick_times(run: Run, world: WorldKind) -> list[int]:
+    ticks = run.started_ticks()
     if world is WorldKind.SYMBOLIC:
-        return [number * SYMBOLIC_TICK_US for number in range(len(run.ticks))]
-    first = run.ticks[0][0]
+        return [number * SYMBOLIC_TICK_US for number in range(len(ticks))]
+    first = ticks[0][0]
     assert first is not None
-    return [round(((t or 0.0) - first) * 1e6) for t, _ in run.ticks]
+    return [round(((t or 0.0) - first) * 1e6) for t, _ in ticks]
 
 
 def _bt_cpps_changes(run: Run, ours: list[tuple[int, Change]], times: list[int], folder: Path) -> list[Change]:
@@ -135,9 +150,13 @@ def test_each_run_is_a_btlog_bt_cpp_writes_the_same(tmp_path: Path, world: World
         for _, change in ours:
             final[change.uid] = change.status
         assert set(final.values()) == {BtStatus.IDLE}
+    # 'run 2' logs the two actions it did and not the third its last tick started as it was stopped
+    stopped = collector.runs[1]
+    assert len(stopped.started_ticks()) == len(stopped.ticks) - 1
     started = [log.names[t.uid] for t in read_btlog(logs[1]).transitions if t.status is BtStatus.RUNNING
                and log.names[t.uid] in session.domain.action_names]
-    assert len(started) >= collector.runs[1].actions == 2
+    ticked = list(dict.fromkeys(r.action for _, r in stopped.ticks if r.action))
+    assert len(ticked) == 3 and list(dict.fromkeys(started)) == ticked[:2]
 
 
 def test_run_numbers_are_never_given_twice(tmp_path: Path) -> None:

@@ -89,7 +89,7 @@ def test_a_mujoco_replay_with_groot_prints_and_writes_what_one_without_does(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     dialogue = ROOT / "dialogues" / "quickstart.dialogue"
     outputs = []
-    for name, extra in (("a", []), ("b", ["--groot", str(free_port())])):  # same length: same wrapping
+    for name, extra in (("a", ["--pace", "0"]), ("b", ["--groot", str(free_port())])):  # same length: same wrapping
         base = tmp_path / name
         assert main(["replay", str(dialogue), "--base", str(base), "--no-record", *extra]) == 0
         outputs.append(capsys.readouterr().out.replace(str(base), "BASE"))
@@ -119,3 +119,25 @@ def test_a_port_out_of_range_is_refused() -> None:
 
     with pytest.raises(TeachError, match="not a port number"):
         GrootTicker(70000)
+
+
+def test_replay_with_groot_is_paced_so_a_run_can_be_watched(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    """`replay --groot` holds simulated time to --pace times wall time (1 unless given): the
+    MuJoCo quickstart, paced at 5, takes at least its simulated time over 5 (a lower bound,
+    whatever the machine's load)."""
+    import time
+
+    from teach.observe.reader import read_recording
+
+    started = time.monotonic()
+    assert main(["replay", str(ROOT / "dialogues" / "quickstart.dialogue"), "--base", str(tmp_path),
+                 "--groot", str(free_port()), "--pace", "5"]) == 0
+    took = time.monotonic() - started
+    simulated = max(s.sim_time for s in read_recording(tmp_path / "recordings" / "quickstart.rrd").states
+                    if s.sim_time is not None)
+    assert simulated > 40.0 and took >= simulated / 5  # unpaced it takes about 3 s
+    capsys.readouterr()
+    assert main(["replay", str(ROOT / "dialogues" / "quickstart.dialogue"), "--base", str(tmp_path),
+                 "--pace", "-1"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

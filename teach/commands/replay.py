@@ -40,6 +40,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-record", action="store_true", help="do not write a rerun recording")
     parser.add_argument("--groot", type=int, nargs="?", const=1667, metavar="PORT",
                         help="run trees through BehaviorTree.CPP, watched live by Groot2 on PORT (default 1667)")
+    parser.add_argument("--pace", type=float,
+                        help="simulated seconds per wall-clock second in MuJoCo, so a run can be watched "
+                             "(default: 1 with --groot, else 0 = as fast as possible)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
@@ -65,6 +68,9 @@ def run(args: argparse.Namespace) -> int:
     from teach.terminal.scripted import run_script
 
     # everything the replay needs is read and checked first: a bad input leaves the session as it was
+    pace = args.pace if args.pace is not None else 1.0 if args.groot is not None else 0.0
+    if not pace >= 0 or pace == float("inf"):  # also refuses nan
+        raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
     script = read_script(args.dialogue)
     chosen = script.settings
     domain_path = args.domain or (Path(str(chosen["domain"])) if "domain" in chosen else None)
@@ -75,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record, label_questions=args.label_questions,
-        facilitator=args.facilitator, groot=args.groot)
+        facilitator=args.facilitator, groot=args.groot, pace=pace)
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)

@@ -4,7 +4,9 @@
 ``run-NNN.btlog`` of the session's run folder, each ``on_tick`` of the run logs the status
 changes BehaviorTree.CPP would have logged for that tick (``BtlogWriter.log_tick``, so no skill
 is ticked twice), and ``on_run_end`` halts what still runs (as BehaviorTree.CPP's ``haltTree``
-does when a run is stopped) and writes the file atomically. Numbers are never reused: the next
+does when a run is stopped) and writes the file atomically. A run stopped by its limit
+(``run 3``) logs only the actions that started: the tick that would start one more is held
+back until the next tick and dropped when the run ends there, as the session drops that action. Numbers are never reused: the next
 one is one more than the highest in the folder, and the session lock keeps the folder ours.
 
 The file's first timestamp is the wall clock when the run began (BehaviorTree.CPP's too);
@@ -61,6 +63,9 @@ class BtlogRecorder(Observer):
         self._ticks = 0
         self._start_us = 0
         self._now_us = 0
+        self._pending: tuple[int, TickResult, bool] | None = None  # the last tick: its time, itself, starts an action
+        self._last_action: str | None = None
+        self._started = 0
 
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
         if sim_time is not None:
@@ -70,6 +75,7 @@ class BtlogRecorder(Observer):
         self._finish()  # an earlier run that ended without on_run_end (its world raised)
         self._sim_time = self._first_sim = None
         self._ticks = 0
+        self._pending, self._last_action, self._started = None, None, 0
         self._start_us = self._now_us = self.wall_clock()
         self._writer = BtlogWriter(next_run_path(self.folder), tree, clock=lambda: self._now_us)
 
@@ -83,16 +89,30 @@ class BtlogRecorder(Observer):
         else:
             elapsed = self._ticks * SYMBOLIC_TICK_US
         self._ticks += 1
-        self._now_us = self._start_us + elapsed
-        self._writer.log_tick(result)
+        self._log_pending()
+        starts = result.action is not None and result.action != self._last_action
+        self._last_action = result.action
+        self._started += starts
+        self._pending = (self._start_us + elapsed, result, starts)
+
+    def _log_pending(self) -> None:
+        if self._pending is not None and self._writer is not None:
+            self._now_us, result, _starts = self._pending
+            self._writer.log_tick(result)
+        self._pending = None
 
     def on_run_end(self, outcome: str, actions: int) -> None:
+        """``actions``: how many actions the session kept; one more started at the last tick was
+        stopped as it started (``run N``), so it is not logged."""
+        if self._pending is not None and self._pending[2] and outcome == "interrupted" and self._started > actions:
+            self._pending = None
         self._finish()
 
     def close(self) -> None:
         self._finish()
 
     def _finish(self) -> None:
+        self._log_pending()
         writer, self._writer = self._writer, None
         if writer is None:
             return
