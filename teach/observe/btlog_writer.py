@@ -6,8 +6,9 @@ changes BehaviorTree.CPP would have logged for that tick (``BtlogWriter.log_tick
 is ticked twice), and ``on_run_end`` halts what still runs (as BehaviorTree.CPP's ``haltTree``
 does when a run is stopped) and writes the file atomically. A run stopped by its limit
 (``run 3``) logs only the actions that started: the tick that would start one more is held
-back until the next tick and dropped when the run ends there, as the session drops that action. Numbers are never reused: the next
-one is one more than the highest in the folder, and the session lock keeps the folder ours.
+back until the next tick and dropped when the run ends there, as the session drops that action.
+Numbers are never reused: the next one is one more than the highest in the folder, and the
+session lock keeps the folder ours.
 
 The file's first timestamp is the wall clock when the run began (BehaviorTree.CPP's too);
 the records' times are simulated: seconds of simulated time since the run's first tick where
