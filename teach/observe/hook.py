@@ -22,6 +22,12 @@ if TYPE_CHECKING:
 class Observer:
     """Receives session events; every method is optional (the base class ignores them)."""
 
+    @property
+    def records_images(self) -> bool:
+        """Whether ``on_camera`` keeps what it is given: a world renders camera images only for an
+        observer that does (rendering costs half a MuJoCo replay's CPU and a GL context's memory)."""
+        return False
+
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
         """Advance the clocks: ``step`` counts session steps (None keeps the session's step),
         ``sim_time`` is simulated seconds."""
@@ -85,6 +91,10 @@ class Observers(Observer):
 
     def __init__(self, *observers: Observer):
         self.observers = [o for o in observers if o is not None]
+
+    @property
+    def records_images(self) -> bool:
+        return any(o.records_images for o in self.observers)
 
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
         for o in self.observers:
