@@ -18,6 +18,7 @@ from teach.domain import load_domain
 from teach.observe.hook import Observer, Observers
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
+from teach.session.setup import HaltBetweenRuns
 from teach.world.symbolic import SymbolicWorld
 
 WHOLE_TASK = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
@@ -65,7 +66,7 @@ def _transcript(tmp_path: Path, groot: int | None) -> tuple[list[str], PortWatch
     if groot is not None:
         ticker = GrootTicker(groot)
         world.ticker = ticker
-        observer.observers.insert(0, ticker)
+        observer.observers.insert(0, HaltBetweenRuns(ticker))
     session = SessionManager(Settings("t", world=WorldKind.SYMBOLIC, seed=3, base=tmp_path, record=False), domain,
                              world, observer)
     replies = [f"{r.kind}: {r.text}" for line in LINES for r in session.handle(line)]
@@ -141,3 +142,7 @@ def test_replay_with_groot_is_paced_so_a_run_can_be_watched(tmp_path: Path,
     assert main(["replay", str(ROOT / "dialogues" / "quickstart.dialogue"), "--base", str(tmp_path),
                  "--pace", "-1"]) == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_groot_is_a_ticker_not_an_observer() -> None:
+    assert not issubclass(GrootTicker, Observer)

@@ -27,7 +27,7 @@ from enum import IntEnum
 from typing import NamedTuple
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, Status, children, walk
-from teach.bt.tick import always_running
+from teach.bt.tick import TickResult, always_running
 
 
 class BtStatus(IntEnum):
@@ -264,6 +264,7 @@ class BtcppTree:
     def __init__(self, root: Node):
         self.log: list[Change] = []
         self.root = self._build(root, itertools.count(1))
+        self.leaves = [(n.uid, n) for n in walk(root) if isinstance(n, (Condition, Action))]
 
     def _build(self, node: Node, counter: Iterator[int]) -> _Live:
         uid = next(counter)
@@ -293,6 +294,25 @@ class BtcppTree:
         if status in (BtStatus.SUCCESS, BtStatus.FAILURE):
             self.root.reset_status()
         return TickChanges(_TO_TEACH[status], self._take())
+
+    def replay(self, result: TickResult) -> TickChanges:
+        """Tick as ``teach.bt.tick.tick`` already ticked (``result``): every leaf answers as it
+        answered there, so no skill is ticked twice.
+
+        BehaviorTree.CPP reaches the same leaves, or fewer (a Parallel stops at its threshold),
+        unless a running Parallel remembers a child's earlier result: then it may return
+        another status than our memoryless tick and reach leaves ours did not, which answer
+        FAILURE (conditions) and RUNNING (actions, as if just started). The returned status
+        is BehaviorTree.CPP's, so a caller can tell when that happened."""
+        visited = dict(result.trace)
+        conditions: dict[str, bool] = {}
+        actions: dict[str, Status] = {}
+        for uid, leaf in self.leaves:
+            if uid in visited and isinstance(leaf, Condition):
+                conditions[leaf.name] = visited[uid] is Status.SUCCESS
+            elif uid in visited:
+                actions[leaf.name] = visited[uid]
+        return self.tick(lambda name: conditions.get(name, False), lambda name: actions.get(name, Status.RUNNING))
 
     def halt(self, on_halt: HaltHook | None = None) -> tuple[Change, ...]:
         """``Tree::haltTree``: halt everything (running actions hear ``on_halt``), all to IDLE.

@@ -30,7 +30,7 @@ from typing import NamedTuple
 from lxml import etree
 
 from teach.bt.btcpp_status import ActionTick, BtcppTree, BtStatus, Change, ConditionLookup, HaltHook, TickChanges
-from teach.bt.nodes import Action, Condition, Inverter, Node, Parallel, Sequence, Status, children, walk
+from teach.bt.nodes import Action, Condition, Inverter, Node, Parallel, Sequence, children, walk
 from teach.bt.tick import TickResult, always_running
 from teach.bt.xml import MAIN_TREE, MAX_BYTES, tree_to_xml
 from teach.errors import FormatError, TeachError
@@ -281,7 +281,6 @@ class BtlogWriter:
             raise TeachError(f"a log for Groot2 must be named *{SUFFIX}", self.path)
         self.xml = btcpp_xml(tree)
         self.live = BtcppTree(tree)
-        self.leaves = [(n.uid, n) for n in walk(tree) if isinstance(n, (Condition, Action))]
         self.clock = clock
         self.start_us = clock()
         self.records = bytearray()
@@ -294,23 +293,15 @@ class BtlogWriter:
         return result
 
     def log_tick(self, result: TickResult) -> TickChanges:
-        """Log a tick ``teach.bt.tick.tick`` already ran (what an observer's ``on_tick`` sees):
-        every leaf answers as it answered there, so no skill is ticked twice.
+        """Log a tick ``teach.bt.tick.tick`` already ran (what an observer's ``on_tick`` sees),
+        as ``BtcppTree.replay`` ticks it."""
+        changes = self.live.replay(result)
+        self._record(changes.changes)
+        return changes
 
-        BehaviorTree.CPP reaches the same leaves, or fewer (a Parallel stops at its threshold),
-        unless a running Parallel remembers a child's earlier result: then it may return
-        another status than our memoryless tick and reach leaves ours did not, which answer
-        FAILURE (conditions) and RUNNING (actions, as if just started). The returned status
-        is BehaviorTree.CPP's, so a caller can tell when that happened."""
-        visited = dict(result.trace)
-        conditions: dict[str, bool] = {}
-        actions: dict[str, Status] = {}
-        for uid, leaf in self.leaves:
-            if uid in visited and isinstance(leaf, Condition):
-                conditions[leaf.name] = visited[uid] is Status.SUCCESS
-            elif uid in visited:
-                actions[leaf.name] = visited[uid]
-        return self.tick(lambda name: conditions.get(name, False), lambda name: actions.get(name, Status.RUNNING))
+    def record(self, changes: tuple[Change, ...]) -> None:
+        """Log status changes derived elsewhere (an observer's tree channel), at the clock's time."""
+        self._record(changes)
 
     def halt(self, on_halt: HaltHook | None = None) -> tuple[Change, ...]:
         """Halt the tree (a run stopped while RUNNING), logging the resets to IDLE."""

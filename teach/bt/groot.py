@@ -7,8 +7,14 @@ whose conditions read the tick's conditions and whose actions call the world's `
 whether an action is fresh). BehaviorTree.CPP's status is the tick's status; the trace the
 observers see is our tick of the same tree with every leaf answering as it answered
 BehaviorTree.CPP, so no skill is ticked twice. One ``Groot2Publisher`` serves the tree being
-run on ``port`` (a new tree replaces it, on the same port). As an observer it halts the tree
-at the start and end of a run, so no run inherits another's running nodes.
+run on ``port`` (a new tree replaces it, on the same port). It is a ticker, not an observer:
+whoever knows where runs begin and end calls ``halt`` there (the session's composition root
+does), so no run inherits another's running nodes.
+
+Groot2 tells trees apart by the tree id in each reply header: BehaviorTree.CPP 4.8.2 as
+``behaviortreepy`` 0.1.4 bundles it answers the same id from every publisher (its UUID comes
+from a ``std::mt19937`` seeded by a ``std::random_device`` that gives the same seed in that
+build), so Groot2 may keep an old tree after a swap until it is reconnected.
 
 This is the only module that imports ``behaviortreepy`` at run time.
 """
@@ -23,13 +29,12 @@ from teach.bt.nodes import Action, Condition, Node, Status, walk
 from teach.bt.tick import TickResult, always_running, tick
 from teach.bt.xml import tree_to_xml
 from teach.errors import TeachError
-from teach.observe.hook import Observer
 
 DEFAULT_PORT = 1667
 """Groot2's default port for a tree's publisher."""
 
 
-class GrootTicker(Observer):
+class GrootTicker:
     """Tick through BehaviorTree.CPP with a Groot2 publisher on ``port`` (and ``port`` + 1)."""
 
     def __init__(self, port: int = DEFAULT_PORT):
@@ -94,13 +99,8 @@ class GrootTicker(Observer):
             return getattr(self.bt.NodeStatus, status.name)
         return act
 
-    def on_run_start(self, tree: Node) -> None:
-        self._halt()
-
-    def on_run_end(self, outcome: str, actions: int) -> None:
-        self._halt()
-
-    def _halt(self) -> None:
+    def halt(self) -> None:
+        """``Tree::haltTree``: everything back to IDLE (a run begins or ended)."""
         if self._live is not None:
             self._live.halt_tree()
 

@@ -4,19 +4,35 @@ The session machine, the worlds and the simulation's executor report to an ``Obs
 ``teach.observe.rerun_writer.RerunLogger`` implements it with rerun, tests can collect events,
 and the default does nothing. Callers set the clock once per step with ``set_time``. An
 observer only observes: pacing, run limits and viewer redraws are the world's own business.
+
+Two channels are typed for their consumers: the tree channel (``on_status_change``: time,
+node, previous status, status, as BehaviorTree.CPP's ``StatusChangeLogger`` callback has them),
+derived once from the ticks by the fan-out ``Observers`` for the observers that listen; and
+the session channel (``on_session_event``: the session journal's events, frozen dataclasses,
+as they are journalled).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
+
+from teach.observe.status_changes import StatusChanges
 
 if TYPE_CHECKING:
+    from teach.bt.btcpp_status import BtStatus
     from teach.bt.nodes import Node
     from teach.bt.tick import TickResult
     from teach.demos import Demonstration
     from teach.domain import Domain
     from teach.observe.scene import SceneShape
+
+
+class SessionEvent(Protocol):
+    """A session journal event (``teach.session.journal``): a frozen dataclass with a ``kind``."""
+
+    kind: ClassVar[str]
+    __dataclass_fields__: ClassVar[dict[str, Any]]
 
 
 class Observer:
@@ -46,6 +62,13 @@ class Observer:
 
     def on_tick(self, tree: Node, result: TickResult) -> None:
         """One tick: root status, running action, and the statuses of visited nodes."""
+
+    def on_status_change(self, time: float, node: Node, previous: BtStatus, status: BtStatus) -> None:
+        """The tree channel: one node of the running tree changed status as BehaviorTree.CPP's would
+        (``time``: seconds since the run's first tick). Derived once, by ``Observers``."""
+
+    def on_session_event(self, event: SessionEvent) -> None:
+        """The session channel: an event the session journalled, as journalled."""
 
     def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
         """The symbolic state and the action running in it."""
@@ -91,12 +114,18 @@ class Observers(Observer):
 
     def __init__(self, *observers: Observer):
         self.observers = [o for o in observers if o is not None]
+        self._changes = StatusChanges(self.on_status_change)
+
+    def _tree_listeners(self) -> list[Observer]:
+        """The observers that take the tree channel (deriving it costs a BehaviorTree.CPP tick)."""
+        return [o for o in self.observers if type(o).on_status_change is not Observer.on_status_change]
 
     @property
     def records_images(self) -> bool:
         return any(o.records_images for o in self.observers)
 
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
+        self._changes.set_time(sim_time)
         for o in self.observers:
             o.set_time(step, sim_time)
 
@@ -111,14 +140,26 @@ class Observers(Observer):
     def on_run_start(self, tree: Node) -> None:
         for o in self.observers:
             o.on_run_start(tree)
+        if self._tree_listeners():
+            self._changes.run_starts(tree)
 
     def on_run_end(self, outcome: str, actions: int) -> None:
+        self._changes.run_ends(outcome, actions)  # its last changes before the run's end
         for o in self.observers:
             o.on_run_end(outcome, actions)
 
     def on_tick(self, tree: Node, result: TickResult) -> None:
         for o in self.observers:
             o.on_tick(tree, result)
+        self._changes.tick(result)
+
+    def on_status_change(self, time: float, node: Node, previous: BtStatus, status: BtStatus) -> None:
+        for o in self._tree_listeners():
+            o.on_status_change(time, node, previous, status)
+
+    def on_session_event(self, event: SessionEvent) -> None:
+        for o in self.observers:
+            o.on_session_event(event)
 
     def on_state(self, state: Mapping[str, bool], action: str | None) -> None:
         for o in self.observers:
@@ -165,5 +206,6 @@ class Observers(Observer):
             o.checkpoint()
 
     def close(self) -> None:
+        self._changes.run_ends(None, 0)
         for o in self.observers:
             o.close()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import stat
 import warnings
@@ -95,6 +96,16 @@ class ReplayRecord:
     moment: int | None = None
 
 
+@dataclass(frozen=True)
+class SessionEventRecord:
+    """A journalled event of the session: its kind and its fields (as the journal holds them)."""
+
+    kind: str
+    fields: dict[str, Any]
+    step: int | None
+    moment: int | None
+
+
 @dataclass
 class RunSpan:
     """A run of the tree: its ticks are the moments after ``started`` up to ``ended`` (where its
@@ -158,6 +169,7 @@ class RecordingContents:
     dialogue: list[DialogueRecord] = field(default_factory=list)
     externals: list[tuple[int | None, str]] = field(default_factory=list)
     runs: list[RunSpan] = field(default_factory=list)
+    session_events: list[SessionEventRecord] = field(default_factory=list)
     scene_frames: int = 0
     camera_frames: int = 0
     first_entities: tuple[str, ...] = ()
@@ -186,8 +198,9 @@ class RecordingContents:
         return next((t for t in self.ticks if t.moment == moment), None)
 
 
-_EVENT_ENTITIES = ("/tree/graph", "/tree/generation", "/study/runs", "/tree/xml", "/learner/generations",
-                   "/learner/events", "/learner/replay", "/dialogue", "/demos", "/state", "/state/external", "/domain")
+_EVENT_ENTITIES = ("/tree/graph", "/tree/generation", "/study/runs", "/session/events", "/tree/xml",
+                   "/learner/generations", "/learner/events", "/learner/replay", "/dialogue", "/demos", "/state",
+                   "/state/external", "/domain")
 _FRAME_ENTITIES = tuple("/" + e for e in SHAPE_ENTITIES.values())
 
 
@@ -383,6 +396,14 @@ def _fill_row(contents: RecordingContents, entity: str, row: Mapping[str, Any], 
                                                   _one(row, "reached_goal", bool), _one(row, "csv", str), step, moment))
     elif entity == "/dialogue":
         _dialogue_row(contents, row, step, open_questions)
+    elif entity == "/session/events":
+        try:
+            fields = json.loads(_one(row, "fields", str))
+        except ValueError:
+            raise _WrongValue("fields is not JSON") from None
+        if not isinstance(fields, dict):
+            raise _WrongValue("fields is not a JSON object")
+        contents.session_events.append(SessionEventRecord(_one(row, "kind", str), fields, step, moment))
 
 
 _TRACE = ("trace_nodes", "trace_labels", "trace_status")

@@ -20,7 +20,9 @@ frames per second of simulated time, and each shape kind is one batched call.
 from __future__ import annotations
 
 import atexit
+import dataclasses
 import io
+import json
 import os
 from collections.abc import Callable, Mapping
 from collections.abc import Sequence as Seq
@@ -35,7 +37,7 @@ from teach.bt.nodes import Node
 from teach.display import has_display
 from teach.errors import TeachError
 from teach.observe.encode import SHAPE_ENTITIES, Batch, SceneLayout, plain_values, shape_batch, step_label, tick_columns
-from teach.observe.hook import Observer
+from teach.observe.hook import Observer, SessionEvent
 from teach.observe.layout import APPLICATION_ID, GENERATION_PANEL, blueprint, default_recording_path
 from teach.observe.legend import legend_document
 from teach.observe.markdown import demonstration_document, domain_document, state_document
@@ -384,6 +386,12 @@ class RerunLogger(Observer):
         self._log("learner/events", rr.TextLog(text, level=event),
                   plain_values(event=event, detail=detail, removed=list(removed) or None, learner=learner or None))
         self._learner_panel(text)
+
+    def on_session_event(self, event: SessionEvent) -> None:
+        """The journal's events at their moment, with their fields as the journal holds them."""
+        fields = json.dumps(dataclasses.asdict(event), sort_keys=True, ensure_ascii=False)
+        self._log("session/events", rr.TextLog(f"{event.kind}: {fields}", level=event.kind),
+                  plain_values(kind=event.kind, fields=fields))
 
     def on_replay(self, reproduced: int, total: int, lenient: bool = False) -> None:
         mode = "lenient" if lenient else "strict"

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 
 # Groot2's palette: success green, failure red, running orange, idle (not ticked) grey
 STATUS_COLOURS = {Status.SUCCESS: (60, 180, 75), Status.FAILURE: (220, 50, 47), Status.RUNNING: (245, 150, 20)}
-IDLE_COLOUR = (160, 160, 160)
+IDLE_COLOUR = (110, 110, 110)  # dark enough to read as a label on white
 RUNNING_MARK = "▶ "
 
 LINE_WIDTHS = (10, 12, 14, 18, 24)  # leaf labels wrap at one of these; the one that fits the panel best

@@ -894,6 +894,8 @@ class SessionManager:
 
     def _journal(self, *events: Event) -> None:
         self.journal.events.extend(events)
+        for event in events:  # the observers' session channel, in the journal's order
+            self.observer.on_session_event(event)
         self._note_open_demonstration()  # a finished demonstration is never also journalled as open
         self.store.save_journal(self.journal)
 
@@ -977,7 +979,8 @@ class SessionManager:
         self.journal.open_state = state_text(self.world.state()) if steps else ""
         self.journal.open_run = ""
         if not steps and state_text(self.world.state()) != self._last_situation():
-            self.journal.events.append(Situated(state_text(self.world.state()), how))
+            self.journal.events.append(situated := Situated(state_text(self.world.state()), how))
+            self.observer.on_session_event(situated)
 
     def _save_open(self) -> None:
         """The open demonstration on disk now: a "✓" shown while a line still runs (a live

@@ -6,6 +6,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
@@ -20,6 +21,10 @@ from teach.session.store import SessionStore
 from teach.world.hidden import symbolic_world
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import TeachingWorld
+
+if TYPE_CHECKING:
+    from teach.bt.groot import GrootTicker
+    from teach.bt.nodes import Node
 
 DEFAULT_DOMAIN = Path("demos/ball/domain.toml")
 
@@ -105,7 +110,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         from teach.bt.groot import GrootTicker
 
         world.ticker = groot = GrootTicker(settings.groot)
-        observer.observers.append(groot)
+        observer.observers.append(HaltBetweenRuns(groot))
     recorder = None
     try:
         if store.recording is not None:
@@ -135,3 +140,20 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         for moved in store.set_aside_orphans(manager.journal):
             note(m.ORPHAN_SET_ASIDE(settings.lang, file=moved.name, folder=moved.parent))
     return manager
+
+
+class HaltBetweenRuns(Observer):
+    """Halts the ``--groot`` ticker's BehaviorTree.CPP tree where a run begins and ends (so no run
+    inherits another's running nodes) and closes it with the session."""
+
+    def __init__(self, groot: GrootTicker):
+        self.groot = groot
+
+    def on_run_start(self, tree: Node) -> None:
+        self.groot.halt()
+
+    def on_run_end(self, outcome: str, actions: int) -> None:
+        self.groot.halt()
+
+    def close(self) -> None:
+        self.groot.close()
