@@ -179,6 +179,10 @@ def test_a_replayed_session_writes_its_runs_beside_the_recording(tmp_path: Path,
     for _ in range(2):
         assert main(["replay", str(dialogue), "--base", str(tmp_path)]) == 0
         assert [p.name for p in run_logs(tmp_path / "recordings" / "two")] == ["run-001.btlog", "run-002.btlog"]
+        # the tree each run ran, beside the generations, as the .btlog holds it
+        for number in ("001", "002"):
+            ran = tree_from_xml((tmp_path / "trees" / "two" / f"run-{number}.xml").read_text())
+            assert ran == tree_from_xml(read_btlog(tmp_path / "recordings" / "two" / f"run-{number}.btlog").xml)
     capsys.readouterr()
     assert main(["review", str(tmp_path / "recordings" / "two.rrd")]) == 0
     out = capsys.readouterr().out

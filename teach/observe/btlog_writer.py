@@ -7,7 +7,9 @@ ticked twice, the resets of halting what still runs at the end) is logged, and `
 writes the file atomically. The channel (``teach.observe.status_changes``) reports only the
 actions that started, so neither does a run stopped by its limit (``run 3``). Numbers are
 never reused: the next one is one more than the highest in the folder, and the session lock
-keeps the folder ours.
+keeps the folder ours. With ``trees`` (the session's generations folder) the tree each run ran
+is also written there as ``run-NNN.xml``, numbered as its ``.btlog``: the unpruned tree that
+ran, beside the pruned generations the teacher sees.
 
 The file's first timestamp is the wall clock when the run began (BehaviorTree.CPP's too);
 the records' times are simulated: seconds of simulated time since the run's first tick where
@@ -24,6 +26,8 @@ from typing import TYPE_CHECKING
 
 from teach.bt.btcpp_status import BtStatus, Change, btcpp_uids
 from teach.bt.btlog import SUFFIX, BtlogWriter, epoch_us
+from teach.bt.xml import tree_to_xml
+from teach.fsutil import atomic_write_text
 from teach.observe.hook import Observer
 
 if TYPE_CHECKING:
@@ -54,8 +58,9 @@ class BtlogRecorder(Observer):
     """Writes each run the session reports (``on_run_start`` … ``on_run_end``) to ``folder``,
     from the tree channel (``on_status_change``), which the fan-out ``Observers`` derives."""
 
-    def __init__(self, folder: Path, wall_clock: Callable[[], int] = epoch_us):
+    def __init__(self, folder: Path, wall_clock: Callable[[], int] = epoch_us, trees: Path | None = None):
         self.folder = folder
+        self.trees = trees
         self.wall_clock = wall_clock
         self.written: list[Path] = []
         self._writer: BtlogWriter | None = None
@@ -68,6 +73,8 @@ class BtlogRecorder(Observer):
         self._uids = {node.uid: number for number, node in enumerate(btcpp_uids(tree), 1)}
         self._start_us = self._now_us = self.wall_clock()
         self._writer = BtlogWriter(next_run_path(self.folder), tree, clock=lambda: self._now_us)
+        if self.trees is not None:
+            atomic_write_text(self.trees / self._writer.path.with_suffix(".xml").name, tree_to_xml(tree))
 
     def on_status_change(self, time: float, node: Node, previous: BtStatus, status: BtStatus) -> None:
         if self._writer is None or node.uid not in self._uids:

@@ -121,7 +121,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
             observer.observers.append(recorder)
             from teach.observe.btlog_writer import BtlogRecorder
 
-            observer.observers.append(BtlogRecorder(store.run_dir))
+            observer.observers.append(BtlogRecorder(store.run_dir, trees=store.tree_dir))
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
         else:
