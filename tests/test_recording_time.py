@@ -1,9 +1,11 @@
 """The quickstart recording's ``tick`` timeline, read back with rerun's own reader: every tick of
 a run and every step of a demonstration its own moment, the run view coloured by exactly the
-tick under the cursor and grey everywhere else, and the recording opening at its end."""
+tick under the cursor and grey everywhere else, the recording opening at its end, and the
+committed screenshots showing what their captions claim."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -11,6 +13,7 @@ import pytest
 from teach.bt.nodes import Status
 from teach.cli import main
 from teach.observe.moments import Moments
+from teach.observe.pictures import Picture, pictures, wrong_at
 from teach.observe.reader import RecordingContents, read_recording
 from teach.observe.tree_view import IDLE_COLOUR, STATUS_COLOURS
 
@@ -93,3 +96,26 @@ def test_moments_rules() -> None:
     moments.run_starts()
     assert moments.tick() and not moments.line(teacher=False) and not moments.action("X") and moments.tick()
     assert moments.run_ends() and moments.now == 7
+
+
+def test_each_committed_screenshot_shows_what_its_caption_claims(quickstart: RecordingContents) -> None:
+    """docs/screenshots/pictures.json names each picture's moment (``make screenshots`` took it
+    where the viewer's own state read back that moment): the replayed recording shows there what
+    the caption says (the grasp picture where GraspBall runs, the end with the run view grey)."""
+    listing = json.loads((ROOT / "docs" / "screenshots" / "pictures.json").read_text())
+    assert set(listing) == {p.name for p in pictures(quickstart)}
+    for name, taken in listing.items():
+        picture = Picture(name, taken["moment"], taken["caption"])
+        assert wrong_at(quickstart, picture) is None
+        assert picture.caption == next(p.caption for p in pictures(quickstart) if p.name == name)
+        assert (ROOT / "docs" / "screenshots" / f"{name}.png").stat().st_size > 50_000
+
+
+def test_a_picture_at_another_moment_is_refused(quickstart: RecordingContents) -> None:
+    grasp = next(p for p in pictures(quickstart) if p.name == "grasp")
+    found = next(t for t in quickstart.ticks if t.action == "FindBall")
+    assert found.moment is not None
+    wrong = wrong_at(quickstart, Picture("grasp", found.moment, grasp.caption))
+    assert wrong is not None and "the recording's is" in wrong
+    end = next(p for p in pictures(quickstart) if p.name == "end")
+    assert wrong_at(quickstart, Picture("end", grasp.moment, end.caption)) is not None
