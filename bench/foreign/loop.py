@@ -1,0 +1,69 @@
+"""The session loop (issue 18, item 3): the robot runs, the teacher corrects it where it goes wrong.
+
+Each round the robot runs its current tree in the true model from the next training start.
+Where the run ends stuck, unsafe, in a loop or with a wrong "done", the teacher demonstrates
+an optimal plan from the state where it went wrong (from the run's start if that state cannot
+reach the goal) and the learner learns it (``update``); then the learner may ask up to
+``questions`` questions, answered from the true model (``foreign.questions``). After every
+round that changed the tree, the robot runs from every held-out start; the loop ends when it
+reaches the goal (safely: a run stops at the first unsafe action) from ``TARGET`` of them, or
+after ``MAX_ROUNDS`` rounds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from foreign.judge import Outcomes, judge, run
+from foreign.model import Task
+from foreign.questions import Answered, ask
+from foreign.teaching import demonstration, split_starts
+from teach.bt.tick import compile_tree
+from teach.domain import Domain
+
+TARGET = 0.95
+MAX_ROUNDS = 40
+
+
+@dataclass
+class Progress:
+    """What the teacher gave until the loop ended, and the robot's held-out outcomes then."""
+
+    rounds: int = 0
+    demonstrations: int = 0
+    lines: int = 0
+    answers: list[Answered] = field(default_factory=list)
+    outcomes: Outcomes | None = None
+    hit: bool = False
+
+    @property
+    def questions(self) -> int:
+        return sum(a.charged for a in self.answers)
+
+
+def session_loop(task: Task, seed: int, make: Callable[[Domain], Any], questions: int, held_out: int,
+                 max_rounds: int = MAX_ROUNDS) -> Progress:
+    starts, tests = split_starts(task, seed, max_rounds, held_out)
+    learner = make(task.domain)
+    progress = Progress()
+    names = task.domain.condition_names
+    for number, start in enumerate(starts, 1):
+        progress.rounds = number
+        before = learner.tree
+        ended = run(task, compile_tree(before, names), start)
+        if ended.outcome != "reached":
+            where = ended.state if task.distance(ended.state) else start
+            demo = demonstration(task, where, f"round{number}")
+            learner.update(demo, f"round {number}")
+            progress.demonstrations += 1
+            progress.lines += len(demo.steps)
+        if questions:
+            progress.answers += ask(learner, task, questions, f"round {number} question")
+        if progress.outcomes is None or learner.tree != before:
+            progress.outcomes = judge(task, learner.tree, tests)
+        if progress.outcomes.share("reached") >= TARGET:
+            progress.hit = True
+            break
+    return progress
