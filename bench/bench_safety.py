@@ -39,7 +39,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 from foreign import ipc, strips  # noqa: E402
 from foreign.judge import OUTCOMES, Outcomes, judge  # noqa: E402
 from foreign.learners import BATCH  # noqa: E402
-from foreign.loop import MAX_ROUNDS, TARGET, Progress, session_loop  # noqa: E402
+from foreign.loop import MAX_ROUNDS, TARGET, TRAINING_STARTS, Progress, session_loop  # noqa: E402
 from foreign.model import Task  # noqa: E402
 from foreign.questions import Answered, ask  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
@@ -48,7 +48,7 @@ from foreign.teaching import ceiling, demonstration, split_starts  # noqa: E402
 from teach.learn.learner import Learner, learn_online  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 
-TRAIN_SIZES = (2, 5, 20)
+TRAIN_SIZES = (2, 5, TRAINING_STARTS)
 QUESTIONS = 5
 HELD_OUT = 100
 SEEDS = 3
@@ -73,7 +73,8 @@ class Results:
     cells: dict[tuple[str, int, str], Cell] = field(default_factory=dict)
     ceilings: dict[tuple[str, int], list[float]] = field(default_factory=dict)
     held: dict[str, list[int]] = field(default_factory=dict)
-    answers: list[Answered] = field(default_factory=list)
+    answers: dict[str, list[Answered]] = field(default_factory=dict)
+    """By where they were asked: after k demonstrations, or in the session loop."""
     loops: dict[tuple[str, str], list[Progress]] = field(default_factory=dict)
 
 
@@ -95,7 +96,7 @@ def measure(task: Task, seed: int, held_out: int, results: Results) -> None:
         for row in ROWS:
             if row == "learner+5q":
                 learner = learn_online(task.domain, train)
-                results.answers += ask(learner, task, QUESTIONS)
+                results.answers.setdefault(f"{k} demonstrations", []).extend(ask(learner, task, QUESTIONS))
                 tree = learner.tree
             else:
                 tree = BATCH[row](task.domain, train)
@@ -109,7 +110,7 @@ def loop(task: Task, seed: int, held_out: int, rounds: int, results: Results) ->
     for name, make, questions in LOOPS:
         progress = session_loop(task, seed, make, questions, held_out, rounds)
         results.loops.setdefault((task.name, name), []).append(progress)
-        results.answers += progress.answers
+        results.answers.setdefault("session loop", []).extend(progress.answers)
 
 
 def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
@@ -128,11 +129,14 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
                 values += [_pct(statistics.mean(cell.replay)), _pct(statistics.mean(results.ceilings[(name, k)])),
                            f"{cell.refused}/{len(cell.outcomes)}" if row in ("detect", "specialize") else ""]
                 print(f"{name:<12} {held[name]:>4} {k:>5} {row:<11} " + " ".join(f"{v:>7}" for v in values))
-    kinds = Counter(a.said if a.said in ("done",) or "skipped" in a.said or a.said == "impossible" else "an action"
-                    for a in results.answers)
-    unchanged = sum(not a.changed for a in results.answers)
-    print(f"\nanswers: {len(results.answers)} ({', '.join(f'{v} {k}' for k, v in sorted(kinds.items()))}); "
-          f"{unchanged} ({_pct(unchanged / max(1, len(results.answers)))}) changed nothing")
+    print("\nanswers to the learner's questions, from the true model")
+    for where, answers in results.answers.items():
+        said = Counter(a.said if a.said == "done" or a.said.startswith(("impossible", "no way", "yes", "no"))
+                       else "an action" for a in answers)
+        unchanged = sum(not a.changed for a in answers)
+        print(f"  {where}: {len(answers)} answers ({', '.join(f'{v} {k}' for k, v in sorted(said.items()))}); "
+              f"{unchanged} ({_pct(unchanged / max(1, len(answers)))}) changed nothing")
+    verdict(results, names)
     print(f"\nsession loop: rounds until the robot reaches the goal from {_pct(TARGET)} of held-out starts "
           f"(cap {rounds} rounds), mean over seeds")
     heads = ("hit", "rounds", "demos", "lines", "questions", "reached", "unsafe", "false")
@@ -148,6 +152,28 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
                         for a in ("rounds", "demonstrations", "lines", "questions")),
                       *(_pct(statistics.mean(o.share(x) for o in final)) for x in ("reached", "unsafe", "false-done"))]
             print(f"{name:<12} {row:<17} " + " ".join(f"{v:>9}" for v in values))
+
+
+def verdict(results: Results, names: list[str]) -> None:
+    """Issue 18's bars, learner by learner: unsafe and false done at most 1% everywhere; with
+    20 demonstrations within 10 points of the ceiling; 5 questions after 2 demonstrations
+    worth at least 10 points."""
+    print("\nissue 18's bars (worst domain and training size)")
+    for row in ("learner", "learner+5q", "sam"):
+        cells = {(n, k): results.cells[(n, k, row)] for n in names for k in TRAIN_SIZES if (n, k, row) in results.cells}
+        if not cells:
+            continue
+        worst = {o: max(cells.items(), key=lambda item, o=o: item[1].share(o)) for o in ("unsafe", "false-done")}
+        short = [n for (n, k), c in cells.items()
+                 if k == max(TRAIN_SIZES) and c.share("reached") < statistics.mean(results.ceilings[(n, k)]) - 0.1]
+        text = "; ".join(f"{o} {_pct(c.share(o))} ({n}, {k})" for o, ((n, k), c) in worst.items())
+        print(f"  {row:<11} worst {text}; 20 demonstrations more than 10 points under the ceiling in "
+              f"{len(short)} of {len(names)}")
+    gains = [results.cells[(n, 2, "learner+5q")].share("reached") - results.cells[(n, 2, "learner")].share("reached")
+             for n in names if (n, 2, "learner") in results.cells]
+    if gains:
+        print(f"  5 questions after 2 demonstrations: {sum(g >= 0.1 for g in gains)} of {len(gains)} domains gain "
+              f">= 10 points reached (mean {100 * statistics.mean(gains):+.0f})")
 
 
 def _pct(value: float) -> str:

@@ -19,7 +19,7 @@ import bench_safety  # noqa: E402
 from foreign import ipc, strips  # noqa: E402
 from foreign.judge import judge, run  # noqa: E402
 from foreign.model import Task  # noqa: E402
-from foreign.questions import answer_question, ask  # noqa: E402
+from foreign.questions import answer_question, ask, needed  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
 from foreign.teaching import ceiling, demonstration, split_starts  # noqa: E402
 
@@ -139,6 +139,18 @@ def test_answers_come_from_the_true_model(ferry: Task) -> None:
     assert learner.answer_in(there) == said.said
     answers = ask(learner, ferry, 3)
     assert sum(a.charged for a in answers) <= 3
+
+
+def test_yes_no_answers_read_the_true_preconditions_and_goal(ferry: Task) -> None:
+    assert needed(ferry, "must-precondition", "board_c1_p1", "empty_ferry", True)
+    assert not needed(ferry, "must-precondition", "board_c1_p1", "empty_ferry", False)
+    assert not needed(ferry, "must-precondition", "board_c1_p1", "at_c2_p2", True)
+    assert needed(ferry, "must-goal", None, "at_c1_p2", True)
+    assert not needed(ferry, "must-goal", None, "at_ferry_p1", True)
+    task = next(t for t in (strips.random_task(6, 5, seed) for seed in range(10)) if t.model.goal_false)
+    index = task.model.goal_false.bit_length() - 1
+    assert needed(task, "must-goal", None, f"c{index}", False)
+    assert not needed(task, "must-goal", None, f"c{index}", True)
 
 
 def test_random_strips_preconditions_are_positive_and_negative_alike() -> None:

@@ -8,7 +8,6 @@ string hashing, and named as identifiers: ``(on a b)`` becomes the condition ``o
 
 from __future__ import annotations
 
-import logging
 import re
 from pathlib import Path
 
@@ -35,7 +34,6 @@ def phrase(atom: str) -> str:
 
 def load(name: str) -> Task:
     """The instance ``pddl/<name>-problem.pddl`` of ``pddl/<name>-domain.pddl``."""
-    logging.getLogger().setLevel(max(logging.getLogger().level, logging.WARNING))
     parser = Parser(str(PDDL / f"{name}-domain.pddl"), str(PDDL / f"{name}-problem.pddl"))
     grounded = ground(parser.parse_problem(parser.parse_domain()))
     facts = sorted(grounded.facts)

@@ -44,16 +44,10 @@ def answer_question(learner: Any, question: Any, task: Task, source: str) -> Ans
     """Answer ``question`` from ``task``'s true model and give the answer to ``learner``."""
     kind = str(question.kind)
     if kind.startswith("must-"):
-        index = task.model.conditions.index(question.condition)
-        value = bool(getattr(question, "value", True))
-        if kind == "must-goal":
-            true, false = task.model.goal_true, task.model.goal_false
-        else:
-            operator = task.model.by_name[question.action]
-            true, false = operator.pre_true, operator.pre_false
-        needed = bool((true if value else false) >> index & 1)
-        update = learner.settle(question, needed, source)
-        return Answered(kind, "yes" if needed else "no", bool(update.tree_changed))
+        yes = needed(task, kind, getattr(question, "action", None), question.condition,
+                     bool(getattr(question, "value", True)))
+        update = learner.settle(question, yes, source)
+        return Answered(kind, "yes" if yes else "no", bool(update.tree_changed))
     state = task.mask(question.state)
     if state not in task.reachable:
         if hasattr(learner, "rule_out"):
@@ -64,6 +58,18 @@ def answer_question(learner: Any, question: Any, task: Task, source: str) -> Ans
     best = task.best(state)
     update = learner.teach_step(question.state, None if best is None else best.name, source)
     return Answered(kind, "done" if best is None else best.name, bool(update.tree_changed))
+
+
+def needed(task: Task, kind: str, action: str | None, condition: str, value: bool) -> bool:
+    """Is the literal ``condition`` = ``value`` part of the true goal ("must-goal") or a true
+    precondition of ``action`` (any other "must-" kind)?"""
+    index = task.model.conditions.index(condition)
+    if kind == "must-goal":
+        true, false = task.model.goal_true, task.model.goal_false
+    else:
+        operator = task.model.by_name[str(action)]
+        true, false = operator.pre_true, operator.pre_false
+    return bool((true if value else false) >> index & 1)
 
 
 def ask(learner: Any, task: Task, budget: int, prefix: str = "question") -> list[Answered]:
