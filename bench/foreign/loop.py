@@ -1,15 +1,15 @@
 """The session loop (issue 18, item 3): the robot runs, the teacher corrects it where it goes wrong.
 
 Each round the robot runs its current tree in the true model from a random start that is not
-held out (starts may repeat: the robot may be put in the same place again).
-Where the run ends stuck, unsafe, in a loop or with a wrong "done", the teacher demonstrates
-an optimal plan from the state where it went wrong (from the run's start if that state cannot
-reach the goal) and the learner learns it (``update``); then the learner may ask up to
-``questions`` questions, answered from the true model (``foreign.questions``). After every
-round that changed the tree, the robot runs from every held-out start; the loop ends when it
-reaches the goal (safely: a run stops at the first unsafe action) from ``TARGET`` of them, or
-after ``MAX_ROUNDS`` rounds. The held-out starts are those of ``bench_safety.py``'s tables for
-the same seed.
+held out (starts may repeat: the robot may be put in the same place again). Where the run ends
+stuck, unsafe, in a loop or with a wrong "done", the teacher demonstrates an optimal plan from
+the state where it went wrong (only a goal line where a loop went through the goal without
+saying "done"; from the run's start if that state cannot reach the goal) and the learner
+learns it (``update``); then the learner may ask up to ``questions`` questions, answered from
+the true model (``foreign.questions``). After every round that changed the tree, the robot
+runs from every held-out start; the loop ends when it reaches the goal (safely: a run stops
+at the first unsafe action) from ``TARGET`` of them, or after ``MAX_ROUNDS`` rounds. The
+held-out starts are those of ``bench_safety.py``'s tables for the same seed.
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ def session_loop(task: Task, seed: int, make: Callable[[Domain], Any], questions
         before = learner.tree
         ended = run(task, compile_tree(before, names), start)
         if ended.outcome != "reached":
-            where = ended.state if task.distance(ended.state) else start
+            where = ended.state if task.distance(ended.state) is not None else start
             demo = demonstration(task, where, f"round{number}")
             learner.update(demo, f"round {number}")
             progress.demonstrations += 1
