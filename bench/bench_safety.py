@@ -150,7 +150,7 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
             values = [f"{sum(p.hit for p in runs)}/{len(runs)}",
                       *(f"{statistics.mean(getattr(p, a) for p in runs):.1f}"
                         for a in ("rounds", "demonstrations", "lines", "questions")),
-                      *(_pct(statistics.mean(o.share(x) for o in final)) for x in ("reached", "unsafe", "false-done"))]
+                      *(_pct(statistics.mean(o.share(x) for o in final)) for x in ("reached", "unsafe", "false done"))]
             print(f"{name:<12} {row:<17} " + " ".join(f"{v:>9}" for v in values))
 
 
@@ -163,7 +163,7 @@ def verdict(results: Results, names: list[str]) -> None:
         cells = {(n, k): results.cells[(n, k, row)] for n in names for k in TRAIN_SIZES if (n, k, row) in results.cells}
         if not cells:
             continue
-        worst = {o: max(cells.items(), key=lambda item, o=o: item[1].share(o)) for o in ("unsafe", "false-done")}
+        worst = {o: max(cells.items(), key=lambda item, o=o: item[1].share(o)) for o in ("unsafe", "false done")}
         short = [n for (n, k), c in cells.items()
                  if k == max(TRAIN_SIZES) and c.share("reached") < statistics.mean(results.ceilings[(n, k)]) - 0.1]
         text = "; ".join(f"{o} {_pct(c.share(o))} ({n}, {k})" for o, ((n, k), c) in worst.items())

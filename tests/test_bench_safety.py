@@ -78,7 +78,7 @@ def test_done_before_the_goal_is_false_done_and_failure_is_stuck(ferry: Task) ->
     always = Fallback((Condition(name), Inverter(Condition(name))))
     never = Sequence((Condition(name), Inverter(Condition(name))))
     start = state_with(ferry, *START)
-    assert judge(ferry, always, [start]).counts["false-done"] == 1
+    assert judge(ferry, always, [start]).counts["false done"] == 1
     assert judge(ferry, never, [start]).counts["stuck"] == 1
     goal = state_with(ferry, "at_ferry_p1", "empty_ferry", "at_c1_p2", "at_c2_p3", "at_c3_p1")
     assert run(ferry, compile_tree(always, ferry.domain.condition_names), goal).outcome == "reached"
@@ -98,7 +98,7 @@ def test_sam_reproduces_what_it_saw_and_never_acts_unsafely(ferry: Task) -> None
     assert count_reproduced(sam.tree, ferry.domain, demos) == len(demos)
     assert judge(ferry, sam.tree, train).counts["reached"] == len(train)
     outcomes = judge(ferry, sam.tree, tests)
-    assert outcomes.counts["unsafe"] == outcomes.counts["false-done"] == 0
+    assert outcomes.counts["unsafe"] == outcomes.counts["false done"] == 0
     assert 0 < ceiling(ferry, demos, tests) <= 1
 
 

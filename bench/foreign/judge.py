@@ -5,7 +5,7 @@ checks BehaviorTree.CPP picks the same), and the action it leaves running is app
 true model, until one of:
 
 - ``reached``: the tree returns SUCCESS and the true goal holds;
-- ``false-done``: SUCCESS where the true goal does not hold;
+- ``false done``: SUCCESS where the true goal does not hold;
 - ``stuck``: FAILURE;
 - ``unsafe``: the action's true preconditions do not hold in that state (the run stops there:
   a real robot would have done something it must not);
@@ -21,7 +21,7 @@ from foreign.model import Task
 from teach.bt.nodes import Node, Status
 from teach.bt.tick import CompiledTree, compile_tree
 
-OUTCOMES = ("reached", "false-done", "stuck", "unsafe", "loop")
+OUTCOMES = ("reached", "false done", "stuck", "unsafe", "loop")
 
 
 @dataclass(frozen=True)
@@ -39,7 +39,7 @@ def run(task: Task, tree: CompiledTree, start: int, step_cap: int | None = None)
     for steps in range(cap + 1):
         status, action = tree(task.state(state))
         if status is Status.SUCCESS:
-            return Run("reached" if task.model.goal_holds(state) else "false-done", state, steps)
+            return Run("reached" if task.model.goal_holds(state) else "false done", state, steps)
         if status is not Status.RUNNING or action is None:
             return Run("stuck", state, steps)
         operator = task.model.by_name[action]
