@@ -18,15 +18,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "bench"))
 import bench_safety  # noqa: E402
 from foreign import ipc, strips  # noqa: E402
 from foreign.judge import judge, run  # noqa: E402
+from foreign.learners import BATCH  # noqa: E402
 from foreign.model import Task  # noqa: E402
 from foreign.questions import answer_question, ask, needed  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
 from foreign.teaching import ceiling, demonstration, split_starts  # noqa: E402
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence  # noqa: E402
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence  # noqa: E402
 from teach.bt.tick import compile_tree  # noqa: E402
 from teach.learn.inquiry import SituationQuestion  # noqa: E402
-from teach.learn.learner import Learner, learn_online  # noqa: E402
+from teach.learn.learner import Learner  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 
 
@@ -102,29 +103,29 @@ def test_sam_reproduces_what_it_saw_and_never_acts_unsafely(ferry: Task) -> None
     assert 0 < ceiling(ferry, demos, tests) <= 1
 
 
-def test_btcpp_picks_the_action_the_compiled_ticker_picks(ferry: Task) -> None:
-    """On the states the bench runs through: held-out starts and every state of their runs."""
-    train, tests = split_starts(ferry, 0, 5, 30)
-    demos = [demonstration(ferry, s, f"d{i}") for i, s in enumerate(train)]
-    trees: list[Node] = [learn_online(ferry.domain, demos).tree]
-    sam = SamLearner(ferry.domain)
-    for demo in demos:
-        sam.update(demo)
-    trees.append(sam.tree)
+@pytest.mark.parametrize("name", ["ferry", "strips-8x6"])
+def test_btcpp_picks_the_action_the_compiled_ticker_picks(name: str) -> None:
+    """On the states the bench runs through (held-out starts and every state of their runs),
+    for each learner's tree."""
+    task = ipc.load(name) if name in ipc.DOMAINS else strips.random_task(8, 6, 1)
+    train, tests = split_starts(task, 0, 2, 30)
+    demos = [demonstration(task, s, f"d{i}") for i, s in enumerate(train)]
+    trees = [tree for learn in BATCH.values() if (tree := learn(task.domain, demos)) is not None]
+    assert len(trees) >= 3  # the learner, SAM and at least one of the thesis's approaches
     for tree in trees:
-        compiled = compile_tree(tree, ferry.domain.condition_names)
+        compiled = compile_tree(tree, task.domain.condition_names)
         states = set()
         for start in tests:
             state = start
             for _ in range(20):
                 states.add(state)
-                _status, action = compiled(ferry.state(state))
-                operator = ferry.model.by_name.get(action or "")
+                _status, action = compiled(task.state(state))
+                operator = task.model.by_name.get(action or "")
                 if operator is None or not operator.applicable(state):
                     break
                 state = operator.apply(state)
-        ordered = [ferry.state(s) for s in sorted(states)]
-        assert btcpp_tick(tree, ferry.domain, ordered) == [compiled(s) for s in ordered]
+        ordered = [task.state(s) for s in sorted(states)]
+        assert btcpp_tick(tree, task.domain, ordered) == [compiled(s) for s in ordered]
 
 
 def test_answers_come_from_the_true_model(ferry: Task) -> None:
