@@ -119,7 +119,8 @@ def report(rows: list[Measured], total: int, states: int) -> str:
     answers = [a for r in rows for a in r.answers]
     asked = statistics.mean(r.questions for r in rows)
     lost = sum(not r.training_kept for r in rows)
-    return (f"{len(rows):>3} pairs  Δ5 mean {statistics.mean(reproduced):5.2f}/{total} worst {min(reproduced):>2}/{total}"
+    mean, worst = statistics.mean(reproduced), min(reproduced)
+    return (f"{len(rows):>3} pairs  Δ5 mean {mean:5.2f}/{total} worst {worst:>2}/{total}"
             f"  | {success}  | asked {asked:.1f}, unchanged {100 * unchanged_share(answers):3.0f}%"
             f"  | training lost {lost}")
 

@@ -70,15 +70,15 @@ def answer(learner: Learner, question: Any, teacher: ReferenceTeacher, source: s
     kind = str(getattr(question, "kind", ""))
     if kind.startswith(MUST):
         value = bool(getattr(question, "value", True))
-        condition = str(getattr(question, "condition"))
+        condition = str(question.condition)
         if kind == "must-precondition":
-            needed = teacher.precondition_needed(str(getattr(question, "action")), condition, value)
+            needed = teacher.precondition_needed(str(question.action), condition, value)
         else:
             needed = teacher.goal_needed(condition, value)
-        settle = getattr(learner, "settle")
+        settle = getattr(learner, "settle")  # noqa: B009 (yes/no kinds only: not every Learner has it)
         update = settle(question, needed, source)
         return Answered(kind, "yes" if needed else "no", bool(update.tree_changed))
-    state = tuple(getattr(question, "state"))
+    state = tuple(question.state)
     does = teacher.does[state]
     if does == SKIP:  # the teacher does not know either: charged, nothing learned
         return Answered(kind, SKIP, False)
