@@ -38,7 +38,7 @@ from task_outcomes import OUTCOMES, from_every_state  # noqa: E402
 
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.demos import Demonstration, read_demo_set  # noqa: E402
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, load_domain  # noqa: E402
+from teach.domain import Domain, load_domain  # noqa: E402
 from teach.learn.learner import Learner, learn_online  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 
@@ -77,7 +77,7 @@ def load() -> Ball:
 
 
 def actions_shown(demos: list[Demonstration]) -> set[int]:
-    return {a for demo in demos for a in demo.actions if a not in (GOAL_ACTION, EXTERNAL_ACTION)}
+    return {a for demo in demos for a in demo.actions}
 
 
 def run_pair(ball: Ball, pair: tuple[Demonstration, Demonstration], budget: int = QUESTIONS) -> list[Measured]:
