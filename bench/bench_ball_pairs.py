@@ -56,6 +56,7 @@ class Measured:
     questions: int
     reproduced: int
     outcomes: Counter[str]
+    unsafe_actions: Counter[str]
     training_kept: bool
     answers: tuple[Answered, ...]
 
@@ -89,9 +90,9 @@ def run_pair(ball: Ball, pair: tuple[Demonstration, Demonstration], budget: int 
     answers: list[Answered] = []
 
     def measure() -> Measured:
+        outcomes, unsafe = from_every_state(learner.tree, ball.model)
         return Measured(names, shows_all, len(answers), count_reproduced(learner.tree, ball.domain, ball.delta5),
-                        from_every_state(learner.tree, ball.model), _keeps(learner, ball.domain, train),
-                        tuple(answers))
+                        outcomes, unsafe, _keeps(learner, ball.domain, train), tuple(answers))
 
     result = [measure()]
     for answered in ask(learner, ball.teacher, budget):
@@ -149,7 +150,22 @@ def main(argv: list[str] | None = None) -> None:
         print(f"<= {budget} questions")
         print(f"  all pairs      {report(rows, total, states)}")
         print(f"  all 5 actions  {report([r for r in rows if r.shows_all], total, states)}")
+    print(breakdown(at_budget(runs, QUESTIONS)))
     print(f"{time.perf_counter() - started:.0f} s")
+
+
+def breakdown(rows: list[Measured]) -> str:
+    """Which actions (and missing preconditions) the unsafe runs end with, and how often each
+    kind of question changed nothing."""
+    unsafe: Counter[str] = sum((r.unsafe_actions for r in rows), Counter())
+    kinds: dict[str, list[Answered]] = {}
+    for answered in (a for r in rows for a in r.answers):
+        kinds.setdefault(answered.kind, []).append(answered)
+    return (f"with <= {QUESTIONS} questions, the unsafe runs end with: "
+            + ", ".join(f"{name} {count}" for name, count in unsafe.most_common(8))
+            + "\nanswers by kind (unchanged = the tree did not change): "
+            + ", ".join(f"{kind} {len(given)} ({100 * unchanged_share(given):.0f}% unchanged)"
+                        for kind, given in sorted(kinds.items(), key=lambda item: -len(item[1]))))
 
 
 if __name__ == "__main__":

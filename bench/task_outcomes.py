@@ -23,29 +23,34 @@ from teach.domain import Domain, State
 OUTCOMES = ("reached", "false done", "stuck", "unsafe", "loop")
 
 
-def outcome(tree: CompiledTree, model: Domain, start: State) -> str:
-    """Run ``tree`` from ``start`` in ``model``; see the module docstring."""
+def outcome(tree: CompiledTree, model: Domain, start: State) -> tuple[str, str | None]:
+    """Run ``tree`` from ``start`` in ``model``: the outcome (see the module docstring) and,
+    when it is ``unsafe``, the action and the first of its preconditions that did not hold
+    ("PlaceBall without BallGrasped")."""
     state, seen = start, {start}
     while True:
         status, action = tree(state)
         if status is Status.SUCCESS:
-            return "reached" if all(model.holds(g, state) for g in model.goal) else "false done"
+            return ("reached" if all(model.holds(g, state) for g in model.goal) else "false done"), None
         if status is not Status.RUNNING or action is None:
-            return "stuck"
+            return "stuck", None
         definition = model.action(action)
-        if not all(model.holds(p, state) for p in definition.pre):
-            return "unsafe"
+        missing = next((p for p in definition.pre if not model.holds(p, state)), None)
+        if missing is not None:
+            return "unsafe", f"{action} without {missing}"
         values = list(state)
         for literal in definition.ram:
             values[model.index(literal.name)] = literal.value
         state = tuple(values)
         if state in seen:
-            return "loop"
+            return "loop", None
         seen.add(state)
 
 
-def from_every_state(tree: Node, model: Domain) -> Counter[str]:
-    """How many of the model's states end in each outcome."""
+def from_every_state(tree: Node, model: Domain) -> tuple[Counter[str], Counter[str]]:
+    """How many of the model's states end in each outcome, and how many of the unsafe ones
+    end with each action and missing precondition."""
     compiled = compile_tree(tree, model.condition_names)
-    states = itertools.product((False, True), repeat=len(model.conditions))
-    return Counter(outcome(compiled, model, tuple(state)) for state in states)
+    ends = [outcome(compiled, model, tuple(state))
+            for state in itertools.product((False, True), repeat=len(model.conditions))]
+    return Counter(kind for kind, _ in ends), Counter(action for _, action in ends if action is not None)
