@@ -46,7 +46,7 @@ def test_output_is_the_tree_after_the_questions_and_behaviortree_cpp_loads_it(tm
     status = main(["bench-teach", str(BALL / "delta4"), str(BALL / "delta5"),
                    "--oracle", str(BALL / "reference" / "table61.xml"), "--questions", "5", "--json", "-o", str(out)])
     result = json.loads(capsys.readouterr().out)
-    assert status == 0
+    assert status == 0 and result["tree"] == str(out)
     domain, delta5 = read_demo_set(BALL / "delta5")
     tree = read_tree(out)
     assert count_reproduced(tree, domain, delta5) == result["reproduced"]

@@ -91,8 +91,9 @@ def run(args: argparse.Namespace) -> int:
     if args.output:
         write_tree(args.output, tree)  # checked before learning (see outputs)
     if args.json:
-        print(json.dumps({"questions": asked, "reproduced": strict.reproduced, "total": strict.total,
-                          "lenient": lenient.reproduced}, indent=2, ensure_ascii=False))
+        summary = {"questions": asked, "reproduced": strict.reproduced, "total": strict.total,
+                   "lenient": lenient.reproduced}
+        print(json.dumps(summary | ({"tree": str(args.output)} if args.output else {}), indent=2, ensure_ascii=False))
         return 0
     for number, item in enumerate(asked, start=1):
         print(f"Q{number}: {item['question']}")
