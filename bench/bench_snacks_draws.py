@@ -30,6 +30,8 @@ import random
 import statistics
 import sys
 import time
+from collections import Counter
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -39,10 +41,11 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 from oracle_answers import Answered, ReferenceTeacher, ask, unchanged_share  # noqa: E402
+from task_outcomes import OUTCOMES, every_state, tally  # noqa: E402
 
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.demos import Demonstration, read_demo_set  # noqa: E402
-from teach.domain import Domain, State, load_domain  # noqa: E402
+from teach.domain import Domain, Literal, State, load_domain  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 from teach.world.hidden import HiddenStateWorld, load_world  # noqa: E402
@@ -108,16 +111,26 @@ class Row:
     reproduced: int
     total: int
     answers: tuple[Answered, ...]
+    outcomes: Counter[str]
 
 
-def measure(goalless: Domain, teacher: ReferenceTeacher, data: Draw) -> list[Row]:
+def starts(domain: Domain) -> list[tuple[State, Mapping[str, int]]]:
+    """Every state with every snack count that fits it (TrayEmpty: none left; else 1-3)."""
+    empty = domain.index("TrayEmpty")
+    return [(state, {"snacks": snacks}) for state, _ in every_state(domain)
+            for snacks in ((0,) if state[empty] else (1, 2, 3))]
+
+
+def measure(goalless: Domain, teacher: ReferenceTeacher, data: Draw, world: HiddenStateWorld,
+            goal: tuple[Literal, ...]) -> list[Row]:
     """The rows of ``ROWS`` for one draw, learned on the domain without its goal."""
     rows = []
     for count, budget in ROWS:
         learner = learn_online(goalless, data.train[:count])
         answers = tuple(ask(learner, teacher, budget))
+        outcomes, _unsafe = tally(learner.tree, world, goal, starts(goalless))
         rows.append(Row(count, budget, len(answers), count_reproduced(learner.tree, goalless, data.held_out),
-                        len(data.held_out), answers))
+                        len(data.held_out), answers, outcomes))
     return rows
 
 
@@ -129,6 +142,7 @@ def main(argv: list[str] | None = None) -> None:
     domain = load_domain(SNACKS / "domain.toml")
     goalless = dataclasses.replace(domain, goal=())
     world = HiddenStateWorld(domain, load_world(SNACKS / "world.toml", domain))
+    quiet = HiddenStateWorld(domain, world.spec, events_in_runs=False)
     teacher = ReferenceTeacher(read_tree(SNACKS / "reference" / "reference.xml"), goalless)
     gen = generator()
     print(f"snacks without a declared goal: {TRAIN} training demonstrations, {FEW} + <= {QUESTIONS} questions "
@@ -141,16 +155,21 @@ def main(argv: list[str] | None = None) -> None:
         print(f"\rdrawn {seed}/{args.draws}", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
     for data in sets:
-        rows = measure(goalless, teacher, data)
+        rows = measure(goalless, teacher, data, quiet, domain.goal)
         if data.name != "committed":
             results.append(rows)
         answers = [a for row in rows for a in row.answers]
         cells = "".join(f"{f'{r.reproduced}/{r.total} ({r.asked} asked)':>22}" for r in rows)
         print(f"{data.name:<10}{cells}{f'{100 * unchanged_share(answers):.0f}% of {len(answers)}':>20}")
+    print(f"over the {len(results)} new draws: held-out reproduced mean (worst); task success from "
+          f"{len(starts(goalless))} starts in the hidden-state world")
     for index, (count, budget) in enumerate(ROWS):
         shares = [rows[index].reproduced / rows[index].total for rows in results]
-        print(f"{count} demonstrations, <= {budget} questions: mean {100 * statistics.mean(shares):.0f}%, "
-              f"worst {100 * min(shares):.0f}% over the {len(results)} new draws")
+        outcomes: Counter[str] = sum((rows[index].outcomes for rows in results), Counter())
+        runs = sum(outcomes.values())
+        success = "  ".join(f"{name} {100 * outcomes[name] / runs:4.1f}%" for name in OUTCOMES)
+        print(f"  {count:>2} demonstrations, <= {budget} questions: {100 * statistics.mean(shares):3.0f}% "
+              f"({100 * min(shares):3.0f}%)  | {success}")
     print(f"{time.perf_counter() - started:.0f} s")
 
 

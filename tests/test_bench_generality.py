@@ -12,7 +12,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 import bench_ball_pairs  # noqa: E402
 import bench_snacks_draws  # noqa: E402
 from oracle_answers import DONE, ReferenceTeacher, answer  # noqa: E402
-from task_outcomes import from_every_state  # noqa: E402
+from task_outcomes import from_every_state, tally  # noqa: E402
 
 from teach.bt.nodes import Action, Condition, Fallback  # noqa: E402
 from teach.bt.xml import read_tree  # noqa: E402
@@ -85,7 +85,12 @@ def test_snacks_smallest_draw_is_the_generator_s_own_behaviour():
     assert count_reproduced(reference, domain, data.train) == 10
     assert count_reproduced(reference, domain, data.held_out) == 40
     goalless = bench_snacks_draws.dataclasses.replace(domain, goal=())
-    rows = bench_snacks_draws.measure(goalless, ReferenceTeacher(reference, goalless), data)
+    quiet = bench_snacks_draws.HiddenStateWorld(domain, world.spec, events_in_runs=False)
+    rows = bench_snacks_draws.measure(goalless, ReferenceTeacher(reference, goalless), data, quiet, domain.goal)
     assert [(r.demonstrations, r.budget, r.total) for r in rows] == [(10, 0, 40), (3, 0, 40), (3, 5, 40)]
+    assert all(sum(r.outcomes.values()) == 64 for r in rows)
+    # the reference behaviour reaches the goal from every start, whatever is on the tray
+    starts = bench_snacks_draws.starts(domain)
+    assert tally(reference, quiet, domain.goal, starts) == ({"reached": 64}, {})
     learner = learn_online(goalless, data.train)
     assert count_reproduced(learner.tree, goalless, data.train) == 10  # every training demonstration, strictly
