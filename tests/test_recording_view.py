@@ -138,6 +138,29 @@ def test_labels_are_the_sessions_language(tmp_path: Path, ball: Domain) -> None:
     assert "du siehst den Ball?" in labels
     assert not any("find the ball" in label for label in labels)
     assert graph["GraphNodes:positions"] is not None and graph["GraphNodes:show_labels"] == [True]
+    # the legend explains the symbols and colours in the session's language
+    legend = next(row for row in _rows(path, "/legend"))["TextDocument:text"][0]
+    assert "`?` | Fallback" in legend and "`→` | Sequenz" in legend and "nicht getickt" in legend
+    english = next(row for row in _rows(recorded_en(tmp_path, ball), "/legend"))["TextDocument:text"][0]
+    assert "`?` | fallback" in english and "not ticked" in english
+
+
+def recorded_en(tmp_path: Path, ball: Domain) -> Path:
+    path = tmp_path / "en.rrd"
+    _session(path, ball)
+    return path
+
+
+def test_counts_are_drawn_as_steps_from_zero(recorded: Path) -> None:
+    """The tree size and the questions answered are whole numbers: drawn as steps (not sloping
+    lines) from a first point at 0, so the plot's axis runs over whole nodes and questions;
+    each run outcome's count starts from 0 where its first run started."""
+    for entity in ("/study/tree_size", "/study/questions_answered", "/study/run_outcomes/interrupted"):
+        rows = _rows(recorded, entity)
+        modes = [row["SeriesLines:interpolation_mode"] for row in rows if row.get("SeriesLines:interpolation_mode")]
+        assert modes == [[2]], entity  # StepAfter
+        values = [row["Scalars:scalars"][0] for row in rows if row.get("Scalars:scalars")]
+        assert values[0] == 0.0 and values == sorted(values) and all(v == int(v) for v in values), entity
 
 
 def test_the_layout_is_top_down_and_compact_for_35_nodes(ball: Domain) -> None:

@@ -205,3 +205,15 @@ def test_a_damaged_run_log_beside_the_recording_is_one_line(recording: Path, tmp
     captured = capsys.readouterr()
     bad = tmp_path / "copy" / "run-001.btlog"
     assert captured.out == "" and captured.err == f"teach: {bad}: the log ends inside its header\n"
+
+
+def test_questions_read_as_paragraphs_at_80_columns(recording: Path) -> None:
+    """A question is a paragraph across the whole width (a table squeezed it into 10 lines at 80
+    columns), numbered with its step and tick, its answer on the next line."""
+    console = Console(record=True, width=80, color_system=None)
+    console.print(summary(read_recording(recording)))
+    text = console.export_text()
+    questions = text[text.index("\nQuestions"):text.index("\nTree generations")].strip().splitlines()[1:]
+    assert questions[0] == "  1. [step 10 · tick 11] Must the ball be in your hand before you go to the bin?"
+    assert questions[1:3] == ["(4 left)", "     → [step 11 · tick 11] yes: kept (BallGrasped)"]
+    assert len(questions) == 5
