@@ -223,3 +223,20 @@ def test_the_overview_camera_sees_ball_and_bin() -> None:
     ball = (r > 180) & (g > 50) & (g < 150) & (b < 60)
     bin_ = (g > r + 40) & (g > b + 40)
     assert ball.sum() >= 4 and bin_.sum() >= 50
+
+
+def test_text_panels_keep_whole_messages_newest_first_as_text() -> None:
+    from teach.observe.panels import KEEP, Panels
+
+    panels = Panels()
+    long = "If the ball is within reach, but you cannot see the ball, " * 4 + "what should I do?"
+    panels.line(3, "teacher", "find the ball")
+    document = panels.line(4, "robot", f"- I find the ball *first*\n{long}")
+    assert document.index("`#4`") < document.index("`#3` **teacher:** find the ball")  # the newest on top
+    assert "\\- I find the ball \\*first\\*" in document and long in document  # as text, and whole
+    for moment in range(KEEP + 5):
+        document = panels.line(10 + moment, "robot", f"line {moment}")
+    assert "`#3`" not in document and document.count("robot:") == KEEP  # a panel costs the same at any length
+    asked = panels.question(50, "Which one?", 2)
+    assert "*not answered yet*" in asked
+    assert "→ **left**: I changed it." in panels.answer("left", "I changed it.")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -41,8 +42,11 @@ _MARKDOWN_SPECIALS = str.maketrans({c: "\\" + c for c in "\\`*_[]#<>|~"})
 
 
 def escaped(text: str) -> str:
-    """``text`` shown as it is in a markdown document (its line breaks kept)."""
-    return text.translate(_MARKDOWN_SPECIALS).replace("\n", "  \n")
+    """``text`` shown as it is in a markdown document (its line breaks kept, a line that would
+    start a list kept as text)."""
+    lines = [re.sub(r"^(\s*\d+)([.)]\s)", r"\1\\\2", re.sub(r"^(\s*)([-+]\s)", r"\1\\\2", line))
+             for line in text.translate(_MARKDOWN_SPECIALS).split("\n")]
+    return "  \n".join(lines)
 
 
 def newest_first(title: str, entries: Sequence[str], empty: str) -> str:

@@ -30,9 +30,9 @@ RUNNING_MARK = "▶ "
 LINE_WIDTHS = (10, 12, 14, 18, 24)  # leaf labels wrap at one of these; the one that fits the panel best
 CHAR_WIDTH = 7.5      # graph-view units per character of rerun's label font (measured on screenshots)
 NODE_PADDING = 18.0   # the box around a label
-NODE_GAP = 14.0       # between neighbouring boxes on one level
+NODE_GAP = 10.0       # between neighbouring boxes on one level
 LINE_HEIGHT = 16.0
-LEVEL_GAP = 22.0      # between a level's deepest box and the next level
+LEVEL_GAP = 16.0      # between a level's deepest box and the next level
 
 
 def phrases(domain: Domain, lang: str) -> dict[str, str]:
