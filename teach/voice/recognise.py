@@ -1,0 +1,72 @@
+"""English speech recognition with pocketsphinx 5, restricted to the session's grammar.
+
+The acoustic model and dictionary come inside the pocketsphinx wheel: nothing is downloaded.
+Only English: no package ships an offline German recogniser (see ``GERMAN``).
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+
+import numpy as np
+
+from teach.domain import Domain
+from teach.voice.audio import Audio
+from teach.voice.grammar import Grammar, domain_grammar
+from teach.voice.library import require
+
+DECODER = {"bestpath": False, "wip": 0.2, "silprob": 0.1, "topn": 8}
+"""Settings measured on the round-trip test (tests/test_voice.py): the lattice's best-path rescoring
+costs accuracy on a grammar; a stronger word-insertion penalty keeps "done" from becoming "go to
+it"; more Gaussians per frame (topn) keep short words apart in noise."""
+RATE = 16000  # the acoustic model's sample rate
+DITHER = 30.0  # a noise floor (about -40 dB of speech): digital silence upsets the model's features
+_DITHER_SEED = 22
+_FRAME = 400  # 25 ms at 16 kHz
+_SPEECH_ABOVE_FLOOR_DB = 12.0  # a file whose loudest frame is not this far above its quietest holds no speech
+
+
+@dataclass(frozen=True)
+class Heard:
+    line: str
+    """What was recognised, as the teacher would have typed it."""
+    score: int
+    """pocketsphinx's path score (log scale; higher is better)."""
+
+
+class Recogniser:
+    """One decoder for one domain's grammar (building it takes a fraction of a second)."""
+
+    def __init__(self, domain: Domain):
+        pocketsphinx = require("pocketsphinx", "pocketsphinx")
+        self._decoder = pocketsphinx.Decoder(loglevel="FATAL", lm=None, **DECODER)
+        self.grammar: Grammar = domain_grammar(domain, lambda word: self._decoder.lookup_word(word) is not None)
+        self._decoder.add_jsgf_string("teach", self.grammar.jsgf())
+        self._decoder.activate_search("teach")
+        self._lock = threading.Lock()
+
+    def hear(self, audio: Audio) -> Heard | None:
+        """The line ``audio`` says, or None when nothing in the grammar fits."""
+        samples = audio.resampled(RATE).samples.astype(np.float64)
+        if not _has_speech(samples):
+            return None
+        samples += np.random.default_rng(_DITHER_SEED).normal(0.0, DITHER, len(samples))
+        raw = np.clip(np.round(samples), -32768, 32767).astype("<i2").tobytes()
+        with self._lock:
+            self._decoder.start_utt()
+            self._decoder.process_raw(raw, full_utt=True)
+            self._decoder.end_utt()
+            hypothesis = self._decoder.hyp()
+        if hypothesis is None or not hypothesis.hypstr.strip():
+            return None
+        return Heard(" ".join(hypothesis.hypstr.split()), int(hypothesis.score))
+
+
+def _has_speech(samples: np.ndarray) -> bool:
+    frames = len(samples) // _FRAME
+    if frames < 2:
+        return False
+    energy = np.mean(samples[:frames * _FRAME].reshape(frames, _FRAME) ** 2, axis=1)
+    loudest, quietest = float(np.max(energy)), float(np.percentile(energy, 10))
+    return loudest > 0 and loudest > (quietest + 1.0) * 10 ** (_SPEECH_ABOVE_FLOOR_DB / 10)
