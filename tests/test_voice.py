@@ -4,6 +4,8 @@
 from __future__ import annotations
 
 import ast
+import io
+import threading
 
 import numpy as np
 import pytest
@@ -131,3 +133,99 @@ def test_each_voice_library_is_imported_in_one_module():
     for library, home in (("espeakng_loader", "synth.py"), ("pocketsphinx", "recognise.py"),
                           ("sounddevice", "device.py")):
         assert [p.name for p in modules if library in imports(p)] == [home]
+
+
+# --- the robot speaks in a session -------------------------------------------------------------------
+
+def test_shown_replies_are_said_in_short_form():
+    from teach.session.replies import Reply, ReplyKind
+    from teach.voice.lines import spoken_line
+
+    step = spoken_line(Reply(ReplyKind.INFO, "✓ find the ball (nothing changed: not recorded)"), "en")
+    assert step is not None and step.text == "find the ball"
+    progress = spoken_line(Reply(ReplyKind.INFO, "→ go to the bin"), "en")
+    assert progress is not None and progress.text == "now I go to the bin" and progress.passing
+    german = spoken_line(Reply(ReplyKind.INFO, "→ zum Eimer gehen"), "de")
+    assert german is not None and german.text == "jetzt: zum Eimer gehen"
+    question = spoken_line(Reply(ReplyKind.QUESTION, "Did you mean “grasp the ball”?"), "en")
+    assert question is not None and question.text == "Did you mean grasp the ball?" and question.urgent
+    assert spoken_line(Reply(ReplyKind.STATE, "the ball is in your hand", state=None), "en") is None
+    listing = spoken_line(Reply(ReplyKind.INFO, "Type what the robot should do.\n  help   show this help"), "en")
+    assert listing is not None and listing.text == "Type what the robot should do."
+
+
+def test_a_question_cuts_short_the_progress_line_being_said_and_drops_waiting_ones(tmp_path):
+    from teach.voice.lines import Line
+    from teach.voice.speaker import Speaker
+
+    started, cut = threading.Event(), []
+
+    def player(audio, stop):  # plays in real time, as a sound device does, until cut short
+        started.set()
+        cut.append(stop.wait(audio.seconds))
+
+    speaker = Speaker("en", tmp_path, player)
+    speaker.say(Line("now I go to the ball", passing=True))
+    assert started.wait(30)
+    speaker.say(Line("now I grasp the ball", passing=True))
+    speaker.say(Line("Did you mean grasp the ball?", urgent=True))
+    speaker.close()
+    assert speaker.said == ["now I go to the ball", "Did you mean grasp the ball?"]
+    assert cut == [True, False]  # the progress line was cut short, the question was said to its end
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["001.wav", "002.wav", "lines.txt"]
+    assert (tmp_path / "lines.txt").read_text() == ("001.wav\tnow I go to the ball\n"
+                                                    "002.wav\tDid you mean grasp the ball?\n")
+
+
+def test_a_german_session_with_voice_writes_what_it_says_in_german(ball, tmp_path):
+    from prompt_toolkit.input import create_pipe_input
+    from prompt_toolkit.output import DummyOutput
+    from rich.console import Console
+
+    from teach.session.machine import SessionManager
+    from teach.session.settings import Settings, WorldKind
+    from teach.terminal.app import Terminal
+    from teach.voice.session import spoken_session
+    from teach.world.symbolic import SymbolicWorld
+
+    settings = Settings("spoken", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False, voice=True)
+    manager = SessionManager(settings, ball, SymbolicWorld(ball))
+    notes: list[str] = []
+    with create_pipe_input() as pipe, spoken_session(manager, notes.append) as on_shown:
+        pipe.send_text("Ball finden, zum Ball gehen\rbeenden\r")
+        pipe.close()
+        Terminal(manager, console=Console(file=io.StringIO()), input=pipe, output=DummyOutput(),
+                 on_shown=on_shown).run()
+    speech = tmp_path / "recordings" / "spoken" / "speech"
+    said = [line.split("\t", 1) for line in (speech / "lines.txt").read_text().splitlines()]
+    texts = [text for _, text in said]
+    assert any(text.startswith("Hallo! Zeig mir die Aufgabe") for text in texts)
+    assert "Ball finden" in texts and "zum Ball gehen" in texts  # each step's ✓ line, in short form
+    assert len(notes) == 1 and notes[0].startswith("Kein Ton:")  # no sound device here: said once
+    for name, text in said:
+        sound = read_wav(speech / name)
+        assert 3 <= len(text) / (sound.seconds - 0.5) <= 30, text  # its length fits its text
+        assert sound.rms() > 1000
+    assert synthesizer().voice("de") == "de"
+
+
+def test_a_session_without_voice_imports_none_of_it():
+    import subprocess
+    import sys
+
+    code = ("import sys; from teach.cli import build_parser; build_parser(); import teach.commands.session; "
+            "print(sorted(m for m in sys.modules if m.startswith(('teach.voice', 'pocketsphinx', 'espeakng', "
+            "'sounddevice', 'numpy'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_the_tree_in_words_is_said_whole_one_sentence_a_line():
+    from teach.session.replies import Reply, ReplyKind
+    from teach.voice.lines import spoken_line
+
+    words = "When the ball is in the bin, I am done.\nOtherwise I do the first that fits:\n  – if x, I find the ball\n"
+    line = spoken_line(Reply(ReplyKind.TREE, words), "en")
+    assert line is not None
+    assert line.text == ("When the ball is in the bin, I am done. Otherwise I do the first that fits: "
+                         "if x, I find the ball.")

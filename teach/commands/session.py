@@ -47,6 +47,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default 1: real time; 0 = as fast as possible)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
+    parser.add_argument("--voice", action="store_true",
+                        help="the robot says its lines aloud (offline; English or German) and writes them to "
+                             "recordings/<session>/speech/")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -66,11 +69,17 @@ def run(args: argparse.Namespace) -> int:
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
-                        facilitator=args.facilitator, groot=args.groot)
+                        facilitator=args.facilitator, groot=args.groot, voice=args.voice)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)
-        Terminal(manager, history=history).run()
+        if not settings.voice:
+            Terminal(manager, history=history).run()
+            return 0
+        from teach.voice.session import spoken_session
+
+        with spoken_session(manager) as on_shown:
+            Terminal(manager, history=history, on_shown=on_shown).run()
     return 0
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import signal
 import threading
+from collections.abc import Callable
 from pathlib import Path
 
 from prompt_toolkit import PromptSession
@@ -33,8 +34,10 @@ from teach.terminal.view import prompt, render_reply, toolbar
 
 class Terminal:
     def __init__(self, manager: SessionManager, console: Console | None = None,
-                 input: Input | None = None, output: Output | None = None, history: Path | None = None):
+                 input: Input | None = None, output: Output | None = None, history: Path | None = None,
+                 on_shown: Callable[[Reply], None] | None = None):
         self.manager = manager
+        self._on_shown = on_shown  # sees each reply once it is shown (the robot's voice)
         self.console = console or Console(highlight=False)
         words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
                                                                            if n.isalpha()]
@@ -75,6 +78,8 @@ class Terminal:
         if reply.kind is ReplyKind.STATE:
             self._last_state = reply.text
         self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
+        if self._on_shown is not None:
+            self._on_shown(reply)
 
     def _on_interrupt(self) -> None:
         """Ctrl-C during a run: stop the robot; what follows starts on a line of its own, not after "^C"."""
