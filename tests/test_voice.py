@@ -110,7 +110,8 @@ def test_spoken_files_have_durations_and_energy_that_fit_their_text(tmp_path):
 
 def test_the_grammar_holds_pronoun_forms_answers_and_conditions():
     grammar = domain_grammar(load_domain(BALL))
-    assert {"grasp it", "take it to the bin", "put it in the bin"} <= set(grammar.actions)
+    assert {"grasp it", "go to it", "put it in the bin"} <= set(grammar.actions)
+    assert "drop it" not in grammar.actions  # pronoun forms of the labels only: "run" stays "run"
     assert {"yes", "no", "done", "undo", "before", "after"} <= set(grammar.answers)
     assert "the ball is within reach" in grammar.conditions
     assert pronoun_forms(["go to the bin"]) == ["go to it"]
@@ -229,3 +230,41 @@ def test_the_tree_in_words_is_said_whole_one_sentence_a_line():
     assert line is not None
     assert line.text == ("When the ball is in the bin, I am done. Otherwise I do the first that fits: "
                          "if x, I find the ball.")
+
+
+# --- dialogues said aloud ------------------------------------------------------------------------------
+
+BALL_TASK = ["find the ball", "go to the ball", "grasp the ball", "go to the bin", "put the ball in the bin", "done",
+             "reset", "run"]
+
+
+def test_a_dialogue_of_audio_lines_only_teaches_the_ball_task(tmp_path, capsys):
+    lines = []
+    for number, text in enumerate(BALL_TASK, start=1):
+        assert main(["speak", text, "-o", str(tmp_path / f"{number:02d}.wav")]) == 0
+        lines.append(f"@audio {number:02d}.wav")
+    dialogue = tmp_path / "spoken.dialogue"
+    dialogue.write_text("@lang en\n@world symbolic\n" + "\n".join(lines) + "\n")
+    capsys.readouterr()
+    assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record"]) == 0
+    out = " ".join(capsys.readouterr().out.split())  # as printed, without its line breaks
+    for text in BALL_TASK[:5]:
+        assert f"✓ {text}" in out  # each said step was heard and done
+    assert "Generation 1" in out and "Done! The task is finished." in out  # learned, and the run reached the goal
+    assert (tmp_path / "trees" / "spoken" / "gen-01.xml").is_file()
+
+
+def test_an_audio_line_that_says_nothing_names_its_line(tmp_path, capsys):
+    write_wav(tmp_path / "silent.wav", Audio(np.zeros(16000, dtype=np.int16), 16000))
+    dialogue = tmp_path / "silent.dialogue"
+    dialogue.write_text("@world symbolic\nfind the ball\n@audio silent.wav\n")
+    assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record"]) == 2
+    assert capsys.readouterr().err == f"teach: {dialogue}:3: nothing I know is said in {tmp_path / 'silent.wav'}\n"
+    assert not (tmp_path / "demos").exists()  # nothing of a session was started
+
+
+def test_german_audio_lines_are_refused_in_one_line(tmp_path, capsys):
+    dialogue = tmp_path / "de.dialogue"
+    dialogue.write_text("@lang de\n@world symbolic\n@audio x.wav\n")
+    assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record"]) == 2
+    assert capsys.readouterr().err.strip().endswith("deutsche Spracherkennung gibt es offline nicht.")

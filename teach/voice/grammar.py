@@ -1,7 +1,7 @@
 """What the recogniser may hear: a grammar made from the session's domain, so that every line it
 can produce is one the session understands.
 
-It holds every English action phrase and its pronoun forms ("grasp it"), several actions joined
+It holds every English action phrase, the pronoun forms of each action's label ("grasp it"), several actions joined
 by "and"/"then", each command word, "start" and "why" with a condition's label, and the answer
 words (yes, no, done, skip, undo, before, after, ...). Written as JSGF for pocketsphinx.
 """
@@ -64,10 +64,13 @@ def domain_grammar(domain: Domain, known: Callable[[str], bool] = lambda word: T
         return tuple(dict.fromkeys(t for t in spelled if t and all(known(w) for w in t.split())))
 
     phrases = [phrase for action in domain.actions for phrase in action.en]
+    # pronoun forms of the words the robot itself uses for its actions ("I can: grasp the ball, ..."):
+    # of every phrase, they would crowd short commands out ("drop it" is heard for "run")
+    labels = [action.label("en") for action in domain.actions]
     conditions = [text for c in domain.conditions for text in (c.label("en"), c.label("en", False))]
     commands = [command.usage("en").split()[0] for command in COMMANDS]
     answers = [*(word("en") for word in m.ANSWER_WORDS), *ANSWERS]
-    return Grammar(usable([*phrases, *pronoun_forms(phrases)]), usable(conditions), usable(commands),
+    return Grammar(usable([*phrases, *pronoun_forms(labels)]), usable(conditions), usable(commands),
                    usable(answers))
 
 
