@@ -17,6 +17,7 @@ from teach.session.commands import COMMANDS
 from teach.voice.audio import Audio, read_wav, with_noise, write_wav
 from teach.voice.grammar import domain_grammar, pronoun_forms, spoken_words
 from teach.voice.synth import synthesizer
+from teach.world.symbolic import SymbolicWorld
 
 BALL = ROOT / "demos" / "ball" / "domain.toml"
 
@@ -268,3 +269,35 @@ def test_german_audio_lines_are_refused_in_one_line(tmp_path, capsys):
     dialogue.write_text("@lang de\n@world symbolic\n@audio x.wav\n")
     assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record"]) == 2
     assert capsys.readouterr().err.strip().endswith("deutsche Spracherkennung gibt es offline nicht.")
+
+
+# --- listening ------------------------------------------------------------------------------------------
+
+def test_listening_in_german_is_refused_in_one_line(capsys):
+    assert main(["session", "--listen", "--lang", "de", "--world", "symbolic"]) == 2
+    err = capsys.readouterr().err
+    assert err == "teach: Ich höre nur Englisch: deutsche Spracherkennung gibt es offline nicht.\n"
+
+
+@pytest.mark.parametrize("keys", ["listen\r", "\x1b[15~"], ids=["typed", "F5"])
+def test_without_a_microphone_listening_says_so_in_one_line(ball, tmp_path, keys):
+    from prompt_toolkit.input import create_pipe_input
+    from prompt_toolkit.output import DummyOutput
+    from rich.console import Console
+
+    from teach.session.machine import SessionManager
+    from teach.session.settings import Settings, WorldKind
+    from teach.terminal.app import Terminal
+    from teach.voice.listen import Listener
+
+    manager = SessionManager(Settings("ear", world=WorldKind.SYMBOLIC, base=tmp_path, record=False), ball,
+                             SymbolicWorld(ball))
+    notes: list[str] = []
+    buffer = io.StringIO()
+    with create_pipe_input() as pipe:
+        pipe.send_text(keys + "quit\r")
+        pipe.close()
+        Terminal(manager, console=Console(file=buffer), input=pipe, output=DummyOutput(),
+                 listen=Listener(ball, "en", notes.append).listen).run()
+    assert len(notes) == 1 and notes[0].startswith("I cannot listen: no sound device")
+    assert manager.finished and "I don't know" not in buffer.getvalue()  # nothing was handled as a line

@@ -29,15 +29,16 @@ from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply, ReplyKind
-from teach.terminal.view import prompt, render_reply, toolbar
+from teach.terminal.view import prompt, render_reply, render_teacher, toolbar
 
 
 class Terminal:
     def __init__(self, manager: SessionManager, console: Console | None = None,
                  input: Input | None = None, output: Output | None = None, history: Path | None = None,
-                 on_shown: Callable[[Reply], None] | None = None):
+                 on_shown: Callable[[Reply], None] | None = None, listen: Callable[[], str | None] | None = None):
         self.manager = manager
         self._on_shown = on_shown  # sees each reply once it is shown (the robot's voice)
+        self._listen = listen  # push-to-talk (F5, or the line 'listen'): the line heard, or None
         self.console = console or Console(highlight=False)
         words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
                                                                            if n.isalpha()]
@@ -45,7 +46,8 @@ class Terminal:
             completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang),
                                      _argument_names(manager)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
-            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
+            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True,
+            key_bindings=self._talk_key() if listen else None)
         self._interrupt = threading.Event()
         self._keys_guiding = False  # in the guide mode, driven by keys
         self._last_state = ""  # the state line last shown
@@ -64,7 +66,23 @@ class Terminal:
                 continue
             finally:
                 self._typed = ""
+            if self._listen is not None and (line == _LISTENING or line.strip().lower() in _LISTEN_WORDS):
+                heard = self._listen()
+                if heard is None:
+                    continue
+                self.console.print(render_teacher(heard, self.manager.mode, self.manager.lang))
+                line = heard
             self._handle(line)
+
+    def _talk_key(self) -> KeyBindings:
+        """F5 at the prompt: listen now (the typed line is left)."""
+        bindings = KeyBindings()
+
+        @bindings.add("f5")
+        def talk(event: KeyPressEvent) -> None:
+            event.app.exit(result=_LISTENING)
+
+        return bindings
 
     def _toolbar(self) -> str:
         """The bottom line; once the teacher has guided, the labelling questions left as well."""
@@ -159,6 +177,8 @@ _KEYS = {"up": "up", "down": "down", "left": "left", "right": "right", "pageup":
 """The guide mode's keys: ``Guide.key``'s names and prompt_toolkit's."""
 _LEAVE = ("escape", "c-c", "c-d")
 _TYPED = "typed:"
+_LISTENING = "\x00listen"  # what the push-to-talk key ends the prompt with (no typed line holds NUL)
+_LISTEN_WORDS = ("listen", "zuhören", "zuhoren")
 
 
 def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
