@@ -57,6 +57,25 @@ def test_hear_prints_the_line_and_names_a_file_where_nothing_fits(tmp_path, caps
     assert capsys.readouterr().err == f"{silent}: nothing fits\n"
 
 
+@pytest.mark.parametrize("text", ["the weather is nice today, isn't it", "good morning", "open the door"])
+def test_speech_outside_the_grammar_is_not_forced_into_it(text, tmp_path, capsys):
+    said = tmp_path / "said.wav"
+    assert main(["speak", text, "-o", str(said)]) == 0
+    assert main(["hear", str(said)]) == 2
+    assert capsys.readouterr().err == f"{said}: nothing fits\n"
+
+
+def test_a_line_forced_onto_other_words_is_refused_by_its_fit(tmp_path):
+    from teach.voice.recognise import REJECTED_BELOW, Recogniser
+
+    recogniser = Recogniser(load_domain(BALL))
+    heard = recogniser.hear(synthesizer().speak("grasp the ball", "en"))
+    assert heard is not None and heard.fit > REJECTED_BELOW
+    # the sound of a long unrelated sentence, scored as the best line of the grammar, fits far worse
+    other = synthesizer().speak("seventeen elephants were dancing slowly in the museum", "en")
+    assert recogniser.hear(other) is None
+
+
 @pytest.mark.parametrize("argv", [["hear", "README.md"], ["hear", "no-such.wav"], ["speak", "  ", "-o", "x.wav"],
                                   ["speak", "x" * 3000, "-o", "x.wav"]])
 def test_bad_input_is_one_line_and_status_2(argv, tmp_path, capsys, monkeypatch):
