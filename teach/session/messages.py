@@ -457,6 +457,5 @@ LISTEN_ENGLISH_ONLY = Text("I listen in English only: German speech recognition 
                            "Ich höre nur Englisch: deutsche Spracherkennung gibt es offline nicht.")
 LISTEN_NO_MICROPHONE = Text("I cannot listen: {reason}. Please type instead.",
                             "Ich kann nicht zuhören: {reason}. Bitte tippe stattdessen.")
-HEARD = Text("{line}   [heard: {file}]", "{line}   [gehört: {file}]")
 NOTHING_HEARD = Text("nothing I know is said in {file}", "in {file} wird nichts gesagt, das ich kenne")
 THE_MICROPHONE = Text("what the microphone heard", "dem, was das Mikrofon gehört hat")
