@@ -8,6 +8,10 @@ Recognition (pocketsphinx) is restricted to a grammar made from the domain: its 
 and their pronoun forms ("grasp it"), the command words, condition labels after "start" and
 "why", and the answer words. A file in which nothing of that fits is named on one line
 (``FILE: nothing fits``) and the exit status is 2.
+
+Several files are heard one after another by one recogniser, in the order given (pocketsphinx's
+acoustic model carries a little state from file to file: the same call gives the same lines, but a
+file heard after others may, rarely, be heard differently than alone).
 """
 
 from __future__ import annotations

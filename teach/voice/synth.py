@@ -1,8 +1,10 @@
 """Speech synthesis: espeak-ng's C library, as bundled with its data by espeakng-loader, through ctypes.
 
 espeak-ng is one global synthesizer per process (its C API has no handles), so this module keeps
-one ``Synthesizer`` behind a lock. It is deterministic: the same text and language give the same
-samples, and nothing is downloaded (the English and German dictionaries come in the wheel).
+one ``Synthesizer`` behind a lock. Nothing is downloaded (the English and German dictionaries come
+in the wheel). It is deterministic for a sequence: the same lines said in the same order in a new
+process give the same samples; but espeak-ng carries a little state (its pitch and timing) from one
+line to the next, so one text said twice in a process may differ by a few samples.
 """
 
 from __future__ import annotations
