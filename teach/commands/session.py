@@ -47,7 +47,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default 1: real time; 0 = as fast as possible)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
-    parser.add_argument("--voice", action="store_true",
+    parser.add_argument("--voice", "--stimme", action="store_true",
                         help="the robot says its lines aloud (offline; English or German) and writes them to "
                              "recordings/<session>/speech/")
     parser.add_argument("--listen", action="store_true",
