@@ -222,7 +222,8 @@ def test_a_german_session_with_voice_writes_what_it_says_in_german(ball, tmp_pat
     texts = [text for _, text in said]
     assert any(text.startswith("Hallo! Zeig mir die Aufgabe") for text in texts)
     assert "Ball finden" in texts and "zum Ball gehen" in texts  # each step's ✓ line, in short form
-    assert len(notes) == 1 and notes[0].startswith("Kein Ton:")  # no sound device here: said once
+    assert len(notes) == 1 and notes[0].startswith("no sound device")  # none here: said once, in one line
+    assert notes[0].endswith(f"was ich sage, wird nur nach {speech} geschrieben.")
     for name, text in said:
         sound = read_wav(speech / name)
         assert 3 <= len(text) / (sound.seconds - 0.5) <= 30, text  # its length fits its text

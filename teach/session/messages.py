@@ -449,8 +449,8 @@ HAND_MOVED_NOTHING = Text("You moved {thing}, but nothing changed for me: not re
                           "Du hast {thing} bewegt, aber für mich hat sich nichts geändert: nicht aufgezeichnet.")
 # --- voice (issue 22: the robot speaks, and listens in English)
 SPOKEN_NOW = Text("now I {action}", "jetzt: {action}")
-VOICE_FILES_ONLY = Text("No sound: {reason}. What I say is written to {folder} only.",
-                        "Kein Ton: {reason}. Was ich sage, wird nur nach {folder} geschrieben.")
+VOICE_FILES_ONLY = Text("{reason}: what I say is only written to {folder}.",
+                        "{reason}: was ich sage, wird nur nach {folder} geschrieben.")
 VOICE_NOT_WRITTEN = Text("What I say is no longer written to files: {error}",
                          "Was ich sage, wird nicht mehr in Dateien geschrieben: {error}")
 LISTEN_ENGLISH_ONLY = Text("I listen in English only: German speech recognition is not available offline.",

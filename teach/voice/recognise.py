@@ -1,7 +1,7 @@
 """English speech recognition with pocketsphinx 5, restricted to the session's grammar.
 
 The acoustic model and dictionary come inside the pocketsphinx wheel: nothing is downloaded.
-Only English: no package ships an offline German recogniser (see ``GERMAN``).
+Only English: no package ships an offline German recogniser (``listen.check_language`` says so).
 """
 
 from __future__ import annotations
