@@ -321,3 +321,28 @@ def test_without_a_microphone_listening_says_so_in_one_line(ball, tmp_path, keys
                  listen=Listener(ball, "en", notes.append).listen).run()
     assert len(notes) == 1 and notes[0].startswith("I cannot listen: no sound device")
     assert manager.finished and "I don't know" not in buffer.getvalue()  # nothing was handled as a line
+
+
+def test_a_line_heard_unsurely_is_asked_about_before_it_is_handled(ball, tmp_path):
+    from prompt_toolkit.input import create_pipe_input
+    from prompt_toolkit.output import DummyOutput
+    from rich.console import Console
+
+    from teach.session.machine import SessionManager
+    from teach.session.settings import Settings, WorldKind
+    from teach.terminal.app import Terminal
+    from teach.voice.listen import Listener
+
+    said = iter([synthesizer().speak(text, "en") for text in ("find the ball", "please call my daughter")])
+    manager = SessionManager(Settings("ear", world=WorldKind.SYMBOLIC, base=tmp_path, record=False), ball,
+                             SymbolicWorld(ball))
+    buffer = io.StringIO()
+    with create_pipe_input() as pipe:
+        pipe.send_text("\x1b[15~" + "\x1b[15~" + "no\r" + "quit\r")  # F5, F5, then "no" to "Did you mean …?"
+        pipe.close()
+        Terminal(manager, console=Console(file=buffer, width=200), input=pipe, output=DummyOutput(),
+                 listen=Listener(ball, "en", print, source=lambda: next(said)).listen).run()
+    out = buffer.getvalue()
+    # the first was heard surely and done at once; the second (not in the grammar) only asked about, then dropped
+    assert "teach> find the ball\n" in out and out.count("✓ ") == 1
+    assert "Did you mean “" in out and "Say it another way, please." in out

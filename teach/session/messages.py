@@ -459,3 +459,4 @@ LISTEN_NO_MICROPHONE = Text("I cannot listen: {reason}. Please type instead.",
                             "Ich kann nicht zuhören: {reason}. Bitte tippe stattdessen.")
 NOTHING_HEARD = Text("nothing I know is said in {file}", "in {file} wird nichts gesagt, das ich kenne")
 THE_MICROPHONE = Text("what the microphone heard", "dem, was das Mikrofon gehört hat")
+HEARD_DID_YOU_MEAN = Text("Did you mean “{line}”?", "Meintest du „{line}“?")

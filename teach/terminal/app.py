@@ -25,6 +25,7 @@ from prompt_toolkit.output import Output
 from rich.console import Console
 
 from teach.dialogue.completion import TeachCompleter, command_words
+from teach.dialogue.phrases import is_yes
 from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
@@ -35,10 +36,11 @@ from teach.terminal.view import prompt, render_reply, render_teacher, toolbar
 class Terminal:
     def __init__(self, manager: SessionManager, console: Console | None = None,
                  input: Input | None = None, output: Output | None = None, history: Path | None = None,
-                 on_shown: Callable[[Reply], None] | None = None, listen: Callable[[], str | None] | None = None):
+                 on_shown: Callable[[Reply], None] | None = None,
+                 listen: Callable[[], tuple[str, bool] | None] | None = None):
         self.manager = manager
         self._on_shown = on_shown  # sees each reply once it is shown (the robot's voice)
-        self._listen = listen  # push-to-talk (F5, or the line 'listen'): the line heard, or None
+        self._listen = listen  # push-to-talk (F5, or the line 'listen'): the line heard and if surely, or None
         self.console = console or Console(highlight=False)
         words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
                                                                            if n.isalpha()]
@@ -70,9 +72,23 @@ class Terminal:
                 heard = self._listen()
                 if heard is None:
                     continue
-                self.console.print(render_teacher(heard, self.manager.mode, self.manager.lang))
-                line = heard
+                line, sure = heard
+                self.console.print(render_teacher(line, self.manager.mode, self.manager.lang))
+                if not sure and not self._confirmed(line):
+                    continue
             self._handle(line)
+
+    def _confirmed(self, heard: str) -> bool:
+        """A line heard unsurely is handled only once the teacher says yes to it."""
+        self._show(Reply(ReplyKind.QUESTION, m.HEARD_DID_YOU_MEAN(self.manager.lang, line=heard)))
+        try:
+            answer = self.prompt.prompt(prompt("asking", self.manager.lang))
+        except (KeyboardInterrupt, EOFError):
+            return False
+        if is_yes(answer, self.manager.lang):
+            return True
+        self._show(Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.manager.lang)))
+        return False
 
     def _talk_key(self) -> KeyBindings:
         """F5 at the prompt: listen now (the typed line is left)."""

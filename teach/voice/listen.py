@@ -11,6 +11,7 @@ from collections.abc import Callable
 
 from teach.domain import Domain
 from teach.session import messages as m
+from teach.voice.audio import Audio
 from teach.voice.library import VoiceUnavailable
 
 SECONDS = 4.0  # one instruction, said after the key
@@ -23,24 +24,34 @@ def check_language(lang: str) -> None:
 
 
 class Listener:
-    def __init__(self, domain: Domain, lang: str, note: Callable[[str], None]):
+    """Hears the teacher from ``source`` (the microphone unless given: a test hears files)."""
+
+    def __init__(self, domain: Domain, lang: str, note: Callable[[str], None],
+                 source: Callable[[], Audio | None] | None = None):
         from teach.voice.recognise import Recogniser
 
         check_language(lang)
         self.lang = lang
         self._note = note
+        self._source = source or self._microphone
         self._recogniser = Recogniser(domain)
 
-    def listen(self) -> str | None:
-        """The line the teacher said, or None (after saying why in one line)."""
+    def listen(self) -> tuple[str, bool] | None:
+        """The line the teacher said and whether it was heard surely, or None (after saying why in one line)."""
+        audio = self._source()
+        if audio is None:
+            return None
+        heard = self._recogniser.hear(audio, checked=True)
+        if heard is None:
+            self._note(m.NOTHING_HEARD(self.lang, file=m.THE_MICROPHONE(self.lang)))
+            return None
+        return heard.line, heard.sure
+
+    def _microphone(self) -> Audio | None:
         from teach.voice import device
 
         missing = device.input_missing()
         if missing is not None:
             self._note(m.LISTEN_NO_MICROPHONE(self.lang, reason=missing))
             return None
-        heard = self._recogniser.hear(device.record(SECONDS))
-        if heard is None:
-            self._note(m.NOTHING_HEARD(self.lang, file=m.THE_MICROPHONE(self.lang)))
-            return None
-        return heard.line
+        return device.record(SECONDS)

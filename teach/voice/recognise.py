@@ -7,7 +7,7 @@ Only English: no package ships an offline German recogniser (``listen.check_lang
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +30,7 @@ REJECTED_BELOW = -6.0
 speech mostly finds no path through the grammar at all, and a line forced onto a sound that says something
 else fits worse than this. Short unrelated words ("hello" heard as "both") fit as well as real lines:
 fit cannot tell those apart, so there is no "unsure" band."""
+_CHANGES = (0.95, 1.05)  # the sound resampled by these and played at its own rate: 5% slower and faster
 _FRAME = 400  # 25 ms at 16 kHz
 _SPEECH_ABOVE_FLOOR_DB = 12.0  # a file whose loudest frame is not this far above its quietest holds no speech
 
@@ -41,6 +42,8 @@ class Heard:
     fit: float
     """How well the line's sounds fit the sound, against the best sequence of any English sounds, per
     second (0: as well as any; below ``REJECTED_BELOW``: the sound says something else)."""
+    sure: bool = True
+    """False when the same sound a little faster or slower is heard as another line (``hear(checked=True)``)."""
 
 
 class Recogniser:
@@ -55,8 +58,17 @@ class Recogniser:
         self._decoder.add_allphone_file(_PHONES, str(model))
         self._lock = threading.Lock()
 
-    def hear(self, audio: Audio) -> Heard | None:
-        """The line ``audio`` says, or None when nothing in the grammar fits."""
+    def hear(self, audio: Audio, checked: bool = False) -> Heard | None:
+        """The line ``audio`` says, or None when nothing in the grammar fits. ``checked``: also hear the
+        sound 5% faster and slower; a line heard differently then is not ``sure`` (measured on the
+        round-trip test: 153 of its 162 sounds are sure, and 2 of the 3 it mishears are not)."""
+        heard = self._heard(audio)
+        if heard is None or not checked:
+            return heard
+        others = [self._heard(Audio(audio.resampled(round(audio.rate * f)).samples, audio.rate)) for f in _CHANGES]
+        return replace(heard, sure=all(other is not None and other.line == heard.line for other in others))
+
+    def _heard(self, audio: Audio) -> Heard | None:
         samples = audio.resampled(RATE).samples.astype(np.float64)
         if not _has_speech(samples):
             return None
