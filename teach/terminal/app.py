@@ -194,7 +194,7 @@ _KEYS = {"up": "up", "down": "down", "left": "left", "right": "right", "pageup":
 _LEAVE = ("escape", "c-c", "c-d")
 _TYPED = "typed:"
 _LISTENING = "\x00listen"  # what the push-to-talk key ends the prompt with (no typed line holds NUL)
-_LISTEN_WORDS = ("listen", "zuhören", "zuhoren")
+_LISTEN_WORDS = ("listen",)  # English only: a German session cannot listen
 
 
 def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
