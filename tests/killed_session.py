@@ -16,6 +16,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from conftest import journal_data
+
 from teach.dialogue.model_repair import ModelOracle
 from teach.dialogue.oracle import Oracle, answer_open_questions
 from teach.session.machine import SessionManager
@@ -32,7 +34,7 @@ def journal_key(path: Path) -> str:
     moves it on) and the replay's origin; empty before the session saved one."""
     if not path.exists():
         return ""
-    data = json.loads(path.read_text(encoding="utf-8"))
+    data = journal_data(path)
     for volatile in ("step", "origin"):
         data.pop(volatile, None)
     return json.dumps(data, sort_keys=True)

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 import subprocess
@@ -12,6 +11,7 @@ import time
 from pathlib import Path
 
 import pytest
+from conftest import journal_data
 
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
@@ -36,14 +36,14 @@ def test_sigkill_then_resume(ball, tmp_path):
     try:
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if journal.exists() and sum(e["kind"] == "demo" for e in json.loads(journal.read_text())["events"]) >= 3:
+            if journal.exists() and sum(e["kind"] == "demo" for e in journal_data(journal)["events"]) >= 3:
                 break
             assert process.poll() is None, process.stderr.read().decode()
             time.sleep(0.05)
         os.kill(process.pid, signal.SIGKILL)
     finally:
         process.wait()
-    events = [e for e in json.loads(journal.read_text())["events"] if e["kind"] == "demo"]  # valid JSON: atomic
+    events = [e for e in journal_data(journal)["events"] if e["kind"] == "demo"]  # valid JSON: atomic
     assert len(events) >= 3
     demos = sorted((tmp_path / "demos" / "long").glob("demo-*.csv"))
     assert len(demos) >= len(events)  # every journalled demonstration is on disk
@@ -74,7 +74,7 @@ def test_recording_survives_a_kill_and_a_resume(tmp_path):
     try:
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if journal.exists() and len(json.loads(journal.read_text())["events"]) >= 3:
+            if journal.exists() and len(journal_data(journal)["events"]) >= 3:
                 break
             time.sleep(0.05)
         os.kill(process.pid, signal.SIGKILL)
@@ -323,7 +323,7 @@ def _check_run_resumed(base: Path, session: str, transcript: list[str]) -> bool:
     block = transcript[last_prompt + 1:]
     announced = [line[2:] for line in block if line.startswith("→ ")]
     cut = bool(announced) and not any(line.startswith("I did") for line in block)
-    journal = json.loads((base / "recordings" / f"{session}.journal.json").read_text())
+    journal = journal_data(base / "recordings" / f"{session}.journal.json")
     with opened_session(Settings(session, base=base, record=False), resume=True, note=lambda _: None) as resumed:
         kept = resumed.open.words if resumed.open is not None else []
         did = [m.ROBOT_DID_STEP("en", action=action) for action in announced]

@@ -70,7 +70,13 @@ def run(args: argparse.Namespace) -> int:
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)
-        Terminal(manager, history=history).run()
+        try:
+            Terminal(manager, history=history).run()
+        except OSError as error:
+            if error.filename:
+                raise
+            # prompt_toolkit's line history names no file when writing it fails (a full disk)
+            raise TeachError(f"cannot write: {error.strerror or error}", history) from None
     return 0
 
 

@@ -119,6 +119,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
             observer.observers.append(BtlogRecorder(store.run_dir))
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
+            manager.store.save_journal(manager.journal)  # its first save writes the journal whole: compacted
         else:
             manager = SessionManager(settings, domain, world, observer)
             manager.journal.origin = origin
