@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import Any
 
 from teach.bt.nodes import Node, Status
+from teach.bt.run import Outcome, Ticker
 from teach.bt.tick import TickResult, tick
 from teach.display import has_display
 from teach.domain import Domain, State
@@ -24,7 +25,7 @@ from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, register, run_skill
 from teach.sim.slip import SLIP, SLIP_DE, SLIP_EN, SlipWatch, let_fall
 from teach.sim.world import World
-from teach.world.protocol import ActResult, Outcome, RunResult, Ticker, WorldEvent
+from teach.world.protocol import ActResult, RunResult, WorldEvent
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
