@@ -129,7 +129,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
             if skill is not None:
                 skill.halt()
             begun[0], watch[0] = world.state(), SlipWatch(world, name)
-            skill = running[0] = skill_for(name)(world)
+            skill = running[0] = skill_for(world, name)(world)
             fresh[0] = True
         return skill.tick()
 

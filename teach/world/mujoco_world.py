@@ -174,7 +174,7 @@ class MujocoWorld:
 
     def learn_skill(self, motion: GuidedMotion) -> None:
         """Make a motion taught by guidance runnable under its action name, like any skill."""
-        register(guided_skill(motion))
+        register(self.world, guided_skill(motion))
 
     def adopt_domain(self, domain: Domain) -> None:
         """The session's domain grew an action taught by guidance (the conditions are the same)."""
