@@ -71,8 +71,10 @@ class _Pacer:
 
 class MujocoWorld:
     def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False,
-                 pace: float = 0.0):
-        self.world = World(seed, domain)
+                 pace: float = 0.0, cameras: bool | None = None):
+        """``cameras``: render the camera images the observer is shown (default: when there is an
+        observer); off where nothing records them, since rendering costs more than the physics."""
+        self.world = World(seed, domain, cameras=observer is not None if cameras is None else cameras)
         self.domain = self.world.domain
         self.observer = observer or Observer()
         self.ticker: Ticker = tick
