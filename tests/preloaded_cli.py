@@ -39,7 +39,6 @@ def _child(job: dict) -> None:
     """Run one job; never returns."""
     code = 1
     try:
-        signal.signal(signal.SIGCHLD, signal.SIG_DFL)  # the parent ignores them; a command may wait for its own
         stdin = os.open(os.devnull, os.O_RDONLY)
         out = os.open(job["out"], os.O_WRONLY)
         err = os.open(job.get("err") or os.devnull, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
@@ -73,15 +72,27 @@ def serve() -> int:
     os.environ.update(ENVIRONMENT)
     for module in PRELOADED:
         importlib.import_module(module)
-    signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # children are reaped by the kernel: no zombies
     print(json.dumps({"ready": True}), flush=True)
     for line in sys.stdin:
+        _reap(block=False)  # ended children, reaped only now: a pid the test may still kill is never reused
         job = json.loads(line)
         pid = os.fork()
         if pid == 0:
             _child(job)
         print(json.dumps({"pid": pid}), flush=True)
+    _reap(block=True)
     return 0
+
+
+def _reap(block: bool) -> None:
+    """Collect ended children (all of them, waiting, when ``block``)."""
+    while True:
+        try:
+            pid, _ = os.waitpid(-1, 0 if block else os.WNOHANG)
+        except ChildProcessError:
+            return
+        if pid == 0:
+            return
 
 
 class Child:
