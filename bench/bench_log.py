@@ -15,9 +15,7 @@ to a ``RerunLogger`` and once to the no-op ``Observer``, side by side, and print
 Then it runs the real MuJoCo world fast-forward (the five skills of the ball task, again and
 again, as a scripted session does) with and without the logger, alternating, and prints the
 best-of-three ratio of wall and CPU time (CPU includes rerun's background encoder thread): the overhead of
-a session that runs faster than real time, physics and camera rendering in both (``Rendering``
-takes the images and drops them); and beside it a loop that records nothing, where no camera is
-rendered at all (what a recording costs, rendering included).
+a session that runs faster than real time, physics and camera rendering included.
 Targets (issue 5): overhead at most 20% of a session's wall time, at most 50 MB for ten minutes.
 """
 
@@ -128,15 +126,6 @@ def run(observer: Observer, minutes: float) -> float:
     return spent + time.perf_counter() - start
 
 
-class Rendering(Observer):
-    """Takes the camera images and drops them: the bare loop of a session that records, so the
-    comparison is of logging alone (a session that records nothing renders no image at all)."""
-
-    @property
-    def records_images(self) -> bool:
-        return True
-
-
 def sim_session(observer: Observer, minutes: float) -> tuple[float, float, float]:
     """Run the ball task's skills in the MuJoCo world for ``minutes`` of simulated time:
     (wall seconds, CPU seconds, simulated seconds)."""
@@ -185,10 +174,9 @@ def main() -> None:
           f"(= {size_mb * 10 / args.minutes:.1f} MB per ten minutes, target <= 50 MB)")
     if args.sim_minutes > 0:
         with tempfile.TemporaryDirectory() as folder:
-            runs: dict[str, list[tuple[float, float, float]]] = {"bare": [], "logged": [], "nothing": []}
+            runs: dict[str, list[tuple[float, float, float]]] = {"bare": [], "logged": []}
             for round_ in range(3):  # alternating, and the best of three, against other load on the machine
-                runs["nothing"].append(sim_session(Observer(), args.sim_minutes / 3))
-                runs["bare"].append(sim_session(Rendering(), args.sim_minutes / 3))
+                runs["bare"].append(sim_session(Observer(), args.sim_minutes / 3))
                 runs["logged"].append(sim_session(RerunLogger(Path(folder) / f"sim{round_}.rrd", "sim"),
                                                   args.sim_minutes / 3))
             sim_mb = sum((Path(folder) / f"sim{r}.rrd").stat().st_size for r in range(3)) / 1e6
@@ -199,9 +187,6 @@ def main() -> None:
               f"{bare_cpu:.2f} s CPU, logged {log_wall:.2f} s wall {log_cpu:.2f} s CPU: overhead "
               f"{100 * (log_wall / bare_wall - 1):.0f}% wall, {100 * (log_cpu / bare_cpu - 1):.0f}% CPU "
               "(target <= 20%)")
-        none_wall, none_cpu = (min(r[i] for r in runs["nothing"]) for i in (0, 1))
-        print(f"MuJoCo fast-forward recording nothing (no camera rendered): {none_wall:.2f} s wall "
-              f"{none_cpu:.2f} s CPU; recording costs {100 * (log_wall / none_wall - 1):.0f}% wall, rendering included")
         print(f"MuJoCo recordings (rendered camera images): {sim_mb:.1f} MB for {sim_seconds:.0f} simulated s "
               f"= {sim_mb * 600 / sim_seconds:.1f} MB per ten minutes (target <= 50 MB)")
 

@@ -38,11 +38,6 @@ class SessionEvent(Protocol):
 class Observer:
     """Receives session events; every method is optional (the base class ignores them)."""
 
-    @property
-    def records_images(self) -> bool:
-        """Whether ``on_camera`` keeps what it is given: a world renders camera images only for an
-        observer that does (rendering costs half a MuJoCo replay's CPU and a GL context's memory)."""
-        return False
 
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
         """Advance the clocks: ``step`` counts session steps (None keeps the session's step),
@@ -120,9 +115,6 @@ class Observers(Observer):
         """The observers that take the tree channel (deriving it costs a BehaviorTree.CPP tick)."""
         return [o for o in self.observers if type(o).on_status_change is not Observer.on_status_change]
 
-    @property
-    def records_images(self) -> bool:
-        return any(o.records_images for o in self.observers)
 
     def set_time(self, step: int | None, sim_time: float | None = None) -> None:
         self._changes.set_time(sim_time)

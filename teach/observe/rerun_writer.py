@@ -65,9 +65,6 @@ class RerunLogger(Observer):
     caller forgot it.
     """
 
-    @property
-    def records_images(self) -> bool:
-        return True
 
     def __init__(self, path: Path | None, session_name: str, spawn: bool = False, *, resume: bool = False,
                  note: Callable[[str], None] = print_note, scene_hz: float = 10.0, camera_hz: float = 2.0,

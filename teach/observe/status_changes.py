@@ -16,14 +16,11 @@ from collections.abc import Callable
 
 from teach.bt.btcpp_status import BtcppTree, BtStatus, Change, btcpp_uids
 from teach.bt.nodes import Node
+from teach.bt.run import Outcome
 from teach.bt.tick import TickResult
 
 StatusChange = Callable[[float, Node, BtStatus, BtStatus], None]
 """``(time, node, previous, status)``."""
-
-INTERRUPTED = "interrupted"
-"""The outcome of a run its limit or the teacher stopped (``teach.world.protocol.Outcome``'s value)."""
-
 
 class StatusChanges:
     """Turns one run at a time into status changes for ``emit``."""
@@ -73,7 +70,7 @@ class StatusChanges:
         never said): the tick that started one more than those is dropped, the rest halted."""
         if self._live is None:
             return
-        if self._held is not None and self._held[2] and outcome == INTERRUPTED and self._started > actions:
+        if self._held is not None and self._held[2] and outcome == Outcome.INTERRUPTED and self._started > actions:
             self._held = None
         self._release()
         self._send(self._time, self._live.halt())

@@ -344,8 +344,6 @@ class FrameClock:
         observer.on_scene(world.shapes())
         if self.on_frame is not None:
             self.on_frame()
-        if not observer.records_images:  # nothing keeps them: render none
-            return
         for camera, (hz, width, height) in CAMERAS.items():
             if world.sim_time + 1e-9 >= self.next_camera[camera]:
                 self.next_camera[camera] = world.sim_time + 1.0 / hz
