@@ -94,7 +94,8 @@ def _header(contents: RecordingContents) -> Panel:
               _count(len(contents.externals), "external action")]
     lines = [f"session {contents.session} · domain {contents.domain_name or '(not recorded)'}", " · ".join(counts),
              f"{_count(contents.scene_frames, 'scene frame')} · {_count(contents.camera_frames, 'camera image')}"
-             + (f" · steps {min(steps)}–{max(steps)}" if steps else "")]
+             + (f" · timelines step {min(steps)}–{max(steps)}" if steps else "")
+             + (f", tick 0–{contents.last_moment}" if contents.last_moment else "")]
     return Panel("\n".join(lines), title=str(contents.path), expand=False)
 
 
