@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
 from teach.bt.tick import CompiledTree, compile_tree
@@ -66,6 +67,19 @@ class Situation:
     allowed: frozenset[Answer]
     answer: Answer
     sources: list[str] = field(default_factory=list)
+
+
+class Hypothesis(Protocol):
+    """A question about unsure literals (``teach.learn.inquiry.SituationQuestion``): may ``action``
+    run in ``state`` (``action`` None: is the task done in ``state``)? ``settles``: the unsure
+    literals (condition name, value) that are false in ``state``."""
+
+    @property
+    def state(self) -> State: ...
+    @property
+    def action(self) -> str | None: ...
+    @property
+    def settles(self) -> tuple[tuple[str, bool], ...]: ...
 
 
 @dataclass(frozen=True)
@@ -115,14 +129,15 @@ class _Exception:
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
-    def __init__(self, domain: Domain, weak_last_resort: bool = True):
+    def __init__(self, domain: Domain, safe: bool = False):
         self.domain = domain
         self.names = domain.condition_names
         self._n = len(self.names)
         self._full = (1 << self._n) - 1
         self.model = ActionModel(domain.action_names, self._n)
         self.goal = GoalLearner(self._n)
-        self._weak = weak_last_resort
+        self.safe = safe
+        self._weak = not safe
         self._situations: dict[int, Situation] = {}
         self._restored: set[Lit] = set()
         self._left_broken: set[Lit] = set()
@@ -138,6 +153,8 @@ class Learner:
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
+        self.impossible: dict[int, str] = {}
+        self._refused: dict[str | None, list[tuple[frozenset[Lit], str, bool]]] = {}
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -255,10 +272,87 @@ class Learner:
         else:
             if answer is not None:
                 self.domain.action(answer)
+                if self.safe:
+                    self.model.applied(answer, mask, source)  # the teacher chose it here: it can run here
             allowed, chosen = frozenset({answer}), answer
         self._relabel(mask, situation, allowed, chosen)
         situation.sources.append(source)
         return self._finish(source, [mask], [])
+
+    def settle(self, hypothesis: Hypothesis, needed: bool, source: str) -> Update:
+        """The teacher's answer to "may I do ``action`` here?" (or "is the task done here?"): no
+        (``needed``) means one of the literals it settles is needed, and a single one is then kept
+        for good; yes rules every literal false there out (the action can run there, the task is
+        done there)."""
+        mask = self._checked_mask(hypothesis.state, source)
+        literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+        action = hypothesis.action
+        if not needed and action is None:
+            return self.teach_step(hypothesis.state, None, source)
+        if not needed:
+            assert action is not None
+            self.model.applied(action, mask, source)
+        elif len(literals) == 1:
+            self._keep(action, next(iter(literals)), source)
+        else:
+            self._refused.setdefault(action, []).append((literals, source, True))
+        self._infer_needed()
+        return self._finish(source, [], [])
+
+    def rule_out(self, state: State, source: str, hypothesis: Hypothesis | None = None) -> None:
+        """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
+        and changes no tree); a group question about it is asked again in halves."""
+        self.impossible[self._checked_mask(state, source)] = source
+        if hypothesis is not None and len(hypothesis.settles) > 1:
+            literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+            self._refused.setdefault(hypothesis.action, []).append((literals, source, False))
+
+    def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
+        """The groups of unsure literals worth asking about next, best first: all of them and then
+        each half, or, where a group inside them was refused (or was impossible), each half of
+        what is left of that group (a yes to all of it is known not to come)."""
+        current = list(literals)
+        for group, _source, _needed in reversed(self._refused.get(action, [])):
+            left = [lit for lit in current if lit in group]
+            if len(left) >= 2:
+                half = len(left) // 2
+                return [left[:half], left[half:]]
+        half = len(current) // 2
+        return [current, current[:half], current[half:]] if half else [current] if current else []
+
+    def _unsure(self, action: str | None) -> set[Lit]:
+        if action is None:
+            return set(self.goal.unsure())
+        return set(literals_of(*self.model[action].unsure, self._n))
+
+    def _keep(self, action: str | None, literal: Lit, source: str) -> None:
+        if action is None:
+            self.goal.confirm(literal, source)
+        else:
+            self.model.confirm(action, literal, source)
+
+    def _infer_needed(self) -> None:
+        """A refused group with one unsure literal left: that one is needed."""
+        for action, groups in self._refused.items():
+            unsure = self._unsure(action)
+            kept = []
+            for group, source, needed in groups:
+                left = group & unsure
+                if len(left) == 1 and needed and len(group) > 1 and not group & self._confirmed(action):
+                    self._keep(action, next(iter(left)), source)
+                elif len(left) > 1:
+                    kept.append((group, source, needed))
+            groups[:] = kept
+
+    def _confirmed(self, action: str | None) -> frozenset[Lit]:
+        if action is None:
+            return frozenset(self.goal.confirmed)
+        knowledge = self.model[action]
+        return frozenset((*knowledge.confirmed, *knowledge.maintained))
+
+    def state_mask(self, state: Seq[bool]) -> int:
+        """The bitmask (bit i = condition i) of a state."""
+        return self._mask(state)
 
     def state_of(self, mask: int) -> State:
         """The state a bitmask (bit i = condition i) stands for."""
@@ -282,8 +376,12 @@ class Learner:
         return None if bound is None else compile_tree(bound, self.names)
 
     def goal_holds(self, state: State) -> bool:
-        """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
-        return self.goal.holds(self._mask(state))
+        """Does the learned goal hold in ``state`` (never before a goal state was shown)? The safe
+        learner's goal is every literal not ruled out."""
+        mask = self._mask(state)
+        if self.safe:
+            return self.goal.known and all(bool(mask >> i & 1) == v for i, v in self.goal.required())
+        return self.goal.holds(mask)
 
     def answer_in(self, state: State) -> Answer | bool:
         """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
@@ -382,14 +480,25 @@ class Learner:
 
     def _current_view(self) -> PlanView:
         rank = self._rank
-        goal = tuple(sorted(self.goal.cover, key=rank))
+        cover = set(self.goal.cover) | set(self.goal.confirmed)
+        if self.safe:
+            goal = tuple(sorted(self.goal.required(), key=lambda lit: (lit not in cover, rank(lit))))
+        else:
+            goal = tuple(sorted(self.goal.cover, key=rank))
         preconditions = []
         achievers: dict[Lit, list[str]] = {}
         for name, knowledge in self.model.actions.items():
             made_true, made_false = knowledge.effects
             if not made_true | made_false:
                 continue
-            preconditions.append((name, tuple(sorted(literals_of(*knowledge.assumed, self._n), key=rank))))
+            # every required precondition is checked (or achieved) before the action: the
+            # assumed ones first, in the order the demonstrations establish them
+            pos, neg = knowledge.assumed
+            need_pos, need_neg = knowledge.required
+            pursued = sorted(literals_of(pos, neg, self._n), key=rank)
+            if self.safe:
+                pursued += sorted(literals_of(need_pos & ~pos, need_neg & ~neg, self._n), key=rank)
+            preconditions.append((name, tuple(pursued)))
         for index in range(self._n):
             for value in (True, False):
                 found = self.model.achievers((index, value))
@@ -552,12 +661,15 @@ class Learner:
         answer = situation.answer
         chosen = 0
         if answer is None:
-            for index, _value in self.goal.cover:
+            for index, _value in (self.goal.required() if self.safe else self.goal.cover):
                 chosen |= 1 << index
         else:
             violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
             if violated is not None:
                 chosen |= 1 << violated[0]
+            if self.safe:  # an exception never licenses an action where a required precondition is false
+                need_pos, need_neg = self.model[answer].required
+                chosen |= need_pos | need_neg
         chosen = self._columns.separate(mask, answer, chosen)
         value = mask & chosen
         leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
@@ -698,14 +810,14 @@ class _Columns:
         return chosen
 
 
-def learn_online(domain: Domain, demos: Seq[Demonstration]) -> Learner:
+def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = False) -> Learner:
     """A learner after every demonstration in turn."""
-    learner = Learner(domain)
+    learner = Learner(domain, safe)
     for demo in demos:
         learner.update(demo)
     return learner
 
 
-def learn(domain: Domain, demos: Seq[Demonstration]) -> Node:
+def learn(domain: Domain, demos: Seq[Demonstration], safe: bool = False) -> Node:
     """The batch helper for ``teach learn`` and the benchmarks: the tree after all demonstrations."""
-    return learn_online(domain, demos).tree
+    return learn_online(domain, demos, safe).tree

@@ -82,6 +82,10 @@ LOOKING = frozenset({Verb.HELP, Verb.STATE, Verb.SHOW, Verb.STEPS, Verb.WHY, Ver
 """Commands that only look (or leave), allowed while a labelling question is open."""
 
 DONE_WORDS = {"done", "finished", "nothing", "nothing task is done", "fertig", "nichts", "ziel erreicht"}
+IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen", "cannot happen", "impossible",
+                    "that is impossible", "das gibt es nicht", "gibt es nicht", "das geht nicht", "unmoglich",
+                    "das ist unmoglich", "das kann nicht sein"}
+"""Answers saying the asked-about situation cannot happen: free, and never asked again."""
 SKIP_WORDS = {"skip", "dont know", "don t know", "i dont know", "i don t know", "weiter", "weiss nicht",
               "ich weiss nicht", "keine ahnung", "uberspringen"}
 

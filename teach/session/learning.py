@@ -23,22 +23,23 @@ from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
 
 
-def make_learner(domain: Domain) -> Learner:
-    return Learner(domain)
+def make_learner(domain: Domain, safe: bool = False) -> Learner:
+    return Learner(domain, safe)
 
 
 class Learning:
     """One session's learner with the demonstrations and labels it learned from."""
 
-    def __init__(self, domain: Domain, store: SessionStore, observer: Observer):
+    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = False):
         self.domain = domain
+        self.safe = safe
         self.store = store
         self.observer = observer
         self.restart()
 
     def restart(self) -> None:
         """Forget everything learned (an undo or a resume then learns the journal again)."""
-        self.learner = make_learner(self.domain)
+        self.learner = make_learner(self.domain, self.safe)
         self.demos: list[Demonstration] = []
         self.labels: dict[State, Answer] = {}
         self.asked: set[State] = set()
@@ -92,7 +93,13 @@ class Learning:
         if question.kind == "conflict":
             conflict = next(c for c in self.learner.conflicts if c.state == question.state)
             shown = tuple(dict.fromkeys("" if answer is None else answer for answer, _ in conflict.labels))
-        return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown)
+        return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown, kind=question.kind,
+                        action=question.action, settles=question.settles)
+
+    def rule_out(self, question: Question, source: str) -> None:
+        """The teacher said the asked-about situation cannot happen: it is never asked again."""
+        self.learner.rule_out(question.state, source)
+        self.asked.add(question.state)
 
     def _actions(self) -> set[str]:
         return {node.name for node in walk(self.learner.tree) if isinstance(node, Action)}

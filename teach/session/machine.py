@@ -44,6 +44,7 @@ from teach.session.commands import (
     COMMAND_WORDS,
     COMMANDS,
     DONE_WORDS,
+    IMPOSSIBLE_WORDS,
     LOOKING,
     SKIP_WORDS,
     Command,
@@ -80,6 +81,10 @@ if TYPE_CHECKING:
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
+MUST_KINDS = ("must-precondition", "must-goal")
+"""Questions a yes answers: may I still do it here? is the task done here?"""
+IMPOSSIBLE = "impossible"
+"""The journalled answer "that situation cannot happen"."""
 
 
 class Mode(StrEnum):
@@ -136,7 +141,7 @@ class SessionManager:
         self.lang = settings.lang
         self.store = SessionStore(settings.base, settings.session, settings.record)
         self.phrases = PhraseBook(domain, world.events)
-        self.learning = Learning(domain, self.store, self.observer)
+        self.learning = Learning(domain, self.store, self.observer, settings.safe)
         self.budget = QuestionBudget(settings.questions)
         self.pending: Question | None = None
         self.model_repair: ModelRepair | None = None
@@ -804,7 +809,10 @@ class SessionManager:
 
     def _charged(self) -> set[str]:
         """The situations asked about so far (undone or not): each was paid for once."""
-        return {event.state for event in self.journal.events if isinstance(event, Asked) and event.state}
+        impossible = {event.state for event in self.journal.events
+                      if isinstance(event, Answered) and event.answer == IMPOSSIBLE}
+        return {event.state for event in self.journal.events
+                if isinstance(event, Asked) and event.state and event.state not in impossible}
 
     def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.domain, self.lang)
@@ -826,7 +834,14 @@ class SessionManager:
             self._journal(Answered(state_text(question.state), "skip", text))
             self.observer.on_answer(text, line, "nothing (skipped)")
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
-        if key in DONE_WORDS:
+        if key in IMPOSSIBLE_WORDS:
+            return self._cannot_happen(question)
+        yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
+        if question.kind in MUST_KINDS and is_no(line, self.lang):
+            return [Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]  # the question stays open
+        if yes and question.action is not None:
+            return self.apply_answer(question.action, line)
+        if key in DONE_WORDS or yes:
             unmet = unmet_goal(self.domain, question.state, self.lang)
             if unmet:  # the question stays open and is not paid for again
                 return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
@@ -838,6 +853,16 @@ class SessionManager:
                 return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
             answer = tokens[0].name
         return self.apply_answer(answer, line)
+
+    def _cannot_happen(self, question: Question) -> list[Reply]:
+        """The asked-about situation cannot happen: journalled, never asked again, and not paid for."""
+        self.pending = None
+        text = question.text(self.domain, self.lang)
+        self._journal(Answered(state_text(question.state), IMPOSSIBLE, text))
+        self.learning.rule_out(question, f"answer to question {self.budget.used}")
+        self.budget.used -= 1
+        self.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
+        return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang))]
 
     def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
         """Learn from the answer to the pending question (None: the task is done there)."""
@@ -928,11 +953,13 @@ class SessionManager:
                 state = parse_state_text(event.state)
                 if len(state) != len(self.domain.conditions):
                     raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
-                if event.answer not in ("skip", "done") and event.answer not in self.domain.action_names:
+                if event.answer not in ("skip", "done", IMPOSSIBLE) and event.answer not in self.domain.action_names:
                     raise FormatError(m.UNKNOWN_JOURNAL_ACTION(
                         "en", number=self.journal.events.index(event), action=event.answer), self.store.journal_path)
                 self.learning.asked.add(state)
-                if event.answer != "skip":
+                if event.answer == IMPOSSIBLE:
+                    self.learning.rule_out(Question(state, 1.0), f"answer to question {answered}")
+                elif event.answer != "skip":
                     try:
                         self.learning.learn_answer(state, None if event.answer == "done" else event.answer,
                                                    f"answer to question {answered}")

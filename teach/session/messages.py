@@ -211,6 +211,17 @@ HELP_SAVE = Text("save everything now", "alles jetzt speichern")
 HELP_QUIT = Text("save and leave", "speichern und beenden")
 
 # --- situation questions (teach/dialogue/questions.py) -----------------------------------------
+MUST_ACTION_QUESTION = Text("Every time I did “{action}” so far, {held}. If {situation}, may I still do it? "
+                            "(yes, or tell me what to do there)",
+                            "Bisher galt jedes Mal, wenn ich „{action}“ getan habe: {held}. Angenommen, {situation}. "
+                            "Darf ich es dann trotzdem tun? (ja, oder sag mir, was ich dort tun soll)")
+MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situation}, is the task done? "
+                          "(yes, or tell me what to do there)",
+                          "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "
+                          "Ist die Aufgabe dann erledigt? (ja, oder sag mir, was ich dort tun soll)")
+WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
+CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
+                     "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
 

@@ -1,0 +1,191 @@
+"""The next question for the safe ``teach.learn.learner.Learner`` (``safe=True``): about what it does not know.
+
+A pure function of the learner (nothing is copied or trial-updated). The learner is safe by
+construction: it checks every precondition and goal literal it has not ruled out (see
+``teach.learn.action_model``), so what it does not know makes it stop, never act on a guess.
+A question is worth asking by how much its answer *settles*: how many of those unsure
+literals one "yes" rules out. In order:
+
+1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it;
+2. **hypotheses**, most literals settled first (ties: the goal, then the action shown most
+   often). For an action: a state where it was shown, with every unsure literal the data
+   gives no reason for made false at once ("If …, may I still grasp the ball?"); for the
+   goal: a goal state with every unsure goal literal made false ("… is the task done?").
+   A yes rules all of them out at once. A no (or "that cannot happen") splits the group:
+   the next question about that action tests half of it, so a needed literal is found in
+   log2(n) questions (group testing) and then kept for good. Literals the data gives a
+   reason for (the step before made them hold; the action undoes them) are asked about only
+   when no other group is left: they are usually needed, so that answer would change nothing;
+3. **unmet goal**: a situation, nearest the labelled ones first, where the domain's declared
+   goal does not hold but the tree would say "done" or do nothing;
+4. **gaps**: a state next to a labelled one where the tree does nothing.
+
+These kinds are chosen by what their answer settles, not tuned to one generator: measured on
+standard planning domains and independent random domains in ``bench/bench_safety.py``.
+A question is never about a state asked before, labelled already (but for conflicts), or
+said to be impossible (``Learner.rule_out``). Every search is bounded by ``MAX_PROBED``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+
+from teach.domain import State
+from teach.learn.action_model import Lit, literals_of
+from teach.learn.inquiry import SituationQuestion, unmet_goal_situations
+from teach.learn.learner import Learner
+
+KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
+MAX_PROBED = 4096
+"""The most situations searched for one question (every one of a domain of 12 conditions)."""
+
+
+
+def next_safe_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
+    """The most decisive open question, or None when nothing is left to ask."""
+    skip = set(asked) | {learner.state_of(mask) for mask in learner.impossible}
+    labelled = learner.situations
+    for question in _candidates(learner, skip):
+        if question.state in skip:
+            continue
+        if question.kind != "conflict" and question.state in labelled:
+            continue
+        return question
+    return None
+
+
+def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestion]:
+    names = learner.names
+
+    def does(state: State) -> str:
+        result = learner.answer_in(state)
+        return "done" if result is None else "nothing" if result is False else str(result)
+
+    def flipped(state: State, index: int) -> State:
+        return tuple(not v if i == index else v for i, v in enumerate(state))
+
+    for conflict in learner.conflicts:
+        yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
+    yield from _hypotheses(learner, does, skip, reasoned=False)
+    yield from unmet_goal_situations(learner, does, flipped)
+    yield from _hypotheses(learner, does, skip, reasoned=True)
+    probed = 0
+    for state in learner.situations:
+        for index in range(len(names)):
+            probe = flipped(state, index)
+            probed += 1
+            if probed > MAX_PROBED:
+                return
+            if does(probe) == "nothing":
+                yield SituationQuestion(probe, "gap", tree_does="nothing")
+
+
+def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State],
+                reasoned: bool) -> Iterable[SituationQuestion]:
+    """Group questions about unsure literals, the most settled by one yes first (module docstring).
+    ``reasoned``: the literals the data gives a reason for (asked last), else the others."""
+    names = learner.names
+    width = len(names)
+    groups: list[tuple[int, int, int, str | None, list[Lit]]] = []
+    goal = learner.goal
+    if goal.known and not reasoned:
+        groups.append((0, 0, 0, None, goal.unsure()))
+    for name, knowledge in learner.model.actions.items():
+        if not knowledge.demonstrated:
+            continue
+        pos, neg = knowledge.unsure
+        have_pos, have_neg = knowledge.assumed
+        for index, value in goal.cover:  # "only while the task is not done yet": a reason too
+            if value:
+                have_neg |= 1 << index
+            else:
+                have_pos |= 1 << index
+        if reasoned:
+            literals = literals_of(pos & have_pos, neg & have_neg, width)
+        else:
+            literals = literals_of(pos & ~have_pos, neg & ~have_neg, width)
+        groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
+    bases = _bases(learner)
+    probes = _probes(learner)
+    stuck = [learner.state_mask(p) for p in probes if does(p) != "done"]
+    found: list[tuple[tuple[int, int, int, int, int], SituationQuestion]] = []
+    for rank, evidence, order, action, literals in groups:
+        question = None
+        for group in learner.untested(action, literals):
+            question = _group_question(learner, does, skip, bases.get(action, ()), action, group)
+            if question is not None:
+                literals = group
+                break
+        if question is None:
+            continue
+        unblocked = _unblocked(learner, action, literals, stuck)
+        found.append(((-unblocked, -len(literals), rank, evidence, order), question))
+    found.sort(key=lambda item: item[0])
+    for _key, question in found:
+        yield question
+
+
+def _group_question(learner: Learner, does: Callable[[State], str], skip: set[State], bases: Iterable[State],
+                    action: str | None, literals: list[Lit]) -> SituationQuestion | None:
+    """The question about ``literals`` from the first base state where flipping them all gives a
+    state not labelled, asked or impossible."""
+    names = learner.names
+    flips = {index for index, _value in literals}
+    for base in bases:
+        probe = tuple(not v if i in flips else v for i, v in enumerate(base))
+        if probe in learner.situations or probe in skip:
+            continue
+        kind = "must-goal" if action is None else "must-precondition"
+        settles = tuple((names[index], value) for index, value in literals)
+        return SituationQuestion(probe, kind, action=action, condition=settles[0][0], tree_does=does(probe),
+                                 value=settles[0][1], settles=settles)
+    return None
+
+
+def _probes(learner: Learner) -> list[State]:
+    """The situations a question's worth is counted on: every state of a small domain, else the
+    labelled ones and their neighbours (one condition changed, then two), at most ``MAX_PROBED``."""
+    width = len(learner.names)
+    if 1 << width <= MAX_PROBED:
+        return [learner.state_of(mask) for mask in range(1 << width)]
+    frontier = list(learner.situations)
+    seen = dict.fromkeys(frontier)
+    for _ring in range(2):
+        reached = []
+        for state in frontier:
+            for index in range(width):
+                if len(seen) >= MAX_PROBED:
+                    return list(seen)
+                probe = tuple(not v if i == index else v for i, v in enumerate(state))
+                if probe not in seen:
+                    seen[probe] = None
+                    reached.append(probe)
+        frontier = reached
+    return list(seen)
+
+
+def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck: list[int]) -> int:
+    """How many probed states where the tree does not say done would a yes let ``action`` run in
+    (``action`` None: let the tree say done in): those whose false required literals are all
+    among ``literals``."""
+    if action is None:
+        required = learner.goal.required()
+    else:
+        required = literals_of(*learner.model[action].required, len(learner.names))
+    group = set(literals)
+    others = [(i, v) for i, v in required if (i, v) not in group]
+    inside = [(i, v) for i, v in required if (i, v) in group]
+    count = 0
+    for mask in stuck:
+        if all(bool(mask >> i & 1) == v for i, v in others) and any(bool(mask >> i & 1) != v for i, v in inside):
+            count += 1
+    return count
+
+
+def _bases(learner: Learner) -> dict[str | None, list[State]]:
+    """For each action (None: the goal), the labelled states where it is what to do, latest first."""
+    bases: dict[str | None, list[State]] = {}
+    for state, allowed in learner.situations.items():
+        for answer in allowed:
+            bases.setdefault(answer, []).insert(0, state)
+    return bases
