@@ -61,3 +61,19 @@ def test_no_asks_what_to_do_instead_and_keeps_the_question_open(ball, tmp_path):
     replies = session.handle("no")
     assert replies[0].kind is ReplyKind.QUESTION and "instead" in replies[0].text
     assert session.pending is not None
+
+
+def test_a_run_that_gets_stuck_asks_about_what_it_was_unsure_of_there(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    session.handle("skip")
+    session.handle("start BallGrasped")
+    replies = session.handle("run")
+    assert any(r.text.startswith("I got stuck") for r in replies)
+    text = question_text(replies)
+    assert text.startswith("Every time I did “") and "may I still do it?" in text
+    asked = text.split("“")[1].split("”")[0]
+    replies = session.handle("yes")
+    assert any(r.text.startswith("Thank you") for r in replies)
+    session.handle("start BallGrasped")
+    assert session.handle("run")[0].text == f"→ {asked}"

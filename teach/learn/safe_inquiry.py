@@ -182,6 +182,31 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
     return count
 
 
+def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
+    """Where the safe tree stopped (FAILURE) in ``state``: the action it was nearest to running, and
+    the unsure literals that kept it from running there ("Every time I put the ball in the bin,
+    the ball was in my hand. … may I still do it?"). None if only confirmed literals block every
+    action (then only a demonstration helps: "show me what to do here")."""
+    mask = learner.state_mask(state)
+    best: tuple[int, int, str, list[Lit]] | None = None
+    for name, knowledge in learner.model.actions.items():
+        if not knowledge.demonstrated:
+            continue
+        pos, neg = knowledge.required
+        false = [(i, v) for i, v in literals_of(pos, neg, len(learner.names)) if bool(mask >> i & 1) != v]
+        sure_pos, sure_neg = pos & ~knowledge.unsure[0], neg & ~knowledge.unsure[1]
+        if not false or any((sure_pos if v else sure_neg) >> i & 1 for i, v in false):
+            continue
+        key = (len(false), knowledge.order)
+        if best is None or key < best[:2]:
+            best = (*key, name, false)
+    if best is None:
+        return None
+    settles = tuple((learner.names[i], v) for i, v in best[3])
+    return SituationQuestion(state, "must-precondition", action=best[2], condition=settles[0][0], tree_does="nothing",
+                             value=settles[0][1], settles=settles)
+
+
 def _bases(learner: Learner) -> dict[str | None, list[State]]:
     """For each action (None: the goal), the labelled states where it is what to do, latest first."""
     bases: dict[str | None, list[State]] = {}

@@ -96,6 +96,16 @@ class Learning:
         return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown, kind=question.kind,
                         action=question.action, settles=question.settles)
 
+    def question_where_stuck(self, state: State) -> Question | None:
+        """The safe learner, stopped in ``state``: what it was unsure of there, as a question."""
+        from teach.learn.safe_inquiry import unsure_here
+
+        question = unsure_here(self.learner, state) if self.learner.safe else None
+        if question is None:
+            return None
+        return Question(state, 1.0, expected=(("nothing", 1.0),), kind=question.kind, action=question.action,
+                        settles=question.settles)
+
     def rule_out(self, question: Question, source: str) -> None:
         """The teacher said the asked-about situation cannot happen: it is never asked again."""
         self.learner.rule_out(question.state, source)

@@ -791,7 +791,7 @@ class SessionManager:
             return []
         if self.pending is not None or state in self.learning.asked or not self._affordable(state):
             return []
-        return self._ask(Question(state, 1.0))
+        return self._ask(self.learning.question_where_stuck(state) or Question(state, 1.0))
 
     def _affordable(self, state: State) -> bool:
         """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""
