@@ -299,6 +299,25 @@ class Learner:
         self._infer_needed()
         return self._finish(source, [], [])
 
+    def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
+        """The teacher's answer to "may I still do ``asked_about`` here?" (``asked_about`` None: "is
+        the task done here?") given as what to do there: the action asked about (or done) is a yes;
+        anything else is a no to it and the label of ``state`` as well."""
+        if answer == asked_about:
+            return self.teach_step(state, answer, source)
+        mask = self._checked_mask(state, source)
+        if asked_about is None:
+            required = self.goal.required()
+        else:
+            required = literals_of(*self.model[asked_about].required, self._n)
+        false = frozenset(lit for lit in required if bool(mask >> lit[0] & 1) != lit[1])
+        if len(false) == 1:
+            self._keep(asked_about, next(iter(false)), source)
+        elif false and not false & self._confirmed(asked_about):
+            self._refused.setdefault(asked_about, []).append((false, source, True))
+        self._infer_needed()
+        return self.teach_step(state, answer, source)
+
     def rule_out(self, state: State, source: str, hypothesis: Hypothesis | None = None) -> None:
         """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
         and changes no tree); a group question about it is asked again in halves."""

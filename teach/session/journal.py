@@ -38,7 +38,7 @@ _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "redo": ({"kind": str}, {}),
     "model": ({"kind": str, "file": str}, {}),
     "asked": ({"kind": str}, {"state": str, "model_question": dict}),
-    "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
+    "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {"asked_about": str}),
     "model_answer": ({"kind": str, "question": dict, "answer": str}, {}),
     "guided_action": ({"kind": str, "name": str, "motion": str}, {}),
     "situation": ({"kind": str, "state": str, "how": str}, {"seed": int}),
@@ -90,6 +90,9 @@ class Answered:
     answer: str
     """An action name, "done" or "skip"."""
     question: str
+    asked_about: str | None = None
+    """For "may I still do X here?": X; for "is the task done here?": "done" (an answer that
+    names something else also says no to it)."""
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,9 @@ from teach.observe.hook import Observer
 from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
 
+DONE_ABOUT = "done"
+"""``asked_about`` of an "is the task done here?" question."""
+
 
 def make_learner(domain: Domain, safe: bool = False) -> Learner:
     return Learner(domain, safe)
@@ -72,11 +75,16 @@ class Learning:
                 self.labels[step.state] = self.domain.action(step.action).name
         return update
 
-    def learn_answer(self, state: State, answer: str | None, source: str) -> Update:
-        """Learn what to do in an asked-about situation; an answer about a conflict settles it."""
+    def learn_answer(self, state: State, answer: str | None, source: str, asked_about: str | None = None) -> Update:
+        """Learn what to do in an asked-about situation; an answer about a conflict settles it.
+        ``asked_about``: the action a "may I still …?" question asked about ("done": "is the task
+        done here?"); an answer naming something else says no to it."""
         before = self._actions()
         if any(conflict.state == state for conflict in self.learner.conflicts):
             update = self.learner.resolve(state, answer, source)
+        elif asked_about is not None:
+            update = self.learner.answer_question(state, None if asked_about == DONE_ABOUT else asked_about, answer,
+                                                  source)
         else:
             update = self.learner.teach_step(state, answer, source=source)
         self._learned_actions = self._actions() - before

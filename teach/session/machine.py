@@ -69,7 +69,7 @@ from teach.session.journal import (
     redoable,
     state_text,
 )
-from teach.session.learning import Learning
+from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
@@ -873,13 +873,13 @@ class SessionManager:
         source = f"answer to question {self.budget.used}"
         self.pending = None
         try:
-            update = self.learning.learn_answer(question.state, answer, source)
+            update = self.learning.learn_answer(question.state, answer, source, _asked_about(question))
         except LearnError as error:
             return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         change = self.learning.describe(update, self.lang)
         # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
-        self._journal(Answered(state_text(question.state), answer or "done", text))
+        self._journal(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
         self.observer.on_answer(text, said, change)
         self.learning.report("answer", update, self.lang)
         head = self._flush([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
@@ -962,7 +962,7 @@ class SessionManager:
                 elif event.answer != "skip":
                     try:
                         self.learning.learn_answer(state, None if event.answer == "done" else event.answer,
-                                                   f"answer to question {answered}")
+                                                   f"answer to question {answered}", event.asked_about)
                     except LearnError:
                         pass  # it was rejected when it was given, too
         if self.learning.has_behaviour:
@@ -1176,3 +1176,10 @@ def _number(text: str, lang: str) -> int | None:
     if value < 0:
         raise TeachError(m.NOT_NEGATIVE(lang))
     return value
+
+
+def _asked_about(question: Question) -> str | None:
+    """What a "may I still …?" or "is the task done?" question asked about (None: a plain one)."""
+    if question.kind == "must-goal":
+        return DONE_ABOUT
+    return question.action if question.kind == "must-precondition" else None
