@@ -84,7 +84,7 @@ def actions_shown(demos: list[Demonstration]) -> set[int]:
 
 
 def run_pair(ball: Ball, pair: tuple[Demonstration, Demonstration], budget: int = QUESTIONS,
-             safe: bool = False) -> list[Measured]:
+             safe: bool = True) -> list[Measured]:
     """The pair after 0, 1, ... answered questions (fewer when the learner has none left)."""
     train = list(pair)
     names = (pair[0].name, pair[1].name)

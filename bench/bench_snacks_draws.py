@@ -124,7 +124,7 @@ def starts(domain: Domain) -> list[tuple[State, Mapping[str, int]]]:
 
 
 def measure(goalless: Domain, teacher: ReferenceTeacher, data: Draw, world: HiddenStateWorld,
-            goal: tuple[Literal, ...], safe: bool = False) -> list[Row]:
+            goal: tuple[Literal, ...], safe: bool = True) -> list[Row]:
     """The rows of ``ROWS`` for one draw, learned on the domain without its goal."""
     rows = []
     for count, budget in ROWS:

@@ -34,9 +34,9 @@ ORDER = 15
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("source", type=Path, metavar="DEMO_DIR",
                         help="folder of CSV demonstrations (pabt: a domain.toml or a folder with one)")
-    parser.add_argument("--approach", choices=("model", "safe", "pabt", "detect", "specialize"),
-                        default="model", help="which learner (default: model; safe: the model learner that "
-                                              "checks every precondition it has not ruled out)")
+    parser.add_argument("--approach", choices=("safe", "model", "pabt", "detect", "specialize"),
+                        default="safe", help="which learner (default: safe, which never acts on a guess; model: "
+                                             "the same learner guessing, for comparison)")
     parser.add_argument("--prune", action="store_true", help="remove redundant nodes (Alg. 4.1-4.4)")
     parser.add_argument("--domain", type=Path, help="domain.toml (default: in the folder or its parent)")
     parser.add_argument("--goal", nargs="+", metavar="LIT",

@@ -43,9 +43,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
-    parser.add_argument("--safe", action="store_true",
-                        help="the safe learner: never act on a guess; stop and ask where unsure (default: the "
-                             "model learner, which guesses)")
+    parser.add_argument("--guess", action="store_true",
+                        help="learn as the earlier model learner did, generalising by guessing (it may act where a "
+                             "precondition does not hold; for comparison only: the default never acts on a guess)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--lenient", action="store_true",
@@ -78,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record, label_questions=args.label_questions,
-        facilitator=args.facilitator, groot=args.groot, safe=args.safe)
+        facilitator=args.facilitator, groot=args.groot, safe=not args.guess)
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)

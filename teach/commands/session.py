@@ -45,9 +45,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pace", type=float, default=1.0,
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
                              "(default 1: real time; 0 = as fast as possible)")
-    parser.add_argument("--safe", action="store_true",
-                        help="the safe learner: never act on a guess; stop and ask where unsure (default: the "
-                             "model learner, which guesses)")
+    parser.add_argument("--guess", action="store_true",
+                        help="learn as the earlier model learner did, generalising by guessing (it may act where a "
+                             "precondition does not hold; for comparison only: the default never acts on a guess)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
@@ -69,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
-                        facilitator=args.facilitator, groot=args.groot, safe=args.safe)
+                        facilitator=args.facilitator, groot=args.groot, safe=not args.guess)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)

@@ -129,7 +129,7 @@ class _Exception:
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
-    def __init__(self, domain: Domain, safe: bool = False):
+    def __init__(self, domain: Domain, safe: bool = True):
         self.domain = domain
         self.names = domain.condition_names
         self._n = len(self.names)
@@ -829,7 +829,7 @@ class _Columns:
         return chosen
 
 
-def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = False) -> Learner:
+def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Learner:
     """A learner after every demonstration in turn."""
     learner = Learner(domain, safe)
     for demo in demos:
@@ -837,6 +837,6 @@ def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = False) 
     return learner
 
 
-def learn(domain: Domain, demos: Seq[Demonstration], safe: bool = False) -> Node:
+def learn(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Node:
     """The batch helper for ``teach learn`` and the benchmarks: the tree after all demonstrations."""
     return learn_online(domain, demos, safe).tree

@@ -26,14 +26,14 @@ DONE_ABOUT = "done"
 """``asked_about`` of an "is the task done here?" question."""
 
 
-def make_learner(domain: Domain, safe: bool = False) -> Learner:
+def make_learner(domain: Domain, safe: bool = True) -> Learner:
     return Learner(domain, safe)
 
 
 class Learning:
     """One session's learner with the demonstrations and labels it learned from."""
 
-    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = False):
+    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = True):
         self.domain = domain
         self.safe = safe
         self.store = store
