@@ -6,7 +6,9 @@ construction: it checks every precondition and goal literal it has not ruled out
 A question is worth asking by how much its answer *settles*: how many of those unsure
 literals one "yes" rules out. In order:
 
-1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it;
+1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it; then
+   a situation where the domain's declared goal does not hold but the tree says "done" (only
+   an answer can have taught that);
 2. **hypotheses**, most literals settled first (ties: the goal, then the action shown most
    often). For an action: a state where it was shown, with every unsure literal the data
    gives no reason for made false at once ("If …, may I still grasp the ball?"); for the
@@ -17,7 +19,7 @@ literals one "yes" rules out. In order:
    reason for (the step before made them hold; the action undoes them) are asked about only
    when no other group is left: they are usually needed, so that answer would change nothing;
 3. **unmet goal**: a situation, nearest the labelled ones first, where the domain's declared
-   goal does not hold but the tree would say "done" or do nothing;
+   goal does not hold and the tree would do nothing;
 4. **gaps**: a state next to a labelled one where the tree does nothing.
 
 These kinds are chosen by what their answer settles, not tuned to one generator: measured on
@@ -28,6 +30,7 @@ said to be impossible (``Learner.rule_out``). Every search is bounded by ``MAX_P
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable, Iterable
 
 from teach.domain import State
@@ -38,6 +41,8 @@ from teach.learn.learner import Learner
 KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
 MAX_PROBED = 4096
 """The most situations searched for one question (every one of a domain of 12 conditions)."""
+MAX_UNMET = 64
+"""The most unmet-goal situations collected per question (nearest the labelled ones first)."""
 
 
 
@@ -66,8 +71,10 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
+    unmet = list(itertools.islice(unmet_goal_situations(learner, does, flipped), MAX_UNMET))
+    yield from (question for question in unmet if question.tree_does == "done")  # an answer taught a wrong "done"
     yield from _hypotheses(learner, does, skip, reasoned=False)
-    yield from unmet_goal_situations(learner, does, flipped)
+    yield from (question for question in unmet if question.tree_does != "done")
     yield from _hypotheses(learner, does, skip, reasoned=True)
     probed = 0
     for state in learner.situations:
