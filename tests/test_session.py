@@ -554,7 +554,7 @@ def test_show_says_the_tree_in_words_and_show_full_or_a_facilitator_sees_the_sym
     session.handle(SEQUENCE)
     session.handle("fertig")
     words = session.handle("zeige")[0]
-    assert words.kind.name == "TREE" and words.text.startswith("Ich bin fertig, sobald gilt: der Ball ist im Eimer.")
+    assert words.kind.name == "TREE" and words.text.startswith("Ich bin fertig, sobald gilt: der Ball ist im Eimer")
     assert session.handle("zeige alles")[0].text == ""  # the view draws the symbols
     facilitator = SessionManager(Settings("f", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path, record=False,
                                           facilitator=True), ball, SymbolicWorld(ball))

@@ -34,7 +34,7 @@ def test_german_sentence_teaches_a_tree_and_ctrl_d_saves(ball, tmp_path):
             "\x04")  # Ctrl-D
     out, manager = drive(ball, tmp_path, keys)
     assert "Generation 1" in out and "was ich tue" in out
-    assert "Ich bin fertig, sobald gilt: der Ball ist im Eimer." in out
+    assert "Ich bin fertig, sobald gilt: der Ball ist im Eimer" in out
     assert "(BallPlaced)" not in out  # the symbols are for 'zeige ganz' and the facilitator
     assert "Auf Wiedersehen" in out  # Ctrl-D leaves after saving
     assert manager.finished and (tmp_path / "recordings" / "term.journal.json").is_file()

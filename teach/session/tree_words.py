@@ -85,7 +85,7 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     if check is not None:
         return [_Rule(guard, "done", done_when=check)] if at_root else []
     if at_root and isinstance(node, Sequence):
-        reached = [_reached_when(child) for child in node.children]
+        reached = [_check(child) or _reached_when(child) for child in node.children]
         if reached and all(r is not None for r in reached):  # one part after the other: done when each is
             parts = tuple(r for r in reached if r is not None)
             done = _Rule(guard, "done", done_when=parts[0] if len(parts) == 1 else _Check("all", parts=parts))
