@@ -114,14 +114,17 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
         groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
     bases = _bases(learner)
     probes = _probes(learner)
+    small = 1 << width <= MAX_PROBED
+    plausible = [] if small else [p for p in probes if p not in learner.situations and p not in skip]
     stuck = [learner.state_mask(p) for p in probes if does(p) != "done"]
     found: list[tuple[tuple[int, int, int, int, int], SituationQuestion]] = []
     for rank, evidence, order, action, literals in groups:
         question = None
         for group in learner.untested(action, literals):
-            question = _group_question(learner, does, skip, bases.get(action, ()), action, group)
+            question = _plausible_question(learner, does, skip, plausible, action, group) if plausible else None
+            question = question or _group_question(learner, does, skip, bases.get(action, ()), action, group)
             if question is not None:
-                literals = group
+                literals = [(learner.names.index(name), value) for name, value in question.settles]
                 break
         if question is None:
             continue
@@ -130,6 +133,29 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
     found.sort(key=lambda item: item[0])
     for _key, question in found:
         yield question
+
+
+def _plausible_question(learner: Learner, does: Callable[[State], str], skip: set[State], plausible: list[State],
+                        action: str | None, literals: list[Lit]) -> SituationQuestion | None:
+    """The question about as many of ``literals`` as one predicted state can settle: one where
+    every other required literal holds and the most of ``literals`` do not."""
+    names = learner.names
+    if action is None:
+        required = learner.goal.required()
+    else:
+        required = literals_of(*learner.model[action].required, len(names))
+    group = set(literals)
+    best: tuple[int, State, list[Lit]] | None = None
+    for state in plausible:
+        false = [(i, v) for i, v in required if state[i] != v]
+        if false and all(lit in group for lit in false) and (best is None or len(false) > best[0]):
+            best = (len(false), state, false)
+    if best is None:
+        return None
+    kind = "must-goal" if action is None else "must-precondition"
+    settles = tuple((names[index], value) for index, value in best[2])
+    return SituationQuestion(best[1], kind, action=action, condition=settles[0][0], tree_does=does(best[1]),
+                             value=settles[0][1], settles=settles)
 
 
 def _group_question(learner: Learner, does: Callable[[State], str], skip: set[State], bases: Iterable[State],
@@ -151,23 +177,39 @@ def _group_question(learner: Learner, does: Callable[[State], str], skip: set[St
 
 def _probes(learner: Learner) -> list[State]:
     """The situations a question's worth is counted on: every state of a small domain, else the
-    labelled ones and their neighbours (one condition changed, then two), at most ``MAX_PROBED``."""
+    states the learned effects lead to from the labelled ones (``predicted``)."""
     width = len(learner.names)
     if 1 << width <= MAX_PROBED:
         return [learner.state_of(mask) for mask in range(1 << width)]
-    frontier = list(learner.situations)
+    return [learner.state_of(mask) for mask in predicted(learner)]
+
+
+def predicted(learner: Learner) -> list[int]:
+    """States the world can be in: the labelled ones and, breadth-first, what each demonstrated
+    action's learned effects make of them where all its required preconditions hold (at most
+    ``MAX_PROBED``); in STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
+    A question about one of these is not about a state that cannot happen, as one made by
+    changing conditions at random often is (a ferry at two places)."""
+    actions = []
+    for knowledge in learner.model.actions.values():
+        made_true, made_false = knowledge.effects
+        if knowledge.demonstrated and made_true | made_false:
+            actions.append((knowledge.required, made_true, made_false))
+    frontier = [learner.state_mask(state) for state in learner.situations]
     seen = dict.fromkeys(frontier)
-    for _ring in range(2):
-        reached = []
-        for state in frontier:
-            for index in range(width):
-                if len(seen) >= MAX_PROBED:
-                    return list(seen)
-                probe = tuple(not v if i == index else v for i, v in enumerate(state))
-                if probe not in seen:
-                    seen[probe] = None
-                    reached.append(probe)
-        frontier = reached
+    while frontier and len(seen) < MAX_PROBED:
+        following = []
+        for mask in frontier:
+            for (need, forbid), made_true, made_false in actions:
+                if mask & need != need or mask & forbid:
+                    continue
+                after = (mask | made_true) & ~made_false
+                if after not in seen:
+                    seen[after] = None
+                    following.append(after)
+                    if len(seen) >= MAX_PROBED:
+                        return list(seen)
+        frontier = following
     return list(seen)
 
 
