@@ -852,6 +852,12 @@ class SessionManager:
             if len(tokens) != 1:
                 return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
             answer = tokens[0].name
+            if not self.domain.applicable(answer, question.state):
+                # as for 'done': an answer the domain file shows cannot work there is not learned
+                label = self.domain.action(answer).label(self.lang)
+                return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
+                                                           reason=self._why_not(answer, question.state))),
+                        self._question_reply(question)]
         return self.apply_answer(answer, line)
 
     def _cannot_happen(self, question: Question) -> list[Reply]:
