@@ -34,6 +34,19 @@ def goal_holds(model: Domain, state: State) -> bool:
     return all(state[model.index(lit.name)] == lit.value for lit in model.goal)
 
 
+def honest_answer(session: SessionManager, model: Domain, teacher: PlanningOracle | None = None) -> str:
+    """What a teacher who knows the true model answers to the open question."""
+    question = session.pending
+    assert question is not None
+    if question.kind == "must-precondition" and question.action is not None \
+            and applicable(model, question.action, question.state):
+        return "yes"
+    if question.kind == "must-goal" and goal_holds(model, question.state):
+        return "yes"
+    best = (teacher or PlanningOracle(model, session.domain)).answer(question.state)
+    return "skip" if best == SKIP else "done" if best is None else session.domain.action(best).label("en")
+
+
 def correct_until_it_works(session: SessionManager, model: Domain, starts: list[State],
                            rounds: int = 6) -> Corrections:
     """Run from every start, correcting, until a round needs no correction (at most ``rounds``)."""
@@ -46,16 +59,8 @@ def correct_until_it_works(session: SessionManager, model: Domain, starts: list[
 
     def answer_all() -> None:
         while session.pending is not None:
-            question = session.pending
             done.answers += 1
-            if question.kind == "must-precondition" and question.action is not None \
-                    and applicable(model, question.action, question.state):
-                say("yes")
-            elif question.kind == "must-goal" and goal_holds(model, question.state):
-                say("yes")
-            else:
-                best = teacher.answer(question.state)
-                say("skip" if best == SKIP else "done" if best is None else session.domain.action(best).label("en"))
+            say(honest_answer(session, model, teacher))
 
     for _ in range(rounds):
         corrected = False

@@ -79,3 +79,17 @@ def test_a_run_that_gets_stuck_asks_about_what_it_was_unsure_of_there(ball, tmp_
         session.handle("skip")
     session.handle("start BallGrasped")
     assert session.handle("run")[0].text == f"→ {asked}"
+
+
+def test_a_session_started_guessing_resumes_guessing(ball, tmp_path):
+    settings = Settings("g", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path, record=False, safe=False)
+    session = SessionManager(settings, ball, SymbolicWorld(ball))
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("quit")
+    from teach.session.setup import resumed_settings
+
+    again = resumed_settings(Settings("g", world=WorldKind.SYMBOLIC, base=tmp_path, record=False),
+                             session.store.load_journal())
+    assert again.safe is False
+    assert SessionManager.resume(again, ball, SymbolicWorld(ball)).learning.learner.safe is False

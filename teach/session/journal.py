@@ -31,7 +31,8 @@ def parse_state_text(text: str) -> State:
 
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
-_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str}
+_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str,
+                                      "guess": bool}
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "demo": ({"kind": str, "file": str, "source": str}, {}),
     "undo": ({"kind": str}, {}),
@@ -218,6 +219,8 @@ class Journal:
     open_run: str = ""
     """The action the robot had begun when the session ended in the middle of a run: then
     ``open_steps`` are the steps it finished and ``open_state`` the world before that action."""
+    guess: bool = False
+    """The session learns with the guessing learner (``--guess``), not the safe one."""
 
     def to_text(self) -> str:
         data = {f.name: getattr(self, f.name) for f in fields(self)}

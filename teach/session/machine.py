@@ -160,7 +160,7 @@ class SessionManager:
         self._interrupt: Callable[[], bool] | None = None
         self._turn_questions = 0
         self.journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang,
-                                          settings.questions, settings.world, settings.seed)
+                                          settings.questions, settings.world, settings.seed, guess=not settings.safe)
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self._start_situation = state_text(world.state())
         self.store.prepare(domain)
@@ -839,19 +839,18 @@ class SessionManager:
         yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
         if question.kind in MUST_KINDS and is_no(line, self.lang):
             return [Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]  # the question stays open
-        if yes and question.action is not None:
-            return self.apply_answer(question.action, line)
-        if key in DONE_WORDS or yes:
+        if key in DONE_WORDS or (yes and question.action is None):
             unmet = unmet_goal(self.domain, question.state, self.lang)
             if unmet:  # the question stays open and is not paid for again
                 return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
                         self._question_reply(question)]
             answer: str | None = None
         else:
-            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
-            if len(tokens) != 1:
+            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"] if not yes else []
+            if not yes and len(tokens) != 1:
                 return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-            answer = tokens[0].name
+            answer = question.action if yes else tokens[0].name
+            assert answer is not None
             if not self.domain.applicable(answer, question.state):
                 # as for 'done': an answer the domain file shows cannot work there is not learned
                 label = self.domain.action(answer).label(self.lang)

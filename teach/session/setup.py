@@ -63,9 +63,10 @@ def dialogue_events(settings: Settings, domain: Domain) -> dict[str, tuple[tuple
 
 
 def resumed_settings(settings: Settings, journal: Journal) -> Settings:
-    """A resumed session keeps the domain, language, budget, world and seed it was started with."""
+    """A resumed session keeps the domain, language, budget, world, seed and learner it was started with."""
     return replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
-                   questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed)
+                   questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed,
+                   safe=not journal.guess)
 
 
 @contextmanager
