@@ -139,6 +139,7 @@ class Learner:
         self.safe = safe
         self._weak = not safe
         self._situations: dict[int, Situation] = {}
+        self._situations_view: dict[State, frozenset[Answer]] | None = None
         self._restored: set[Lit] = set()
         self._left_broken: set[Lit] = set()
         self._columns = _Columns(self._n)
@@ -172,8 +173,11 @@ class Learner:
 
     @property
     def situations(self) -> dict[State, frozenset[Answer]]:
-        """Every labelled state with the answers allowed there."""
-        return {s.state: s.allowed for s in self._situations.values()}
+        """Every labelled state with the answers allowed there (kept until a label changes: the
+        question selectors read it often)."""
+        if self._situations_view is None:
+            self._situations_view = {s.state: s.allowed for s in self._situations.values()}
+        return self._situations_view
 
     def update(self, demo: Demonstration, source: str | None = None) -> Update:
         """Learn one more demonstration (any order, repeats, loops, external events)."""
@@ -373,6 +377,10 @@ class Learner:
         """The bitmask (bit i = condition i) of a state."""
         return self._mask(state)
 
+    def labelled_masks(self) -> Seq[int]:
+        """The labelled states as bitmasks (bit i = condition i), in the order they were labelled."""
+        return self._situations.keys()  # type: ignore[return-value]
+
     def state_of(self, mask: int) -> State:
         """The state a bitmask (bit i = condition i) stands for."""
         return self._state(mask)
@@ -437,6 +445,7 @@ class Learner:
         situation = self._situations.get(mask)
         if situation is None:
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
+            self._situations_view = None
             self._columns.add(mask, frozenset({answer}))
             self._recount(state, frozenset(), frozenset({answer}))
             self._feed_goal(mask, frozenset({answer}), source)
@@ -460,6 +469,7 @@ class Learner:
         self._columns.relabel(mask, old, allowed)
         self._recount(situation.state, old, allowed)
         situation.allowed, situation.answer = allowed, answer
+        self._situations_view = None
         self._feed_goal(mask, allowed, situation.sources[-1])
 
     def _feed_goal(self, mask: int, allowed: frozenset[Answer], source: str) -> None:

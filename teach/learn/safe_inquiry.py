@@ -113,10 +113,14 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
             literals = literals_of(pos & ~have_pos, neg & ~have_neg, width)
         groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
     bases = _bases(learner)
-    probes = _probes(learner)
     small = 1 << width <= MAX_PROBED
-    plausible = [] if small else [p for p in probes if p not in learner.situations and p not in skip]
-    stuck = [learner.state_mask(p) for p in probes if does(p) != "done"]
+    probes = list(range(1 << width)) if small else predicted(learner)
+    done_true, done_false = _masks(goal.required()) if goal.known else (0, 0)
+    stuck = [mask for mask in probes
+             if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
+    labelled = learner.labelled_masks()
+    plausible = [] if small else [state for state in (learner.state_of(mask) for mask in probes
+                                                      if mask not in labelled) if state not in skip]
     found: list[tuple[tuple[int, int, int, int, int], SituationQuestion]] = []
     for rank, evidence, order, action, literals in groups:
         question = None
@@ -175,17 +179,9 @@ def _group_question(learner: Learner, does: Callable[[State], str], skip: set[St
     return None
 
 
-def _probes(learner: Learner) -> list[State]:
-    """The situations a question's worth is counted on: every state of a small domain, else the
-    states the learned effects lead to from the labelled ones (``predicted``)."""
-    width = len(learner.names)
-    if 1 << width <= MAX_PROBED:
-        return [learner.state_of(mask) for mask in range(1 << width)]
-    return [learner.state_of(mask) for mask in predicted(learner)]
-
-
 def predicted(learner: Learner) -> list[int]:
-    """States the world can be in: the labelled ones and, breadth-first, what each demonstrated
+    """The states a question's worth is counted on in a domain too large to count every state
+    of, as bitmasks: the states the world can be in: the labelled ones and, breadth-first, what each demonstrated
     action's learned effects make of them where all its required preconditions hold (at most
     ``MAX_PROBED``); in STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
     A question about one of these is not about a state that cannot happen, as one made by
@@ -195,7 +191,7 @@ def predicted(learner: Learner) -> list[int]:
         made_true, made_false = knowledge.effects
         if knowledge.demonstrated and made_true | made_false:
             actions.append((knowledge.required, made_true, made_false))
-    frontier = [learner.state_mask(state) for state in learner.situations]
+    frontier = list(learner.labelled_masks())
     seen = dict.fromkeys(frontier)
     while frontier and len(seen) < MAX_PROBED:
         following = []
@@ -222,13 +218,22 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
     else:
         required = literals_of(*learner.model[action].required, len(learner.names))
     group = set(literals)
-    others = [(i, v) for i, v in required if (i, v) not in group]
-    inside = [(i, v) for i, v in required if (i, v) in group]
-    count = 0
-    for mask in stuck:
-        if all(bool(mask >> i & 1) == v for i, v in others) and any(bool(mask >> i & 1) != v for i, v in inside):
-            count += 1
-    return count
+    others_true, others_false = _masks([lit for lit in required if lit not in group])
+    inside_true, inside_false = _masks([lit for lit in required if lit in group])
+    return sum(1 for mask in stuck
+               if mask & others_true == others_true and not mask & others_false
+               and (mask & inside_true != inside_true or mask & inside_false))
+
+
+def _masks(literals: Iterable[Lit]) -> tuple[int, int]:
+    """(conditions that must be true, conditions that must be false) of some literals."""
+    true = false = 0
+    for index, value in literals:
+        if value:
+            true |= 1 << index
+        else:
+            false |= 1 << index
+    return true, false
 
 
 def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
