@@ -36,6 +36,7 @@ old demonstrations.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 Lit = tuple[int, bool]
@@ -112,14 +113,14 @@ class ActionKnowledge:
     def required(self) -> tuple[int, int]:
         """The safe bound the tree checks: every possible precondition the teacher did not rule out."""
         pos, neg = self.possible
-        out_pos, out_neg = _masks(self.ruled_out)
+        out_pos, out_neg = literal_masks(self.ruled_out)
         return pos & ~out_pos, neg & ~out_neg
 
     @property
     def unsure(self) -> tuple[int, int]:
         """Required preconditions nobody confirmed: what a question about this action can settle."""
         pos, neg = self.required
-        sure_pos, sure_neg = _masks({**self.confirmed, **self.maintained})
+        sure_pos, sure_neg = literal_masks({**self.confirmed, **self.maintained})
         return pos & ~sure_pos, neg & ~sure_neg
 
     @property
@@ -217,8 +218,8 @@ class ActionModel:
         return [k.name for k in found]
 
 
-def _masks(literals: dict[Lit, str]) -> tuple[int, int]:
-    """(true mask, false mask) of a set of literals."""
+def literal_masks(literals: Iterable[Lit]) -> tuple[int, int]:
+    """(true mask, false mask) of some literals."""
     pos = neg = 0
     for index, value in literals:
         if value:

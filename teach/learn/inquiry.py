@@ -86,16 +86,23 @@ def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQue
     return None
 
 
+def tree_does(learner: Learner, state: State) -> str:
+    """What the learner's tree does in ``state``: an action name, "done", or "nothing"."""
+    result = learner.answer_in(state)
+    return "done" if result is None else "nothing" if result is False else str(result)
+
+
+def flipped(state: State, index: int) -> State:
+    """``state`` with condition ``index`` the other way."""
+    return tuple(not v if i == index else v for i, v in enumerate(state))
+
+
 def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
     names = learner.names
     width = len(names)
 
     def does(state: State) -> str:
-        result = learner.answer_in(state)
-        return "done" if result is None else "nothing" if result is False else str(result)
-
-    def flipped(state: State, index: int) -> State:
-        return tuple(not v if i == index else v for i, v in enumerate(state))
+        return tree_does(learner, state)
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))

@@ -34,8 +34,8 @@ import itertools
 from collections.abc import Callable, Iterable
 
 from teach.domain import State
-from teach.learn.action_model import Lit, literals_of
-from teach.learn.inquiry import SituationQuestion, unmet_goal_situations
+from teach.learn.action_model import Lit, literal_masks, literals_of
+from teach.learn.inquiry import SituationQuestion, flipped, tree_does, unmet_goal_situations
 from teach.learn.learner import Learner
 
 KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
@@ -63,11 +63,7 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
     names = learner.names
 
     def does(state: State) -> str:
-        result = learner.answer_in(state)
-        return "done" if result is None else "nothing" if result is False else str(result)
-
-    def flipped(state: State, index: int) -> State:
-        return tuple(not v if i == index else v for i, v in enumerate(state))
+        return tree_does(learner, state)
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
@@ -115,7 +111,7 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
     bases = _bases(learner)
     small = 1 << width <= MAX_PROBED
     probes = list(range(1 << width)) if small else predicted(learner)
-    done_true, done_false = _masks(goal.required()) if goal.known else (0, 0)
+    done_true, done_false = literal_masks(goal.required()) if goal.known else (0, 0)
     stuck = [mask for mask in probes
              if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
     labelled = learner.labelled_masks()
@@ -218,22 +214,11 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
     else:
         required = literals_of(*learner.model[action].required, len(learner.names))
     group = set(literals)
-    others_true, others_false = _masks([lit for lit in required if lit not in group])
-    inside_true, inside_false = _masks([lit for lit in required if lit in group])
+    others_true, others_false = literal_masks([lit for lit in required if lit not in group])
+    inside_true, inside_false = literal_masks([lit for lit in required if lit in group])
     return sum(1 for mask in stuck
                if mask & others_true == others_true and not mask & others_false
                and (mask & inside_true != inside_true or mask & inside_false))
-
-
-def _masks(literals: Iterable[Lit]) -> tuple[int, int]:
-    """(conditions that must be true, conditions that must be false) of some literals."""
-    true = false = 0
-    for index, value in literals:
-        if value:
-            true |= 1 << index
-        else:
-            false |= 1 << index
-    return true, false
 
 
 def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
