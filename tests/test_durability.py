@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 from conftest import ROOT
 
+from teach import messages as m
 from teach.cli import main
-from teach.session import messages as m
 from teach.session.replies import Reply
 from teach.session.settings import Settings, WorldKind
 from teach.session.setup import opened_session

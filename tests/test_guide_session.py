@@ -15,9 +15,9 @@ from rich.console import Console
 from test_careless_teacher import sixteen_starts
 from test_guide_demonstrations import Teacher
 
+from teach import messages as m
 from teach.dialogue.script import read_script
 from teach.domain import load_domain
-from teach.session import messages as m
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import ReplyKind
 from teach.session.settings import Settings, WorldKind

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 from conftest import ROOT
 
-from teach.session import messages
-from teach.session.messages import Text
+from teach import messages
+from teach.messages import Text
 
 CATALOGUE = {name: value for name, value in vars(messages).items() if isinstance(value, Text)}
 # the session, the terminal and the questions say nothing that is not in the catalogue

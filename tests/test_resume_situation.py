@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 from conftest import BALL_DOMAIN
 
+from teach import messages as m
 from teach.domain import Domain
-from teach.session import messages as m
 from teach.session.machine import SessionManager
 from teach.session.replies import Reply
 from teach.session.settings import Settings, WorldKind

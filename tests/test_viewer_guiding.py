@@ -103,8 +103,8 @@ def test_a_drag_that_changes_nothing_is_said_and_not_recorded(display: str) -> N
 def test_guide_hand_needs_the_viewer(tmp_path: Path) -> None:
     from conftest import BALL_DOMAIN
 
+    from teach import messages as m
     from teach.domain import load_domain
-    from teach.session import messages as m
     from teach.session.machine import SessionManager
     from teach.session.settings import Settings
     from teach.world.mujoco_world import MujocoWorld

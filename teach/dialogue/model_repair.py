@@ -33,6 +33,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from enum import StrEnum
 
+from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import ActionDef, Domain, Literal
@@ -46,8 +47,7 @@ from teach.learn.model_gaps import (
     reachable,
     requires,
 )
-from teach.session import messages as m
-from teach.session.messages import Text
+from teach.messages import Text
 
 
 class QuestionKind(StrEnum):

@@ -88,7 +88,7 @@ def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
     """Refuse a file that is not a dialogue (XML, a README, a CSV): every input line must be a
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
-    from teach.session import messages as m
+    from teach import messages as m
     from teach.session.commands import COMMAND_WORDS, DONE_WORDS, SKIP_WORDS, Verb, parse_command
     from teach.session.guiding import STOP_WORDS, is_new_action_answer
 

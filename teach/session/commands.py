@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum, auto
 
+from teach import messages as m
 from teach.dialogue.phrases import normalize
-from teach.session import messages as m
-from teach.session.messages import Text
+from teach.messages import Text
 
 
 class Verb(Enum):

@@ -6,9 +6,9 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.domain import Domain, Literal, State
 from teach.errors import LearnError
-from teach.session import messages as m
 
 if TYPE_CHECKING:
     from teach.learn.learner import Explanation, Update

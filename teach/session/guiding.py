@@ -24,13 +24,13 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
+from teach import messages as m
 from teach.demos import Step
 from teach.dialogue.phrases import PhraseBook, is_no, is_yes, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
 from teach.learn.recognise import Recognition, changed_literals, describe_change, explain, question, recognise
-from teach.session import messages as m
 from teach.session.commands import SKIP_WORDS
 from teach.session.journal import GuidedActionTaught
 from teach.session.replies import Reply, ReplyKind

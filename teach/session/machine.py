@@ -19,6 +19,7 @@ from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step
 from teach.dialogue.phrases import (
@@ -37,7 +38,6 @@ from teach.dialogue.questions import Question, QuestionBudget, describe_situatio
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
-from teach.session import messages as m
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,

@@ -7,12 +7,12 @@ from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 
+from teach import messages as m
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
 from teach.lock import session_lock
 from teach.observe.hook import Observer, Observers
 from teach.observe.merge import print_note
-from teach.session import messages as m
 from teach.session.journal import Journal
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind

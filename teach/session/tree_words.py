@@ -16,9 +16,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
 from teach.domain import Domain
-from teach.session import messages as m
 
 
 @dataclass(frozen=True)

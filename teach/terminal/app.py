@@ -23,8 +23,8 @@ from prompt_toolkit.layout import FormattedTextControl, Layout, Window
 from prompt_toolkit.output import Output
 from rich.console import Console
 
+from teach import messages as m
 from teach.dialogue.completion import TeachCompleter, command_words
-from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply, ReplyKind
