@@ -31,7 +31,7 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
-                  "Schreib, was der Roboter tun soll, z. B. “{examples}”.")
+                  "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
 AND = Text(" and ", " und ")
 OR = Text(" or ", " oder ")
 
@@ -189,27 +189,6 @@ MODE_IDLE = Text("idle", "bereit")
 MODE_DEMONSTRATING = Text("demonstrating", "Vorführung")
 MODE_ASKING = Text("asking", "Frage offen")
 
-# --- the command table's help ------------------------------------------------------------------
-HELP_HELP = Text("show this help", "diese Hilfe zeigen")
-HELP_DEMONSTRATE = Text("start a demonstration", "eine Vorführung beginnen")
-HELP_DONE = Text("the task is finished: learn this demonstration", "die Aufgabe ist erledigt: diese Vorführung lernen")
-HELP_CANCEL = Text("discard the open demonstration", "die Vorführung verwerfen")
-HELP_PERTURB = Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)")
-HELP_RUN = Text("let the robot do the task (N: stop after N actions)", "den Roboter die Aufgabe machen lassen")
-HELP_STOP = Text("interrupt the robot", "den Roboter anhalten")
-HELP_SHOW = Text("show the learned tree", "den gelernten Baum zeigen")
-HELP_STATE = Text("show the current situation", "die aktuelle Lage zeigen")
-HELP_START = Text("put the world in a situation (named conditions true)", "die Welt in eine Lage bringen")
-HELP_RESET = Text("new random start", "neuer zufälliger Start")
-HELP_ASK = Text("let the robot ask a question", "den Roboter fragen lassen")
-HELP_MODEL = Text("load action definitions (pre/ram) and plan with them",
-                  "Handlungsbeschreibungen laden und damit planen")
-HELP_PLAN = Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben")
-HELP_SKIP = Text("leave a question unanswered", "eine Frage offen lassen")
-HELP_WHY = Text("why a node is in the tree", "warum ein Knoten im Baum ist")
-HELP_SAVE = Text("save everything now", "alles jetzt speichern")
-HELP_QUIT = Text("save and leave", "speichern und beenden")
-
 # --- situation questions (teach/dialogue/questions.py) -----------------------------------------
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
@@ -257,11 +236,6 @@ WORD_EITHER = Text("either", "egal")
 
 # --- the careless teacher (issue 11) ----------------------------------------------------------------
 SAY_IT_ANOTHER_WAY = Text("Say it another way, please.", "Sag es bitte anders.")
-HELP_UNDO_TO_STEP = Text("undo the last step (N: steps N to the end), demonstration or answer",
-                         "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen")
-HELP_REDO = Text("take back the last undo (steps, a demonstration or an answer)",
-                 "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)")
-HELP_STEPS = Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen")
 OPEN_STEPS = Text("The steps so far:", "Die Schritte bisher:")
 NO_OPEN_STEPS = Text("No demonstration is open: there are no steps yet.",
                      "Keine Vorführung ist offen: es gibt noch keine Schritte.")
@@ -278,27 +252,6 @@ NOTHING_TO_CANCEL = Text("No demonstration is open: there is nothing to cancel."
                          "Keine Vorführung ist offen: es gibt nichts abzubrechen.")
 SESSION_ID = Text("Session {session} (continue it later with: teach session --resume {session}).",
                   "Sitzung {session} (später weitermachen mit: teach session --resume {session}).")
-USAGE_HELP = Text("help", "hilfe")
-USAGE_DEMONSTRATE = Text("demonstrate [steps]", "zeigen [Schritte]")
-USAGE_DONE = Text("done", "fertig")
-USAGE_CANCEL = Text("cancel", "abbrechen")
-USAGE_UNDO = Text("undo [N]", "zurück [N]")
-USAGE_REDO = Text("redo", "wiederherstellen")
-USAGE_STEPS = Text("steps", "schritte")
-USAGE_PERTURB = Text("perturb EVENT", "stören EREIGNIS")
-USAGE_RUN = Text("run [N]", "los [N]")
-USAGE_STOP = Text("stop / Ctrl-C", "halt / Strg-C")
-USAGE_SHOW = Text("show [full]", "zeige [ganz]")
-USAGE_STATE = Text("state [full]", "zustand [ganz]")
-USAGE_START = Text("start COND ...", "start BEDINGUNG ...")
-USAGE_RESET = Text("reset [SEED]", "neu [ZAHL]")
-USAGE_ASK = Text("ask", "frag")
-USAGE_MODEL = Text("model FILE", "modell DATEI")
-USAGE_PLAN = Text("plan", "planen")
-USAGE_SKIP = Text("skip", "weiter")
-USAGE_WHY = Text("why NAME", "warum NAME")
-USAGE_SAVE = Text("save", "speichern")
-USAGE_QUIT = Text("quit / Ctrl-D", "beenden / Strg-D")
 IT_NEEDS = Text("first this must be true: {conditions}", "dafür muss erst gelten: {conditions}")
 IT_DID_NOT_WORK = Text("it did not work out this time", "es hat diesmal nicht geklappt")
 OUTCOME_SUCCESS = Text("it said it was done", "es hieß, ich sei fertig")
@@ -375,10 +328,6 @@ GUIDE_MODE_ON = Text("Guide mode: ↑/↓ move, ←/→ turn, PgUp/PgDn lift, sp
                      "Hand; Esc beendet ihn.")
 GUIDE_MODE_OFF = Text("Guide mode ended.", "Führmodus beendet.")
 TOOLBAR_LABELS = Text(" │ labelling questions left: {left}", " │ Benennfragen übrig: {left}")
-USAGE_GUIDE = Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
-                   "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]")
-HELP_GUIDE = Text("move the robot yourself (MuJoCo world); alone: steer it with the keys",
-                  "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken")
 # --- slips during a skill (issue 11: the world's events)
 HALTED_KEPT = Text("✓ {action} (stopped halfway: recorded up to there)",
                    "✓ {action} (mittendrin angehalten: bis dahin aufgezeichnet)")

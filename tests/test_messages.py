@@ -10,8 +10,11 @@ from conftest import ROOT
 
 from teach import messages
 from teach.messages import Text
+from teach.session.commands import COMMANDS
 
 CATALOGUE = {name: value for name, value in vars(messages).items() if isinstance(value, Text)}
+CATALOGUE |= {f"{command.name}.{part}": getattr(command, part) for command in COMMANDS for part in ("usage", "help")}
+# the commands declare their usage and help with their words (teach/session/commands.py)
 # the session, the terminal and the questions say nothing that is not in the catalogue
 # (phrases.py, the phrase book, keeps its own en/de tables for now)
 SPEAKERS = sorted([*(ROOT / "teach" / "session").glob("*.py"), *(ROOT / "teach" / "terminal").glob("*.py"),

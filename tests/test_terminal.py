@@ -46,7 +46,7 @@ def test_tab_completion_and_help(ball, tmp_path):
     keys = "Ball fi\t\rhilfe\rquit\r"
     out, manager = drive(ball, tmp_path, keys)
     assert "✓ Ball finden" in out
-    assert "zeigen [Schritte]" in out  # the help lists the commands, in German
+    assert "vorführen [Schritte]" in out  # the help lists the commands, in German
     assert manager.finished
 
 

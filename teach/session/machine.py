@@ -276,23 +276,23 @@ class SessionManager:
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
-        answering = command is None or command.verb in ANSWERING
+        answering = command is None or command in ANSWERING
         if self.pending_model is not None and answering:
             return self._answer_model(line)
         if self.pending is not None and answering:
             return self._answer(line)
-        if command is not None and self.mode is Mode.ASKING and command.verb in BLOCKED_WHILE_ASKING:
+        if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
         self._turn_questions = 0
         if command is None:
             return self._teach_actions(line)
-        return self._handlers[command.verb](self, rest)
+        return self._handler(command)(rest)
 
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
         lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
-        examples = "; ".join(self.phrases.phrases(self.lang)[:12])
+        examples = ", ".join(a.label(self.lang) for a in self.domain.actions)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
     def cmd_guide(self, rest: str) -> list[Reply]:
@@ -304,12 +304,12 @@ class SessionManager:
         """A labelling question takes the line as its answer; a line that is not guiding ends
         guidance first (and waits for the labelling answers). None: go on with the line."""
         if self.guiding.pending is not None:
-            if command is None or command.verb is Verb.SKIP:
+            if command is None or command is Verb.SKIP:
                 replies = self.guiding.answer(line)
                 deferred = self.guiding.take_deferred()
                 return replies + (self._dispatch(deferred) if deferred else [])
-            return None if command.verb in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
-        if self.guiding.active and (command is None or command.verb is not Verb.GUIDE):
+            return None if command in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
+        if self.guiding.active and (command is None or command is not Verb.GUIDE):
             self.guiding.end()
             if self.guiding.pending is not None:
                 self.guiding.deferred = line
@@ -1097,20 +1097,14 @@ class SessionManager:
         turn, self._turn = self._turn, []
         return turn
 
-    _handlers: dict[Verb, Callable[[SessionManager, str], list[Reply]]] = {}
+    def _handler(self, command: Command) -> Callable[[str], list[Reply]]:
+        handler: Callable[[str], list[Reply]] = getattr(self, command.handler)
+        return handler
 
 
-SessionManager._handlers = {
-    Verb.HELP: SessionManager.cmd_help, Verb.DEMONSTRATE: SessionManager.cmd_demonstrate,
-    Verb.DONE: SessionManager.cmd_done, Verb.CANCEL: SessionManager.cmd_cancel, Verb.UNDO: SessionManager.cmd_undo,
-    Verb.REDO: SessionManager.cmd_redo,
-    Verb.PERTURB: SessionManager.cmd_perturb, Verb.RUN: SessionManager.cmd_run, Verb.STOP: SessionManager.cmd_stop,
-    Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
-    Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
-    Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
-    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
-    Verb.GUIDE: SessionManager.cmd_guide,
-}
+_UNHANDLED = [command.name for command in COMMANDS if not callable(getattr(SessionManager, command.handler, None))]
+if _UNHANDLED:  # a command declared in teach/session/commands.py needs its cmd_ method here
+    raise TypeError(f"commands without a handler: {', '.join(_UNHANDLED)}")
 
 
 _OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,

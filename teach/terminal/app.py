@@ -86,13 +86,13 @@ class Terminal:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
         command, rest = self.manager.command(line)
-        if command is not None and command.verb is Verb.GUIDE and not rest.strip() \
+        if command is not None and command is Verb.GUIDE and not rest.strip() \
                 and self.manager.mode is not Mode.ASKING:
             self.manager.handle(line)
             if self.manager.guiding.active:
                 self._guide_mode()
             return
-        if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING \
+        if command is None or command is not Verb.RUN or self.manager.mode is Mode.ASKING \
                 or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
             return
@@ -160,5 +160,5 @@ def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
     """What Tab offers after 'start' (conditions) and 'why' (actions and conditions), in the session's language."""
     conditions = [c.label(manager.lang) for c in manager.domain.conditions]
     actions = [a.label(manager.lang) for a in manager.domain.actions]
-    return {name: conditions if command.verb is Verb.START else actions + conditions
-            for command in COMMANDS if command.verb in (Verb.START, Verb.WHY) for name in command.names}
+    return {name: conditions if command is Verb.START else actions + conditions
+            for command in COMMANDS if command in (Verb.START, Verb.WHY) for name in command.names}
