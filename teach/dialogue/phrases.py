@@ -155,8 +155,8 @@ def normalize(text: str) -> str:
     return " ".join(w for w in _words(text) if w not in _FILLERS)
 
 
-def _key(text: str) -> tuple[str, ...]:
-    """The words of a phrase that matter for matching."""
+def phrase_key(text: str) -> tuple[str, ...]:
+    """The words of a phrase that matter for matching: two phrases with one key read the same."""
     return tuple(w for w in _words(text) if w not in _IGNORED)
 
 
@@ -270,7 +270,7 @@ class PhraseBook:
 
     def _enter(self, entry: _Entry) -> None:
         """The first phrase of each kind keeps a key: an action and an event may share one."""
-        key = _key(entry.phrase)
+        key = phrase_key(entry.phrase)
         if key:
             entries = self._entries.setdefault(key, [])
             if all(e.kind != entry.kind for e in entries):
@@ -288,13 +288,13 @@ class PhraseBook:
 
     def topic_in(self, text: str) -> str | None:
         """The object a line names last ("start ball found": the ball), or None."""
-        return self._last_noun(_key(text))
+        return self._last_noun(phrase_key(text))
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """The object named last in ``tokens``: what "it" means in the next line."""
         topic = None
         for token in tokens:
-            topic = self._last_noun(_key(token.text)) or topic
+            topic = self._last_noun(phrase_key(token.text)) or topic
         return topic
 
     # --- parsing ------------------------------------------------------------------------------------
@@ -319,14 +319,14 @@ class PhraseBook:
         later part of the line)."""
         candidate = replace(suggestion.candidate, guessed=False)
         tokens = [*suggestion.before, candidate]
-        topic = self._last_noun(_key(candidate.text)) or suggestion.topic
+        topic = self._last_noun(phrase_key(candidate.text)) or suggestion.topic
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
     def _read(self, chunks: list[str], lang: str, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = _key(chunk)
+            words = phrase_key(chunk)
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -340,7 +340,7 @@ class PhraseBook:
                 if typo is None:
                     raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
                 tokens.append(typo)
-                topic = self._last_noun(_key(typo.text)) or topic
+                topic = self._last_noun(phrase_key(typo.text)) or topic
                 continue
             for number, piece in enumerate(pieces):
                 said = chunk if len(pieces) == 1 else " ".join(piece.words)
