@@ -46,14 +46,15 @@ UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängi
 NOTHING_TO_REDO = Text("Nothing to redo: 'redo' brings back what the last 'undo' took, until you do something new.",
                        "Nichts wiederherzustellen: 'wiederherstellen' bringt zurück, was das letzte 'zurück' "
                        "genommen hat, solange du nichts Neues tust.")
+REDONE_ONE_STEP = Text("Back again: step {first} ({steps}).", "Wieder da: Schritt {first} ({steps}).")
 REDONE_STEPS = Text("Back again: steps {first} to {last} ({steps}).",
                     "Wieder da: Schritte {first} bis {last} ({steps}).")
-REDONE_DEMONSTRATION = Text("Back again: demonstration {name}, learned again.",
-                            "Wieder da: Vorführung {name}, wieder gelernt.")
+REDONE_DEMONSTRATION = Text("Back again: your demonstration {name}, learned again.",
+                            "Wieder da: deine Vorführung {name}, wieder gelernt.")
 REDONE_LEARNING = Text("Back again: what the last undo took.", "Wieder da: was das letzte Zurücknehmen genommen hat.")
 REDONE_ANSWER = Text("Back again: your answer to “{question}”.", "Wieder da: deine Antwort auf „{question}“.")
-UNDONE_DEMONSTRATION = Text("Undone: demonstration {name} (set aside, not learned).",
-                            "Rückgängig: Vorführung {name} (beiseitegelegt, nicht gelernt).")
+UNDONE_DEMONSTRATION = Text("Undone: your demonstration {name} (set aside, not learned).",
+                            "Rückgängig: deine Vorführung {name} (beiseitegelegt, nicht gelernt).")
 UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: deine Antwort auf „{question}“.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
@@ -105,6 +106,17 @@ GENERATION_PLAIN = Text("Generation {generation} saved: I can do {reproduced} of
                         "as you showed them.",
                         "Generation {generation} gespeichert: ich kann {reproduced} von deinen {total} Vorführungen so "
                         "nachmachen, wie du sie gezeigt hast.")
+GENERATION_PLAIN_ALL = Text("Generation {generation} saved: I can do all {total} of your demonstrations just as you "
+                            "showed them.",
+                            "Generation {generation} gespeichert: ich kann alle {total} Vorführungen so nachmachen, "
+                            "wie du sie gezeigt hast.")
+GENERATION_PLAIN_THE_ONE = Text("Generation {generation} saved: I can do your demonstration just as you showed it.",
+                                "Generation {generation} gespeichert: ich kann deine Vorführung so nachmachen, wie du "
+                                "sie gezeigt hast.")
+GENERATION_PLAIN_NOT_THE_ONE = Text("Generation {generation} saved: I cannot yet do your demonstration just as you "
+                                    "showed it.",
+                                    "Generation {generation} gespeichert: deine Vorführung kann ich noch nicht so "
+                                    "nachmachen, wie du sie gezeigt hast.")
 LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {steps} gelernt")
 ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
@@ -128,9 +140,10 @@ SOURCE_ANSWER = Text("your answer to question {number}", "deine Antwort auf Frag
 WHY_PRE = Text("I {action} only when {condition}: that held every time you showed it ({sources})",
                "Ich mache „{action}“ nur, wenn gilt: {condition}; das galt jedes Mal, als du es gezeigt hast "
                "({sources})")
-WHY_EFFECT = Text("I {action} to make “{condition}” true: that is what it did when it was shown or named ({sources})",
-                  "Ich mache „{action}“, damit gilt: {condition}; das hat es getan, als es gezeigt oder genannt wurde "
-                  "({sources})")
+WHY_EFFECT = Text("I {action} to make “{condition}” true: doing it made that true when it was shown or named "
+                  "({sources})",
+                  "Ich mache „{action}“, damit gilt: {condition}; das hat es bewirkt, als es gezeigt oder genannt "
+                  "wurde ({sources})")
 WHY_LAST_RESORT = Text("if nothing else works, I still try to {action} to make “{condition}” true",
                        "wenn nichts anderes geht, versuche ich trotzdem „{action}“, damit gilt: {condition}")
 WHY_EXCEPTION = Text("in one situation you showed me something else, so there I {action} ({sources})",
@@ -153,6 +166,8 @@ ONE_ACTION = Text("Please answer with one action, 'done' or 'skip'.",
                   "Bitte antworte mit einer Handlung, 'fertig' oder 'weiter'.")
 CONTRADICTS = Text("That contradicts what you showed me: {why}", "Das widerspricht dem Gezeigten: {why}")
 THANKS = Text("Thank you. {change}", "Danke. {change}")
+NO_TO_WHAT = Text("No question is open. If my last step was wrong, say 'undo' (or 'that was wrong').",
+                  "Es ist keine Frage offen. War mein letzter Schritt falsch, sag 'zurück' (oder 'das war falsch').")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")
@@ -195,17 +210,17 @@ BUT = Text(" but ", " aber ")
 
 # --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
 QUOTED = Text("“{text}”", "„{text}“")
-ASK_TIMING = Text("When you {act}: must {cond} already hold before you start, or does it only hold afterwards? "
+ASK_TIMING = Text("When I {act}: must {cond} already hold before I start, or does it only hold afterwards? "
                   "(before / after / both / neither)",
                   "Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
                   "(vorher / nachher / beides / keins)")
-ASK_EFFECTS = Text("What is different after you {act}? (what is true then, or “nothing”)",
+ASK_EFFECTS = Text("What is different after I {act}? (what is true then, or “nothing”)",
                    "Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
-ASK_ACHIEVER = Text("What do you do so that {cond}? (an action, or “nothing”)",
-                    "Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
-ASK_ORDER = Text("What do you do first: {act} or {other}? (one of them, or “either”)",
-                 "Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
-ASK_NEVER = Text("Can you {act} while {opposite}? (yes / no)", "Kannst du {act}, wenn {opposite}? (ja / nein)")
+ASK_ACHIEVER = Text("What should I do so that {cond}? (an action, or “nothing”)",
+                    "Was soll ich tun, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+ASK_ORDER = Text("What should I do first: {act} or {other}? (one of them, or “either”)",
+                 "Was soll ich zuerst tun: {act} oder {other}? (eins davon, oder „egal“)")
+ASK_NEVER = Text("Can I {act} while {opposite}? (yes / no)", "Kann ich {act}, wenn {opposite}? (ja / nein)")
 SO_MAKES_TRUE_NOT_BEFORE = Text("So {act} makes {cond} true; it need not hold before.",
                                 "Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
 SO_UNRELATED = Text("So {cond} has nothing to do with {act}.", "Also hat {cond} nichts mit {act} zu tun.")
@@ -269,14 +284,17 @@ QUESTIONS_ASKED = Text("{count} questions asked", "{count} Fragen gestellt")
 TOOLBAR_PLAIN = Text(" {mode} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
                      " {mode} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
 
-OPEN_ON_QUIT = Text("You have shown me {count} step(s) I have not learned yet: say 'done' to learn them, 'cancel' to "
-                    "drop them, or quit again to leave without them.",
-                    "Du hast mir {count} Schritt(e) gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
-                    "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal, um ohne sie zu gehen.")
+OPEN_ON_QUIT = Text("You have shown me {steps} I have not learned yet: say 'done' to learn them, 'cancel' to "
+                    "drop them, or quit again: they stay open, and --resume brings them back.",
+                    "Du hast mir {steps} gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
+                    "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal: sie bleiben offen, und "
+                    "--resume bringt sie zurück.")
+STEP_COUNT = Text("{count} step", "{count} Schritt")
+STEPS_COUNT = Text("{count} steps", "{count} Schritte")
 
-OPEN_RESTORED = Text("The demonstration you had started is still open ({count} step(s)): 'steps' lists them, "
+OPEN_RESTORED = Text("The demonstration you had started is still open ({steps}): 'steps' lists them, "
                      "'done' learns it, 'cancel' drops it.",
-                     "Die Vorführung, die du angefangen hattest, ist noch offen ({count} Schritt(e)): 'schritte' "
+                     "Die Vorführung, die du angefangen hattest, ist noch offen ({steps}): 'schritte' "
                      "zeigt sie, 'fertig' lernt sie, 'abbrechen' verwirft sie.")
 
 # --- durability (issue 14)
@@ -373,10 +391,10 @@ SITUATION_RESTORED_ANEW = Text("I set up the last situation again (the simulatio
 SITUATION_NOT_RESTORED = Text("I could not set up the last situation again ({situation}); we go on from here:",
                               "Ich konnte die letzte Situation nicht wieder aufbauen ({situation}); wir machen von "
                               "hier aus weiter:")
-RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {count} step(s) I had finished "
+RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {steps} I had finished "
                     "are the start of a correction ('steps' lists them, 'done' learns it, 'cancel' drops it); the "
                     "world is set up as it was before {action}.",
-                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {count} Schritt(e), die ich "
+                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {steps}, die ich "
                     "fertig hatte, sind der Anfang einer Korrektur ('schritte' zeigt sie, 'fertig' lernt sie, "
                     "'abbrechen' verwirft sie); die Welt ist wieder so wie vor {action}.")
 RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} had just begun): the world is set up "
@@ -386,9 +404,9 @@ RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} ha
 # --- guiding by dragging in the MuJoCo viewer (issue 12, viewer)
 HAND_NEEDS_VIEWER = Text("'guide hand' follows your drag in the MuJoCo viewer: start the session with --viewer.",
                          "'führen hand' folgt deinem Ziehen im MuJoCo-Viewer: starte die Sitzung mit --viewer.")
-HAND_FOLLOWING = Text("I follow your hand in the viewer: double-click the robot, then Ctrl + right-drag moves me and "
+HAND_FOLLOWING = Text("I follow the mouse in the viewer: double-click the robot, then Ctrl + right-drag moves me and "
                       "Ctrl + left-drag turns me; drag the ball or the bin the same way. Let go when you are done.",
-                      "Ich folge deiner Hand im Viewer: doppelklicke auf den Roboter, dann bewegt mich Strg + "
+                      "Ich folge der Maus im Viewer: doppelklicke auf den Roboter, dann bewegt mich Strg + "
                       "Rechtsziehen und Strg + Linksziehen dreht mich; Ball und Eimer ziehst du genauso. Lass los, "
                       "wenn du fertig bist.")
 HAND_THE_BALL = Text("the ball", "den Ball")

@@ -22,19 +22,19 @@ def test_table_6_1_in_english_and_german(ball):
     assert tree_lines(tree, ball, "en") == [
         "When the ball is in the bin, I am done.",
         "Otherwise I do the first that fits:",
-        "  – if the ball is not in your hand and you cannot see the ball, I find the ball",
-        "  – if the ball is not in your hand and the ball is out of reach, I go to the ball",
-        "  – if the ball is not in your hand, I grasp the ball",
+        "  – if the ball is not in my hand and I cannot see the ball, I find the ball",
+        "  – if the ball is not in my hand and the ball is out of reach, I go to the ball",
+        "  – if the ball is not in my hand, I grasp the ball",
         "  – if the bin is out of reach, I go to the bin",
         "  – otherwise, I put the ball in the bin",
     ]
     assert tree_lines(tree, ball, "de") == [
         "Ich bin fertig, sobald gilt: der Ball ist im Eimer.",
         "Sonst tue ich das Erste, was passt:",
-        "  – wenn gilt: du hast den Ball nicht in der Hand und du siehst den Ball nicht, dann: „Ball finden“",
-        "  – wenn gilt: du hast den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
+        "  – wenn gilt: ich habe den Ball nicht in der Hand und ich sehe den Ball nicht, dann: „Ball finden“",
+        "  – wenn gilt: ich habe den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
         "dann: „zum Ball gehen“",
-        "  – wenn gilt: du hast den Ball nicht in der Hand, dann: „Ball greifen“",
+        "  – wenn gilt: ich habe den Ball nicht in der Hand, dann: „Ball greifen“",
         "  – wenn gilt: der Eimer ist nicht in Reichweite, dann: „zum Eimer gehen“",
         "  – sonst: „Ball in den Eimer legen“",
     ]

@@ -45,6 +45,7 @@ _SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|\band\b|
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
 _TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close
 _SUGGEST_CUTOFF = 0.45  # similarity from which a phrase is offered as "Did you mean"
+_SUGGEST_MARGIN = 0.1  # ... when no other action or event comes this close
 _EVENT_SUGGEST_CUTOFF = _TYPO_CUTOFF  # outside "perturb" an event is offered only for a typo of it
 _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 
@@ -95,9 +96,11 @@ class Suggestion:
     topic: str | None = None  # the object named last before them
 
     def question(self) -> str:
+        """The whole reading so far with the guess at its end: a yes confirms what was shown, all of it."""
+        reading = ", ".join(t.text for t in (*self.before, self.candidate))
         if self.lang == "de":
-            return f"Meintest du „{self.candidate.text}“?"
-        return f"Did you mean “{self.candidate.text}”?"
+            return f"Meintest du „{reading}“?"
+        return f"Did you mean “{reading}”?"
 
 
 class UnknownPhrase(TeachError):
@@ -109,7 +112,10 @@ class UnknownPhrase(TeachError):
         self.suggestion = suggestion
         self.suggestions = [suggestion.candidate.text] + suggestions if suggestion is not None else suggestions
         shown = _shorten(text)
-        if lang == "de":
+        if suggestion is not None:
+            hint = " " + suggestion.question()
+            message = f"Das kenne ich nicht: „{shown}“.{hint}" if lang == "de" else f"I don't know “{shown}”.{hint}"
+        elif lang == "de":
             hint = f" Meintest du „{self.suggestions[0]}“?" if self.suggestions else ""
             message = f"Das kenne ich nicht: „{shown}“.{hint}"
         else:
@@ -500,10 +506,24 @@ class PhraseBook:
                 ratio, entry = event_ratio, event
         elif self._best(said, "action")[0] >= ratio:
             entry = None  # an action's words after "perturb": no event to offer
-        if entry is None or ratio < _SUGGEST_CUTOFF:
+        pronoun_event = entry is not None and entry.kind == "event" and ratio == 1.0
+        if entry is None or ratio < _SUGGEST_CUTOFF \
+                or not (pronoun_event or self._clearly_nearest(said, entry, ratio, lang)):
             return UnknownPhrase(chunk, [], lang)
         candidate = Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
         return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
+
+    def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: str) -> bool:
+        """Whether ``entry`` is the one phrase ``said`` is near: no phrase of another action or
+        event in the session's language comes within ``_SUGGEST_MARGIN``, and a word of it is one
+        the teacher typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"): "go get it" is
+        not "go to the bin"."""
+        rival = next((r for r, other in self._ranked(said) if other.name != entry.name and other.lang in (lang, "")),
+                     0.0)
+        if ratio - rival < _SUGGEST_MARGIN:
+            return False
+        theirs = [w for w in phrase_key(entry.phrase) if w not in _ARTICLES]
+        return any(_alike(mine, word) for mine in said.split() for word in theirs)
 
     def _text(self, entry: _Entry, lang: str) -> str:
         """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""
@@ -514,6 +534,15 @@ class PhraseBook:
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
         return found[-1] if found else None
+
+
+def _alike(typed: str, word: str) -> bool:
+    """A word the teacher typed stands for ``word``: three letters or more, spelled nearly like
+    it, inside it or its start; two letters only as the start of a longer word ("bi" for "bin",
+    never "go" for "go": words that short say nothing about which phrase was meant)."""
+    if len(typed) < 3:
+        return len(typed) == 2 and len(word) > 2 and word.startswith(typed)
+    return typed in word or _ratio(typed, word) >= _WORD_CUTOFF
 
 
 def _substituted(words: tuple[str, ...], noun: str) -> list[tuple[str, ...]]:

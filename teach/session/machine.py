@@ -284,6 +284,8 @@ class SessionManager:
         if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
         self._turn_questions = 0
+        if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
+            return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if command is None:
             return self._teach_actions(line)
         return self._handler(command)(rest)
@@ -361,8 +363,9 @@ class SessionManager:
 
     def _learning_text(self, event: Event, demo: m.Text, answer: m.Text, other: m.Text) -> str:
         """What an undo or redo moved, in words: the demonstration's name or the question answered."""
-        if isinstance(event, DemoLearned):
-            return demo(self.lang, name=Path(event.file).stem)
+        if isinstance(event, DemoLearned):  # demo-004.csv is "4", the teacher's fourth
+            number = re.fullmatch(r"demo-0*([0-9]+)", Path(event.file).stem)
+            return demo(self.lang, name=number.group(1) if number else Path(event.file).stem)
         if isinstance(event, Answered):
             return answer(self.lang, question=event.question)
         return other(self.lang)
@@ -401,7 +404,9 @@ class SessionManager:
                 self.open.add(step, words)
             self.world.arrange(taken.world_after)
             self._save_open()
-            text = m.REDONE_STEPS(self.lang, first=taken.first, last=len(self.open.steps), steps="; ".join(taken.words))
+            last = len(self.open.steps)
+            text = (m.REDONE_ONE_STEP if last == taken.first else m.REDONE_STEPS)(
+                self.lang, first=taken.first, last=last, steps="; ".join(taken.words))
             return [Reply(ReplyKind.INFO, text), self._state_reply()]
         back = redoable(self.journal.events)
         if not back or open_steps:
@@ -528,7 +533,9 @@ class SessionManager:
         return None
 
     def _node_named(self, text: str) -> str:
-        """The action or condition ``why`` asks about, named by its label, a phrase or its name in any case."""
+        """The action or condition ``why`` asks about: its label, its name in any case, or any
+        words the prompt would take as that one step ("grab it", a typo), also a verb alone
+        ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""
         condition = self._condition_named(text)
         if condition is not None:
             return condition
@@ -536,12 +543,14 @@ class SessionManager:
         for action in self.domain.actions:
             if key in {normalize(action.name), normalize(_spelled(action.name))}:
                 return action.name
-        try:
-            tokens = self.phrases.parse(text, self.lang)
-        except UnknownPhrase:
-            return text.strip()
-        actions = [t for t in tokens if t.kind == "action" and not t.guessed]
-        return actions[0].name if len(actions) == 1 and len(tokens) == 1 else text.strip()
+        for words in (text, f"{text} it", f"it {text}"):
+            try:
+                tokens = self.phrases.parse(words, self.lang, topic=self.topic)
+            except UnknownPhrase:
+                continue
+            if len(tokens) == 1 and tokens[0].kind == "action":
+                return tokens[0].name
+        return text.strip()
 
     def cmd_reset(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
@@ -580,7 +589,7 @@ class SessionManager:
         steps = len(self.open.steps) if self.open is not None else 0
         if steps and self._quit_warned_at != self.step - 1:  # not right after the warning
             self._quit_warned_at = self.step
-            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, count=steps))]
+            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, steps=_steps(steps, self.lang)))]
         self.finished = True
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
@@ -882,7 +891,7 @@ class SessionManager:
         report = replay(pruned, self.domain, self.demos)
         self.observer.on_replay(report.reproduced, report.total)
         # node counts and the file are for the facilitator; the teacher hears what it means
-        summary = (m.GENERATION if self.facilitator else m.GENERATION_PLAIN)(
+        summary = (m.GENERATION if self.facilitator else _reproduced_text(report.reproduced, report.total))(
             self.lang, generation=self.generation, nodes=size(pruned), unpruned=size(self.learning.tree), path=path,
             reproduced=report.reproduced, total=report.total)
         replies = self._flush([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
@@ -1056,10 +1065,10 @@ class SessionManager:
             self.open.add(Step(state, action, number), words)
         if run:
             label = self.domain.action(run).label(self.lang)
-            text = m.RUN_RESTORED(self.lang, action=label, count=len(steps)) if steps else \
+            text = m.RUN_RESTORED(self.lang, action=label, steps=_steps(len(steps), self.lang)) if steps else \
                 m.RUN_RESTORED_NO_STEPS(self.lang, action=label)
         else:
-            text = m.OPEN_RESTORED(self.lang, count=len(steps))
+            text = m.OPEN_RESTORED(self.lang, steps=_steps(len(steps), self.lang))
         self.restored = [Reply(ReplyKind.INFO, text)]
 
     def _tree_reply(self, tree: Node, full: bool = False) -> Reply:
@@ -1116,6 +1125,18 @@ _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
     """The text for ``count`` things: "no questions", "1 question", "2 questions"."""
     return none if count == 0 else one if count == 1 else many
+
+
+def _steps(count: int, lang: str) -> str:
+    """How many steps, in words: "1 step", "3 steps"."""
+    return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
+
+
+def _reproduced_text(reproduced: int, total: int) -> m.Text:
+    """How many demonstrations the new tree does as shown, said for one, all or some of them."""
+    if total == 1:
+        return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
+    return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
 
 
 def _spelled(name: str) -> str:
