@@ -309,6 +309,10 @@ STDIN_IS_A_FILE = Text("standard input is a file, not a terminal: replay it with
                        "die Standardeingabe ist eine Datei, kein Terminal: spiele sie mit `teach replay DATEI` ab")
 UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an action of the domain",
                               "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
+SYMBOLIC_INSTEAD = Text("the MuJoCo world cannot tell whether “{condition}”: this session uses the symbolic world "
+                        "(--world symbolic)",
+                        "die MuJoCo-Welt kann nicht erkennen, ob „{condition}“: diese Sitzung nutzt die symbolische "
+                        "Welt (--world symbolic)")
 # --- guiding the robot in a session (issue 12, the guide helper)
 GUIDING_NEEDS_MUJOCO = Text("Guiding moves the robot's body: it needs the MuJoCo world (start the session with "
                             "--world mujoco).",
