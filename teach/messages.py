@@ -87,6 +87,16 @@ THOUGHT_DONE = Text("I thought I was done, but {unmet}. Show me how to go on, th
                     "Ich dachte, ich bin fertig, aber {unmet}. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
 STUCK = Text("I got stuck ({outcome}). Show me how to go on, then say 'done'.",
              "Ich komme nicht weiter ({outcome}). Zeig mir, wie es weitergeht, dann sag 'fertig'.")
+TRIED_FAILED = Text("I tried to {action}, but it did not work: {reason}.",
+                    "Ich habe „{action}“ versucht, aber es ging nicht: {reason}.")
+TRIED_FAILED_TIMES = Text("I tried to {action} {times} times, but it did not work: {reason}.",
+                          "Ich habe „{action}“ {times}-mal versucht, aber es ging nicht: {reason}.")
+STOPPED_DURING = Text("Stopped (the last thing I began was “{action}”). Show me how to go on from here, then say "
+                      "'done'.",
+                      "Angehalten (zuletzt hatte ich „{action}“ begonnen). Zeig mir, wie es von hier weitergeht, "
+                      "dann sag 'fertig'.")
+STUCK_AFTER_TRYING = Text("I got stuck. Show me how to go on, then say 'done'.",
+                          "Ich komme nicht weiter. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
 NOT_RUNNING = Text("The robot is not running.", "Der Roboter läuft gerade nicht.")
 ROBOT_RUNNING = Text("robot running, Ctrl-C interrupts ...", "Roboter läuft, Strg-C hält ihn an ...")
 WHOLE_NUMBER = Text("expected a whole number, not {text!r}", "erwartet eine ganze Zahl, nicht {text!r}")

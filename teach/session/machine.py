@@ -70,6 +70,7 @@ from teach.session.journal import (
 )
 from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
+from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_not
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
@@ -450,8 +451,13 @@ class SessionManager:
             self._flush([self._event_reply(event)])
 
         self.observer.on_run_start(tree)
-        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
-                                stop_after=stop_after, on_action=announce, on_event=heard)
+        ticker = self.world.ticker
+        watch = self.world.ticker = TryWatch(ticker, tree, self.world.state)  # what failed, for the teacher
+        try:
+            result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
+                                    stop_after=stop_after, on_action=announce, on_event=heard)
+        finally:
+            self.world.ticker = ticker
         self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         finished = result.outcome is Outcome.SUCCESS and not unmet
@@ -473,13 +479,19 @@ class SessionManager:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
         replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
+        tried = tried_lines(failed_tries(watch, started, result), self.domain, self.lang)
+        replies += [Reply(ReplyKind.INFO, line) for line in tried]
         if finished:
             replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
             return replies + [self._state_reply()]
-        if result.outcome is Outcome.INTERRUPTED:
+        if result.outcome is Outcome.INTERRUPTED and stop_after is None and started:  # Ctrl-C: say where
+            message = m.STOPPED_DURING(self.lang, action=self.domain.action(started[-1][1]).label(self.lang))
+        elif result.outcome is Outcome.INTERRUPTED:
             message = m.STOPPED(self.lang)
         elif result.outcome is Outcome.SUCCESS:
             message = m.THOUGHT_DONE(self.lang, unmet=unmet)
+        elif result.outcome is Outcome.FAILURE and tried:  # what failed is said above
+            message = m.STUCK_AFTER_TRYING(self.lang)
         else:
             message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
@@ -680,7 +692,8 @@ class SessionManager:
             label = self.domain.action(token.name).label(self.lang)
             if not result.ok:
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
-                                                                  reason=self._why_not(token.name, result.before))))
+                                                                  reason=why_not(self.domain, token.name, result.before,
+                                                                                 self.lang))))
                 if self.facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
@@ -735,13 +748,6 @@ class SessionManager:
             return []
         words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
         return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
-
-    def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
-        """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
-        values = dict(zip(self.domain.condition_names, state, strict=True))
-        missing = [self.domain.condition(p.name).label(self.lang, p.value)
-                   for p in self.domain.action(action).pre if values[p.name] != p.value]
-        return m.IT_NEEDS(self.lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(self.lang)
 
     def _finish_demo(self) -> list[Reply]:
         assert self.open is not None
