@@ -301,7 +301,9 @@ class SessionManager:
     def cmd_guide(self, rest: str) -> list[Reply]:
         if not self.guiding.can_guide():
             return self.guiding.refusal()
-        return self.guiding.command(rest) + [self._state_reply()]
+        replies = self.guiding.command(rest) + [self._state_reply()]
+        feedback = self.guiding.feedback()  # what a person steering by the keys needs to know
+        return replies + ([feedback] if feedback is not None else [])
 
     def _guiding_first(self, line: str, command: Command | None) -> list[Reply] | None:
         """A labelling question takes the line as its answer; a line that is not guiding ends
