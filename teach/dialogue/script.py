@@ -97,7 +97,7 @@ def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, line in script.lines:
         command, rest = parse_command(command_hint(line, lang, COMMAND_WORDS) or line)  # "ok done", as the session
-        if command is not None and command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
+        if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
             from teach.sim.guide import parse_guide_line
 
             parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line

@@ -126,7 +126,7 @@ class Guiding:
             command = parse_guide_line(f"guide {rest}")
         except FormatError as error:
             raise TeachError(error.message) from None
-        if command == "hand":
+        if command.verb == "hand":
             return self.follow_hand(command.amount)
         replies = self.manager._flush(self.begin())
         assert self.guide is not None

@@ -86,13 +86,13 @@ class Terminal:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
         command, rest = self.manager.command(line)
-        if command is not None and command is Verb.GUIDE and not rest.strip() \
+        if command is Verb.GUIDE and not rest.strip() \
                 and self.manager.mode is not Mode.ASKING:
             self.manager.handle(line)
             if self.manager.guiding.active:
                 self._guide_mode()
             return
-        if command is None or command is not Verb.RUN or self.manager.mode is Mode.ASKING \
+        if command is not Verb.RUN or self.manager.mode is Mode.ASKING \
                 or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
             return
