@@ -29,15 +29,14 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
+from oracle_answers import ReferenceTeacher, ask  # noqa: E402
 from random_domains import SIZES, demonstrations, domains  # noqa: E402
 
-from teach.bt.nodes import Node, Status  # noqa: E402
-from teach.bt.tick import CompiledTree, compile_tree  # noqa: E402
+from teach.bt.nodes import Node  # noqa: E402
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.demos import Demonstration, read_demo_set  # noqa: E402
-from teach.domain import Domain, State  # noqa: E402
+from teach.domain import Domain  # noqa: E402
 from teach.errors import LearnError  # noqa: E402
-from teach.learn.inquiry import next_question  # noqa: E402
 from teach.learn.learner import Learner, learn_online  # noqa: E402
 from teach.learn.model import learn_detect  # noqa: E402
 from teach.learn.specialize import specialize  # noqa: E402
@@ -49,20 +48,10 @@ EVENT_CHANCE = 0.2
 QUESTIONS = 5
 
 
-def ask(learner: Learner, teacher: CompiledTree, budget: int) -> int:
-    """Up to ``budget`` situation questions answered by ``teacher`` (FAILURE: the teacher
-    skips, the question is still charged); returns how many were asked."""
-    asked: list[State] = []
-    for number in range(budget):
-        question = next_question(learner, asked)
-        if question is None:
-            return number
-        asked.append(question.state)
-        status, action = teacher(question.state)
-        if status is Status.FAILURE:
-            continue
-        learner.teach_step(question.state, action if status is Status.RUNNING else None, f"question {number + 1}")
-    return budget
+def ask_of(learner: Learner, teacher: ReferenceTeacher, budget: int) -> int:
+    """Up to ``budget`` questions answered by ``teacher`` (``bench/oracle_answers.py``; a
+    FAILURE there is a skip, still charged); returns how many were asked."""
+    return len(list(ask(learner, teacher, budget)))
 
 
 def share(tree: Node | None, domain: Domain, tests: list[Demonstration]) -> float:
@@ -104,7 +93,7 @@ def run_size(n: int, m: int, seeds: int) -> dict[int, Row]:
                 _add(row, approach, share(tree, hidden.domain, tests))
                 _add(row, f"{approach} refusals", float(tree is None))
             if k == 2:
-                ask(learner, hidden.compiled, QUESTIONS)
+                ask_of(learner, ReferenceTeacher(hidden.teacher, hidden.domain), QUESTIONS)
                 _add(row, "2+questions", share(learner.tree, hidden.domain, tests))
     return rows
 
@@ -117,12 +106,12 @@ def ball() -> list[tuple[str, int, int, int]]:
     """(training set, questions allowed, questions asked, reproduced of Δ5)."""
     sets = ROOT / "demos" / "ball"
     domain, delta5 = read_demo_set(sets / "delta5")
-    oracle = compile_tree(read_tree(sets / "reference" / "table61.xml"), domain.condition_names)
+    oracle = ReferenceTeacher(read_tree(sets / "reference" / "table61.xml"), domain)
     result = []
     for name, budget in (("delta4", 0), ("delta4", 5), ("delta3", 0), ("delta3", 2)):
         _domain, train = read_demo_set(sets / name, domain)
         learner = learn_online(domain, train)
-        asked = ask(learner, oracle, budget)
+        asked = ask_of(learner, oracle, budget)
         result.append((name, budget, asked, count_reproduced(learner.tree, domain, delta5)))
     return result
 
@@ -132,11 +121,11 @@ def snacks() -> list[tuple[int, int, int, int, int]]:
     sets = ROOT / "demos" / "snacks"
     domain, train = read_demo_set(sets / "train")
     _domain, held_out = read_demo_set(sets / "heldout", domain)
-    oracle = compile_tree(read_tree(sets / "reference" / "reference.xml"), domain.condition_names)
+    oracle = ReferenceTeacher(read_tree(sets / "reference" / "reference.xml"), domain)
     result = []
     for count, budget in ((len(train), 0), (3, 0), (3, QUESTIONS)):
         learner = learn_online(domain, train[:count])
-        asked = ask(learner, oracle, budget)
+        asked = ask_of(learner, oracle, budget)
         result.append((count, budget, asked, count_reproduced(learner.tree, domain, held_out), len(held_out)))
     return result
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from teach.dialogue.model_repair import ModelOracle
-from teach.dialogue.oracle import Oracle, answer_open_questions
+from teach.dialogue.oracle import SituationOracle, answer_open_questions
 from teach.session.machine import SessionManager
 
 MARKER = "Session "
@@ -38,7 +38,8 @@ def journal_key(path: Path) -> str:
     return json.dumps(data, sort_keys=True)
 
 
-def drive(manager: SessionManager, lines: list[str], start: int, oracle: Oracle, model_oracle: ModelOracle,
+def drive(manager: SessionManager, lines: list[str], start: int, oracle: SituationOracle,
+          model_oracle: ModelOracle,
           after_line: Callable[[int], None] | None = None) -> None:
     """Type ``lines[start:]`` as the scripted driver does (questions answered by the oracle before
     each line); ``after_line(i)`` sees the session once line ``i`` and its answers are through."""

@@ -2,10 +2,16 @@
 
 Example:
     teach bench-teach demos/ball/delta4 demos/ball/delta5 --oracle demos/ball/reference/table61.xml --questions 5
+    teach bench-teach demos/ball/delta4 demos/ball/delta5 --oracle-model demos/ball/domain.toml -o learned.xml
 
 Learns with the session's own learner and question selector, answers every question from
 the oracle, then replays TEST_DIR: ends with `reproduced K/N` under the strict replay (the
-lenient figure beside it).
+lenient figure beside it). `-o TREE.xml` writes the tree learned after the questions (the
+one replayed), as `teach learn -o` does: an existing file is replaced, atomically.
+
+`--oracle-model` answers each question with the first step of a shortest plan from the
+question's own situation in that model; a question in a situation from which the model's
+goal cannot be reached is refused (one line, exit status 2, nothing written).
 """
 
 from __future__ import annotations
@@ -29,11 +35,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--domain", type=Path, help="domain.toml (default: found beside the demonstrations)")
     parser.add_argument("--lang", choices=("en", "de"), default="en")
     parser.add_argument("--json", action="store_true", help="print machine-readable JSON")
+    parser.add_argument("-o", "--output", type=Path, metavar="TREE.xml",
+                        help="write the tree learned after the questions")
+
+
+def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command writes, checked and locked before it runs (teach.lock.claim_outputs)."""
+    return [("file", args.output)] if args.output else []
 
 
 def run(args: argparse.Namespace) -> int:
     import tempfile
 
+    from teach.bt.xml import write_tree
     from teach.demos import read_demo_set
     from teach.dialogue.oracle import answer_open_questions, oracle_from_model, oracle_from_tree
     from teach.domain import load_domain
@@ -74,13 +88,18 @@ def run(args: argparse.Namespace) -> int:
         raise TeachError("the training demonstrations show no action, so there is nothing to learn", args.train)
     strict = replay(tree, domain, test)
     lenient = replay(tree, domain, test, lenient=True)
+    if args.output:
+        write_tree(args.output, tree)  # checked before learning (see outputs)
     if args.json:
-        print(json.dumps({"questions": asked, "reproduced": strict.reproduced, "total": strict.total,
-                          "lenient": lenient.reproduced}, indent=2, ensure_ascii=False))
+        summary = {"questions": asked, "reproduced": strict.reproduced, "total": strict.total,
+                   "lenient": lenient.reproduced}
+        print(json.dumps(summary | ({"tree": str(args.output)} if args.output else {}), indent=2, ensure_ascii=False))
         return 0
     for number, item in enumerate(asked, start=1):
         print(f"Q{number}: {item['question']}")
         print(f"    answer: {item.get('answer', '-')}  ->  {item.get('change', '')}")
     print(f"{len(asked)} questions asked (budget {args.questions})")
     print(f"reproduced {strict.reproduced}/{strict.total} (strict); lenient {lenient.reproduced}/{lenient.total}")
+    if args.output:
+        print(f"tree learned after the questions -> {args.output}")
     return 0

@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
 
     from teach import messages as m
     from teach.dialogue.model_repair import ModelOracle
-    from teach.dialogue.oracle import oracle_from_model, oracle_from_tree
+    from teach.dialogue.oracle import SituationOracle, oracle_from_model, oracle_from_tree
     from teach.dialogue.phrases import PhraseBook
     from teach.dialogue.script import check_lines, read_script
     from teach.domain import load_domain
@@ -81,7 +81,8 @@ def run(args: argparse.Namespace) -> int:
     domain = session_domain(settings)
     if not args.lenient:
         check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)
-    oracle, model_oracle = None, None
+    oracle: SituationOracle | None = None
+    model_oracle: ModelOracle | None = None
     if args.oracle:
         oracle = oracle_from_tree(args.oracle, domain)
     elif args.oracle_model:

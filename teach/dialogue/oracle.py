@@ -3,13 +3,13 @@ teacher who knows what they want would, from a reference tree or a true action m
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from teach.bt.nodes import Node, Status, action_names, condition_names
 from teach.bt.tick import compile_tree
-from teach.domain import Domain, State, load_domain
+from teach.domain import Domain, Literal, State, load_domain
 from teach.errors import DomainError
 
 if TYPE_CHECKING:
@@ -44,18 +44,87 @@ def oracle_from_tree(path: str | Path, domain: Domain) -> Oracle:
     return Oracle(read_tree(path), domain, str(path))
 
 
-def oracle_from_model(path: str | Path, domain: Domain) -> Oracle:
-    """The teacher knows the true action model: they would do what planning on it does."""
-    from teach.learn.pabt import expand
-
+def oracle_from_model(path: str | Path, domain: Domain) -> PlanningOracle:
+    """The teacher knows the true action model: they would do what an optimal plan from the
+    question's own situation does (see ``PlanningOracle``)."""
     model = load_domain(path)
     if model.condition_names != domain.condition_names:
         raise DomainError("the model's conditions differ from the session's domain", path)
-    return Oracle(expand(model)[-1], domain, str(path))
+    return PlanningOracle(model, domain, str(path))
 
 
-def answer_open_questions(manager: SessionManager, oracle: Oracle | None, model_oracle: ModelOracle | None = None,
-                          said: Callable[[str], None] | None = None) -> None:
+class PlanningOracle:
+    """Answers "what should I do in state s?" from a true action model: the first action of
+    the shortest plan from s to the model's goal (ties: the first in the model's action order,
+    searched breadth-first), or None where the goal holds. Only the situation asked about
+    matters, so a model whose goal some states cannot reach answers every other state; a
+    question in a state it cannot reach is refused (``DomainError``)."""
+
+    def __init__(self, model: Domain, domain: Domain, source: str = "model"):
+        if not model.goal:
+            raise DomainError("the model has no goal, so no question can be answered from it "
+                              "(goal = [...] in the domain file)", model.path)
+        unknown = sorted(set(model.action_names) - set(domain.action_names))
+        if unknown:
+            raise DomainError(f"the model has actions the domain does not know: {', '.join(unknown)}", model.path)
+        self.model, self.source = model, source
+        self._goal = _masks(model, model.goal)
+        self._actions = [(a.name, _masks(model, a.pre), _masks(model, a.ram)) for a in model.actions]
+        self._answers: dict[int, str | None] = {}
+
+    def answer(self, state: State) -> str | None:
+        start = sum(1 << i for i, value in enumerate(state) if value)
+        if start not in self._answers:
+            self._answers[start] = self._plan_from(start, state)
+        return self._answers[start]
+
+    def _plan_from(self, start: int, state: State) -> str | None:
+        def reached(mask: int) -> bool:
+            return mask & self._goal[0] == self._goal[0] and not mask & self._goal[1]
+
+        if reached(start):
+            return None
+        first: dict[int, str] = {}
+        frontier = [start]
+        seen = {start}
+        while frontier:
+            following: list[int] = []
+            for mask in frontier:
+                for name, (need, forbid), (make, clear) in self._actions:
+                    if mask & need != need or mask & forbid:
+                        continue
+                    after = (mask | make) & ~clear
+                    if after in seen:
+                        continue
+                    seen.add(after)
+                    first[after] = first.get(mask, name)
+                    if reached(after):
+                        return first[after]
+                    following.append(after)
+            frontier = following
+        goal = " and ".join(str(literal) for literal in self.model.goal)
+        raise DomainError(f"a question asks what to do in [{self.model.describe(state)}], but from there the "
+                          f"model cannot reach its goal {goal}, so it cannot answer", self.model.path)
+
+
+def _masks(model: Domain, literals: Iterable[Literal]) -> tuple[int, int]:
+    """(the conditions that must be true, those that must be false) as bitmasks."""
+    true = false = 0
+    for literal in literals:
+        bit = 1 << model.index(literal.name)
+        if literal.value:
+            true |= bit
+        else:
+            false |= bit
+    return true, false
+
+
+SituationOracle = Oracle | PlanningOracle
+"""Either kind of oracle: ``answer(state)`` gives an action, None (done) or ``SKIP``."""
+
+
+def answer_open_questions(manager: SessionManager, oracle: SituationOracle | None,
+                          model_oracle: ModelOracle | None = None, said: Callable[[str], None] | None = None) -> None:
     """Answer the session's open questions through ``handle`` until none is open (each answer
     may raise another); ``said`` hears each answer before the session does."""
     while True:

@@ -6,14 +6,14 @@ from __future__ import annotations
 from rich.console import Console
 
 from teach.dialogue.model_repair import ModelOracle
-from teach.dialogue.oracle import Oracle, answer_open_questions
+from teach.dialogue.oracle import SituationOracle, answer_open_questions
 from teach.dialogue.script import Script
 from teach.session.machine import SessionManager
 from teach.terminal.view import render_reply, render_teacher
 
 
-def run_script(script: Script, manager: SessionManager, console: Console, oracle: Oracle | None = None,
-               model_oracle: ModelOracle | None = None) -> None:
+def run_script(script: Script, manager: SessionManager, console: Console,
+               oracle: SituationOracle | None = None, model_oracle: ModelOracle | None = None) -> None:
     """Every reply is printed as the session produces it, like the terminal does."""
     manager.live = lambda reply: console.print(render_reply(reply, manager.domain, manager.lang))
 

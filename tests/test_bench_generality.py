@@ -1,0 +1,96 @@
+"""The generality benches' smallest cases (bench/bench_ball_pairs.py, bench/bench_snacks_draws.py)
+and the parts they are built from: task outcomes in the true model, and answers from a reference tree."""
+
+from __future__ import annotations
+
+import sys
+
+from conftest import ROOT
+
+sys.path.insert(0, str(ROOT / "bench"))
+
+import bench_ball_pairs  # noqa: E402
+import bench_snacks_draws  # noqa: E402
+from oracle_answers import DONE, ReferenceTeacher, answer  # noqa: E402
+from task_outcomes import from_every_state, tally  # noqa: E402
+
+from teach.bt.nodes import Action, Condition, Fallback  # noqa: E402
+from teach.bt.xml import read_tree  # noqa: E402
+from teach.demos import read_demo_set  # noqa: E402
+from teach.domain import load_domain  # noqa: E402
+from teach.learn.inquiry import SituationQuestion  # noqa: E402
+from teach.learn.learner import learn_online  # noqa: E402
+from teach.replay import count_reproduced  # noqa: E402
+
+BALL = ROOT / "demos" / "ball"
+SNACKS = ROOT / "demos" / "snacks"
+
+
+def test_outcomes_in_the_true_ball_model():
+    model = load_domain(BALL / "domain.toml")
+    assert from_every_state(read_tree(BALL / "reference" / "table61.xml"), model)[0] == {"reached": 32}
+    # place the ball unless it is placed: right in the 16 placed states and the 4 ready to place;
+    # elsewhere the hand is empty or the bin out of reach
+    careless = Fallback((Condition("BallPlaced"), Action("PlaceBall")))
+    assert from_every_state(careless, model) == ({"reached": 20, "unsafe": 12},
+                                                 {"PlaceBall without BallGrasped": 8, "PlaceBall without BinClose": 4})
+    assert from_every_state(Condition("BallClose"), model)[0] == {"reached": 8, "false done": 8, "stuck": 16}
+    # finding the ball is all it knows: done once the ball is seen, placed or not
+    assert from_every_state(Fallback((Condition("BallFound"), Action("FindBall"))), model)[0] == \
+        {"reached": 16, "false done": 16}
+    # FindBall where the ball is already seen is unsafe (Table 6.1: pre !BallFound)
+    assert from_every_state(Action("FindBall"), model) == ({"unsafe": 32}, {"FindBall without !BallFound": 32})
+
+
+def test_yes_no_answers_from_the_table61_tree():
+    domain = load_domain(BALL / "domain.toml")
+    teacher = ReferenceTeacher(read_tree(BALL / "reference" / "table61.xml"), domain)
+    assert teacher.precondition_needed("PlaceBall", "BallGrasped", True)
+    assert teacher.precondition_needed("PlaceBall", "BinClose", True)
+    assert not teacher.precondition_needed("FindBall", "BinClose", False)  # it looks for the ball by the bin too
+    assert not teacher.precondition_needed("ApproachBin", "BallFound", True)  # a grasped ball need not be seen
+    assert teacher.goal_needed("BallPlaced", True) and not teacher.goal_needed("BallGrasped", True)
+
+
+def test_a_situation_answer_is_taught_and_says_whether_the_tree_changed():
+    domain, delta2 = read_demo_set(BALL / "delta2")
+    teacher = ReferenceTeacher(read_tree(BALL / "reference" / "table61.xml"), domain)
+    learner = learn_online(domain, delta2[:1])
+    state = (False, False, True, False, False)  # the ball in hand, nothing else: go to the bin
+    before = learner.answer_in(state)
+    answered = answer(learner, SituationQuestion(state, "gap"), teacher, "question 1")
+    assert answered.answer == teacher.does[state] == "ApproachBin" != DONE
+    assert learner.answer_in(state) == "ApproachBin"
+    assert answered.tree_changed == (before != "ApproachBin")
+
+
+def test_ball_pairs_smallest_case_the_thesis_pair():
+    ball = bench_ball_pairs.load()
+    pair = tuple(d for d in ball.delta2 if d.name in ("d01", "d33"))
+    runs = bench_ball_pairs.run_pair(ball, pair)  # type: ignore[arg-type]
+    assert runs[0].shows_all and runs[0].questions == 0 and len(runs) == 6
+    assert all(r.training_kept and sum(r.outcomes.values()) == 32 for r in runs)
+    # the thesis's specialization reproduced 35/43 from this pair; the default learner must not do worse
+    assert runs[0].reproduced >= 35
+    assert [len(r.answers) for r in runs] == list(range(6))
+
+
+def test_snacks_smallest_draw_is_the_generator_s_own_behaviour():
+    domain = load_domain(SNACKS / "domain.toml")
+    world = bench_snacks_draws.HiddenStateWorld(domain, bench_snacks_draws.load_world(SNACKS / "world.toml", domain))
+    data = bench_snacks_draws.draw(1, domain, world, bench_snacks_draws.generator())
+    assert len(data.train) == 10 and len(data.held_out) == 40
+    assert any(step.action == -1 for demo in data.train for step in demo.steps)  # events happen
+    reference = read_tree(SNACKS / "reference" / "reference.xml")
+    assert count_reproduced(reference, domain, data.train) == 10
+    assert count_reproduced(reference, domain, data.held_out) == 40
+    goalless = bench_snacks_draws.dataclasses.replace(domain, goal=())
+    quiet = bench_snacks_draws.HiddenStateWorld(domain, world.spec, events_in_runs=False)
+    rows = bench_snacks_draws.measure(goalless, ReferenceTeacher(reference, goalless), data, quiet, domain.goal)
+    assert [(r.demonstrations, r.budget, r.total) for r in rows] == [(10, 0, 40), (3, 0, 40), (3, 5, 40)]
+    assert all(sum(r.outcomes.values()) == 64 for r in rows)
+    # the reference behaviour reaches the goal from every start, whatever is on the tray
+    starts = bench_snacks_draws.starts(domain)
+    assert tally(reference, quiet, domain.goal, starts) == ({"reached": 64}, {})
+    learner = learn_online(goalless, data.train)
+    assert count_reproduced(learner.tree, goalless, data.train) == 10  # every training demonstration, strictly
