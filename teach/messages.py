@@ -98,6 +98,9 @@ STOPPED_DURING = Text("Stopped (the last thing I began was “{action}”). Show
 STUCK_AFTER_TRYING = Text("I got stuck. Show me how to go on, then say 'done'.",
                           "Ich komme nicht weiter. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
 NOT_RUNNING = Text("The robot is not running.", "Der Roboter läuft gerade nicht.")
+WAIT_OR_CTRL_C = Text("! I am running: wait until I finish, or press Ctrl-C to stop me (“{line}” is not kept).",
+                      "! Ich laufe gerade: warte, bis ich fertig bin, oder drück Strg-C, um mich anzuhalten "
+                      "(„{line}“ wird nicht aufgehoben).")
 ROBOT_RUNNING = Text("robot running, Ctrl-C interrupts ...", "Roboter läuft, Strg-C hält ihn an ...")
 WHOLE_NUMBER = Text("expected a whole number, not {text!r}", "erwartet eine ganze Zahl, nicht {text!r}")
 NOT_NEGATIVE = Text("the number cannot be negative", "die Zahl darf nicht negativ sein")

@@ -76,7 +76,7 @@ def source_words(source: str, lang: str) -> str:
 
 
 def literals_label(text: str, domain: Domain, lang: str) -> str:
-    """"!BallFound & BinClose" → "you cannot see the ball and the bin is within reach"."""
+    """"!BallFound & BinClose" → "I cannot see the ball and the bin is within reach"."""
     labels = []
     for part in text.split("&"):
         literal = Literal.parse(part)

@@ -526,7 +526,7 @@ class SessionManager:
 
     def _condition_names(self, text: str) -> list[str]:
         """The conditions a teacher names, as labels in either language ("the bin is within reach,
-        du siehst den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+        ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
         names: list[str] = []
         for part in (p for p in _PARTS.split(text) if p.strip()):
             whole = self._condition_named(part)

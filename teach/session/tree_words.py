@@ -4,7 +4,7 @@ A tree is read as an ordered list of rules, "the first that fits": each action w
 checks that must hold before it is ticked (a condition in a Sequence must hold, one in a
 Fallback must not), and "I am done" where the root succeeds. Read that way, the backchained
 trees the learners build say what a teacher would say: "When the ball is in the bin, I am
-done. Otherwise: if you cannot see the ball, I find the ball; ...". Checks that earlier
+done. Otherwise: if I cannot see the ball, I find the ball; ...". Checks that earlier
 rules already rule out are left out (the order says them), an action a Fallback tries
 once more as a last resort after the branch that does it is not said again, and neither is
 a rule that repeats an earlier one's step where that one always fits first. A part that is neither

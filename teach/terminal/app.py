@@ -9,6 +9,7 @@ with that letter as the start of the next line ("done").
 
 from __future__ import annotations
 
+import contextlib
 import signal
 import threading
 from pathlib import Path
@@ -28,6 +29,7 @@ from teach.dialogue.completion import TeachCompleter, command_words
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply, ReplyKind
+from teach.terminal.run_keys import RunKeys, is_terminal
 from teach.terminal.view import prompt, render_reply, toolbar
 
 
@@ -100,30 +102,48 @@ class Terminal:
         self.console.print(f"[dim]{m.ROBOT_RUNNING(self.manager.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
+        keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
+            if is_terminal(self.prompt.input) else None
+
+        def interrupted() -> bool:
+            if keys is not None:
+                keys.poll()
+            return self._interrupt.is_set()
+
         try:
-            self.manager.handle(line, interrupt=self._interrupt.is_set)
+            with keys.reading() if keys is not None else contextlib.nullcontext():
+                self.manager.handle(line, interrupt=interrupted)
         finally:
             if in_main:
                 signal.signal(signal.SIGINT, previous)
+
+    def _typed_while_running(self, line: str) -> None:
+        self.console.print(f"[bold red]{m.WAIT_OR_CTRL_C(self.manager.lang, line=line)}[/bold red]")
 
     def _guide_mode(self) -> None:
         """Keys drive the robot, one ``guide …`` line each, until Esc (or Ctrl-C, Ctrl-D) or a
         typed letter; the state line after each shows what changed."""
         self._keys_guiding = True
+        quiet = self.prompt.input.raw_mode() if is_terminal(self.prompt.input) else contextlib.nullcontext()
         try:
-            while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
-                key = self._guide_key()
-                if key in _LEAVE:
-                    self.manager.handle("guide stop")
-                    return
-                if key.startswith(_TYPED):
-                    self._typed = key[len(_TYPED):]
-                    return
-                line = self.manager.guiding.line_for_key(key)
-                if line is not None:
-                    self.manager.handle(line)
+            with quiet:  # keys pressed while the robot moves are not echoed ("^[[D"), only read after
+                self._steer()
         finally:
             self._keys_guiding = False
+
+    def _steer(self) -> None:
+        """The guide mode's loop: one key, one ``guide …`` line."""
+        while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
+            key = self._guide_key()
+            if key in _LEAVE:
+                self.manager.handle("guide stop")
+                return
+            if key.startswith(_TYPED):
+                self._typed = key[len(_TYPED):]
+                return
+            line = self.manager.guiding.line_for_key(key)
+            if line is not None:
+                self.manager.handle(line)
 
     def _guide_key(self) -> str:
         """One key press of the guide mode, by ``Guide.key``'s name (a letter as ``_TYPED`` + it)."""
