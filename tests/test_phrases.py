@@ -188,12 +188,12 @@ def test_a_suggestion_says_which_words_and_which_token(book):
     assert names(book.confirm(suggestion)) == ["FindBall", "ApproachBin", "GraspBall"]
 
 
-@pytest.mark.parametrize("line", ["go to the b", "go get it", "hingehen", "rein damit mal", "nein danke bitte"])
+@pytest.mark.parametrize("line", ["go to the b", "go get it", "hingehen", "nein danke bitte"])
 def test_no_suggestion_unless_one_phrase_is_clearly_nearest(book, line):
     # "go to the b" is the ball or the bin; "go get it" only looks like "go to the bin";
     # "hingehen" once read "Ball nehmen"
     with pytest.raises(UnknownPhrase) as info:
-        book.parse(line, "de" if line[0] in "hrn" else "en")
+        book.parse(line, "de" if line[0] in "hn" else "en")
     assert info.value.suggestion is None and "mean" not in info.value.message
 
 

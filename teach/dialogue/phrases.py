@@ -537,12 +537,13 @@ class PhraseBook:
 
 
 def _alike(typed: str, word: str) -> bool:
-    """A word the teacher typed stands for ``word``: three letters or more, spelled nearly like
-    it, inside it or its start; two letters only as the start of a longer word ("bi" for "bin",
-    never "go" for "go": words that short say nothing about which phrase was meant)."""
+    """A word the teacher typed stands for ``word``: three letters or more inside it or its
+    start, five or more also spelled nearly like it; two letters only as the start of a longer
+    word ("bi" for "bin", never "go" for "go": words that short say nothing about which phrase
+    was meant)."""
     if len(typed) < 3:
         return len(typed) == 2 and len(word) > 2 and word.startswith(typed)
-    return typed in word or _ratio(typed, word) >= _WORD_CUTOFF
+    return typed in word or (len(typed) >= 5 and _ratio(typed, word) >= _WORD_CUTOFF)  # "nein" is not "rein"
 
 
 def _substituted(words: tuple[str, ...], noun: str) -> list[tuple[str, ...]]:
