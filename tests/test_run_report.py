@@ -42,3 +42,16 @@ def test_a_ctrl_c_names_the_action_it_stopped(ball, tmp_path):
     said = [r.text for r in manager.handle("run", interrupt=lambda: next(polls, True))]
     assert "→ go to the ball" in said
     assert any(text.startswith("Stopped (the last thing I began was “go to the ball”)") for text in said)
+
+
+def test_in_mujoco_a_skill_that_fails_is_named_too(ball, tmp_path):
+    from teach.bt.nodes import Action
+    from teach.world.mujoco_world import MujocoWorld
+
+    settings = Settings("runs", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, ball, MujocoWorld(ball, seed=0))
+    manager.planned = Action("GraspBall")  # a tree that grasps where nothing can be grasped
+    said = [r.text for r in manager.handle("run")]
+    assert "I tried to grasp the ball, but it did not work: first this must be true: I can see the ball, the ball " \
+           "is within reach." in said
+    manager.close()
