@@ -56,9 +56,10 @@ def run(args: argparse.Namespace) -> int:
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import SituationOracle, oracle_from_model, oracle_from_tree
     from teach.dialogue.phrases import PhraseBook
-    from teach.dialogue.script import check_lines, read_script
+    from teach.dialogue.script import read_script
     from teach.domain import load_domain
     from teach.errors import TeachError
+    from teach.session.dialogue_check import check_lines
     from teach.session.settings import Settings, WorldKind
     from teach.session.setup import dialogue_events, opened_session, session_domain
     from teach.session.store import SessionStore
