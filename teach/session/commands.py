@@ -30,8 +30,8 @@ class Verb(Enum):
     DONE = _Declared(("done", "finished", "that's it", "that is it", "all done", "i'm finished"),
                      ("fertig", "das war's", "das war es", "das wärs", "erledigt", "ich bin fertig"),
                      Text("done", "fertig"),
-                     Text("the task is finished: learn this demonstration",
-                          "die Aufgabe ist erledigt: diese Vorführung lernen"))
+                     Text("the task is finished: learn this demonstration; also 'that's it'",
+                          "die Aufgabe ist erledigt: diese Vorführung lernen; auch 'das war's'"))
     CANCEL = _Declared(("cancel",), ("abbrechen",), Text("cancel", "abbrechen"),
                        Text("discard the open demonstration", "die Vorführung verwerfen"))
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
@@ -70,8 +70,8 @@ class Verb(Enum):
                       Text("put the world in a situation (named conditions true)",
                            "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"))
     RESET = _Declared(("reset",), ("neu",), Text("reset [N]", "neu [N]"),
-                      Text("new random start (N: the same start as last time with N)",
-                           "neuer zufälliger Start (N: derselbe Start wie zuletzt mit N)"))
+                      Text("new random start (N: start number N, the same each time)",
+                           "neuer zufälliger Start (N: Start Nummer N, jedes Mal derselbe)"))
     ASK = _Declared(("ask",), ("frag", "frage"), Text("ask", "frag"),
                     Text("let the robot ask a question", "den Roboter fragen lassen"))
     MODEL = _Declared(("model",), ("modell",), Text("model FILE", "modell DATEI"),

@@ -294,7 +294,8 @@ class SessionManager:
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
-        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
+        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" if len(c.usage(self.lang)) <= 28
+                 else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang)}" for c in COMMANDS]
         examples = ", ".join(a.label(self.lang) for a in self.domain.actions)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
