@@ -5,6 +5,7 @@ they mean: undo words undo, done words finish, unclear words are not guessed int
 from __future__ import annotations
 
 import pytest
+from test_session import teach_two_demonstrations
 
 from teach.demos import read_demo_set
 from teach.session.machine import SessionManager
@@ -111,3 +112,11 @@ def test_no_still_answers_a_did_you_mean(ball, tmp_path):
     assert manager.suggestion is not None
     said(manager, "no")
     assert manager.suggestion is None and open_actions(manager) == []
+
+
+def test_wrong_to_an_open_question_is_no_answer_and_no_undo(ball, tmp_path):
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    assert manager.pending is not None  # two demonstrations: a question is open
+    reply = said(manager, "wrong")
+    assert manager.pending is not None and len(manager.demos) == 2 and "undo" not in reply.lower()

@@ -277,7 +277,8 @@ class SessionManager:
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
-        answering = command is None or command in ANSWERING
+        # "wrong"/"falsch" undo, but to an open question they are a "no", as before they named a command
+        answering = command is None or command in ANSWERING or is_no(line, self.lang)
         if self.pending_model is not None and answering:
             return self._answer_model(line)
         if self.pending is not None and answering:
@@ -310,7 +311,7 @@ class SessionManager:
         """A labelling question takes the line as its answer; a line that is not guiding ends
         guidance first (and waits for the labelling answers). None: go on with the line."""
         if self.guiding.pending is not None:
-            if command is None or command is Verb.SKIP:
+            if command is None or command is Verb.SKIP or is_no(line, self.lang):
                 replies = self.guiding.answer(line)
                 deferred = self.guiding.take_deferred()
                 return replies + (self._dispatch(deferred) if deferred else [])
