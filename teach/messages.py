@@ -459,3 +459,16 @@ HAND_THE_BIN = Text("the bin", "den Eimer")
 HAND_MOVED = Text("you moved {thing}", "du hast {thing} bewegt")
 HAND_MOVED_NOTHING = Text("You moved {thing}, but nothing changed for me: not recorded.",
                           "Du hast {thing} bewegt, aber für mich hat sich nichts geändert: nicht aufgezeichnet.")
+# --- voice (issue 22: the robot speaks, and listens in English)
+SPOKEN_NOW = Text("now I {action}", "jetzt: {action}")
+VOICE_FILES_ONLY = Text("{reason}: what I say is only written to {folder}.",
+                        "{reason}: was ich sage, wird nur nach {folder} geschrieben.")
+VOICE_NOT_WRITTEN = Text("What I say is no longer written to files: {error}",
+                         "Was ich sage, wird nicht mehr in Dateien geschrieben: {error}")
+LISTEN_ENGLISH_ONLY = Text("I listen in English only: German speech recognition is not available offline.",
+                           "Ich höre nur Englisch: deutsche Spracherkennung gibt es offline nicht.")
+LISTEN_NO_MICROPHONE = Text("I cannot listen: {reason}. Please type instead.",
+                            "Ich kann nicht zuhören: {reason}. Bitte tippe stattdessen.")
+NOTHING_HEARD = Text("nothing I know is said in {file}", "in {file} wird nichts gesagt, das ich kenne")
+THE_MICROPHONE = Text("what the microphone heard", "dem, was das Mikrofon gehört hat")
+HEARD_DID_YOU_MEAN = Text("Did you mean “{line}”?", "Meintest du „{line}“?")

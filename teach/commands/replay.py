@@ -56,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import SituationOracle, oracle_from_model, oracle_from_tree
     from teach.dialogue.phrases import PhraseBook
-    from teach.dialogue.script import read_script
+    from teach.dialogue.script import AUDIO, read_script
     from teach.domain import load_domain
     from teach.errors import TeachError
     from teach.session.dialogue_check import check_lines
@@ -80,6 +80,10 @@ def run(args: argparse.Namespace) -> int:
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)
+    if any(line.startswith(AUDIO) for _, line in script.lines):
+        from teach.voice.script import heard_script
+
+        script = heard_script(script, domain, settings.lang)
     if not args.lenient:
         check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)
     oracle: SituationOracle | None = None

@@ -47,6 +47,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(default 1: real time; 0 = as fast as possible)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
+    parser.add_argument("--voice", "--stimme", action="store_true",
+                        help="the robot says its lines aloud (offline; English or German) and writes them to "
+                             "recordings/<session>/speech/")
+    parser.add_argument("--listen", action="store_true",
+                        help="push-to-talk: F5 or the line 'listen' records what you say (English only, offline)")
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
 
 
@@ -60,17 +65,32 @@ def run(args: argparse.Namespace) -> int:
         raise TeachError("--pace must be a number of 0 or more (0: as fast as the simulation goes)")
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
+    if args.listen:
+        from teach.voice.listen import check_language
+
+        check_language(args.lang)
     if _stdin_is_a_file():  # the terminal would read nothing from it and quit as if all was done
         raise TeachError(m.STDIN_IS_A_FILE(args.lang), "<stdin>")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
-                        facilitator=args.facilitator, groot=args.groot)
+                        facilitator=args.facilitator, groot=args.groot, voice=args.voice)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)
-        Terminal(manager, history=history).run()
+        listen = None
+        if args.listen:
+            from teach.voice.listen import Listener
+
+            listen = Listener(manager.domain, manager.lang, print).listen
+        if not settings.voice:
+            Terminal(manager, history=history, listen=listen).run()
+            return 0
+        from teach.voice.session import spoken_session
+
+        with spoken_session(manager) as on_shown:
+            Terminal(manager, history=history, on_shown=on_shown, listen=listen).run()
     return 0
 
 

@@ -10,6 +10,8 @@ Format (``dialogues/*.dialogue``, UTF-8):
     fertig
     run
 
+    @audio find.wav       # a line said aloud: recognised (English), then handled as the recognised text
+
 Every other line is typed at the prompt as it is. While the robot has a question open the
 next line is the answer, unless an oracle answers questions (``--oracle``/``--oracle-model``),
 in which case script lines are never taken as answers.
@@ -25,6 +27,8 @@ from teach import limits
 from teach.errors import FormatError
 from teach.fsutil import read_text
 
+AUDIO = "@audio "
+"""``@audio FILE.wav``: an input line said aloud, recognised before the dialogue runs (teach/voice/script.py)."""
 SETTINGS = {"lang": str, "questions": int, "seed": int, "world": str, "domain": str}
 CHOICES = {"lang": ("en", "de"), "world": ("mujoco", "symbolic", "offline")}
 _WHOLE_NUMBER = re.compile(r"[0-9]{1,9}", re.ASCII)
@@ -51,7 +55,7 @@ def read_script(path: str | Path) -> Script:
         line = raw.split(" #", 1)[0].strip() if not raw.lstrip().startswith("#") else ""
         if not line:
             continue
-        if line.startswith("@"):
+        if line.startswith("@") and not line.startswith(AUDIO):
             if script.lines:
                 raise FormatError("settings (@...) must come before the first input line", path, number)
             key, _, value = line[1:].partition(" ")

@@ -47,6 +47,8 @@ class Settings:
     """Show identifiers too: conditions by name, the symbolic tree (default: plain words)."""
     groot: int | None = None
     """Run trees through BehaviorTree.CPP with a Groot2 publisher on this port (None: our own tick)."""
+    voice: bool = False
+    """The robot says its lines aloud (teach/voice/) and writes them to recordings/<session>/speech/."""
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):

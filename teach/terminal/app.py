@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import signal
 import threading
+from collections.abc import Callable
 from pathlib import Path
 
 from prompt_toolkit import PromptSession
@@ -26,17 +27,22 @@ from rich.console import Console
 
 from teach import messages as m
 from teach.dialogue.completion import TeachCompleter, command_words
+from teach.dialogue.phrases import is_yes
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply, ReplyKind
 from teach.terminal.run_keys import RunKeys, is_terminal
-from teach.terminal.view import prompt, render_reply, toolbar
+from teach.terminal.view import prompt, render_reply, render_teacher, toolbar
 
 
 class Terminal:
     def __init__(self, manager: SessionManager, console: Console | None = None,
-                 input: Input | None = None, output: Output | None = None, history: Path | None = None):
+                 input: Input | None = None, output: Output | None = None, history: Path | None = None,
+                 on_shown: Callable[[Reply], None] | None = None,
+                 listen: Callable[[], tuple[str, bool] | None] | None = None):
         self.manager = manager
+        self._on_shown = on_shown  # sees each reply once it is shown (the robot's voice)
+        self._listen = listen  # push-to-talk (F5, or the line 'listen'): the line heard and if surely, or None
         self.console = console or Console(highlight=False)
         words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
                                                                            if n.isalpha()]
@@ -44,7 +50,8 @@ class Terminal:
             completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang),
                                      _argument_names(manager)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
-            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True)
+            bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True,
+            key_bindings=self._talk_key() if listen else None)
         self._interrupt = threading.Event()
         self._keys_guiding = False  # in the guide mode, driven by keys
         self._last_state = ""  # the state line last shown
@@ -63,7 +70,37 @@ class Terminal:
                 continue
             finally:
                 self._typed = ""
+            if self._listen is not None and (line == _LISTENING or line.strip().lower() in _LISTEN_WORDS):
+                heard = self._listen()
+                if heard is None:
+                    continue
+                line, sure = heard
+                self.console.print(render_teacher(line, self.manager.mode, self.manager.lang))
+                if not sure and not self._confirmed(line):
+                    continue
             self._handle(line)
+
+    def _confirmed(self, heard: str) -> bool:
+        """A line heard unsurely is handled only once the teacher says yes to it."""
+        self._show(Reply(ReplyKind.QUESTION, m.HEARD_DID_YOU_MEAN(self.manager.lang, line=heard)))
+        try:
+            answer = self.prompt.prompt(prompt("asking", self.manager.lang))
+        except (KeyboardInterrupt, EOFError):
+            return False
+        if is_yes(answer, self.manager.lang):
+            return True
+        self._show(Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.manager.lang)))
+        return False
+
+    def _talk_key(self) -> KeyBindings:
+        """F5 at the prompt: listen now (the typed line is left)."""
+        bindings = KeyBindings()
+
+        @bindings.add("f5")
+        def talk(event: KeyPressEvent) -> None:
+            event.app.exit(result=_LISTENING)
+
+        return bindings
 
     def _toolbar(self) -> str:
         """The bottom line; once the teacher has guided, the labelling questions left as well."""
@@ -77,6 +114,8 @@ class Terminal:
         if reply.kind is ReplyKind.STATE:
             self._last_state = reply.text
         self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
+        if self._on_shown is not None:
+            self._on_shown(reply)
 
     def _on_interrupt(self) -> None:
         """Ctrl-C during a run: stop the robot; what follows starts on a line of its own, not after "^C"."""
@@ -174,6 +213,8 @@ _KEYS = {"up": "up", "down": "down", "left": "left", "right": "right", "pageup":
 """The guide mode's keys: ``Guide.key``'s names and prompt_toolkit's."""
 _LEAVE = ("escape", "c-c", "c-d")
 _TYPED = "typed:"
+_LISTENING = "\x00listen"  # what the push-to-talk key ends the prompt with (no typed line holds NUL)
+_LISTEN_WORDS = ("listen",)  # English only: a German session cannot listen
 
 
 def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
