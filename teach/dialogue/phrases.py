@@ -514,16 +514,22 @@ class PhraseBook:
         return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
 
     def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: str) -> bool:
-        """Whether ``entry`` is the one phrase ``said`` is near: no phrase of another action or
-        event in the session's language comes within ``_SUGGEST_MARGIN``, and a word of it is one
-        the teacher typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"): "go get it" is
-        not "go to the bin"."""
-        rival = next((r for r, other in self._ranked(said) if other.name != entry.name and other.lang in (lang, "")),
-                     0.0)
-        if ratio - rival < _SUGGEST_MARGIN:
+        """Whether ``entry`` is the one phrase ``said`` is near: a word of it is one the teacher
+        typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"), and every phrase of another
+        action or event in the session's language within ``_SUGGEST_MARGIN`` of it has fewer
+        such words ("Ball fahren" is "zum Ball fahren", not "den Ball aufheben"): "go get it" is
+        not "go to the bin", and "the ball" names no step."""
+        shared = self._shared(said, entry.phrase)
+        if not shared:
             return False
-        theirs = [w for w in phrase_key(entry.phrase) if w not in _ARTICLES]
-        return any(_alike(mine, word) for mine in said.split() for word in theirs)
+        return all(self._shared(said, other.phrase) < shared for r, other in self._ranked(said)
+                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, ""))
+
+    @staticmethod
+    def _shared(said: str, phrase: str) -> int:
+        """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
+        theirs = [w for w in phrase_key(phrase) if w not in _ARTICLES]
+        return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
 
     def _text(self, entry: _Entry, lang: str) -> str:
         """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""
