@@ -17,6 +17,7 @@ from teach.demos import Demonstration, read_demo_set
 from teach.domain import Domain, Literal, State, load_domain
 from teach.errors import FormatError, LearnError
 from teach.replay import count_reproduced
+from teach.symbolic import MAX_RUN_STEPS, goal_verdict
 
 SETS = ("delta1", "delta2", "delta3", "delta4", "delta5")
 SET_LABELS = {name: f"Δ{name[-1]}" for name in SETS}
@@ -56,7 +57,6 @@ THESIS_PARTICIPANTS: dict[int, tuple[bool, str]] = {
     7: (True, "usable (Fig. A.4)"),
     8: (True, "usable (Fig. A.5)"),
 }
-MAX_RUN_STEPS = 50  # a tree that needs more ticks than this to reach its goal is looping
 
 Progress = Callable[[str], None]
 
@@ -270,23 +270,7 @@ def participant_result(path: Path, number: int) -> ParticipantResult:
 def run_to_goal(domain: Domain, tree: Node, start: State) -> tuple[bool, str]:
     """Run ``tree`` in the symbolic world of ``domain``'s action model until it succeeds,
     fails or repeats a state; says which."""
-    from teach.symbolic import RunEnd
-    from teach.symbolic import run_to_goal as run
-
-    result = run(domain, tree, start, MAX_RUN_STEPS)
-    if result.end is RunEnd.SUCCESS:
-        trace = f" ({' → '.join(result.actions)})" if result.actions else ""
-        return True, "usable: reaches the goal from the empty state" + trace
-    if result.end is RunEnd.FAILURE:
-        return False, f"the tree fails in {_true(domain, result.state)}"
-    if result.end is RunEnd.LOOP:
-        return False, f"{result.actions[-1]} changes nothing in {_true(domain, result.state)}: the tree loops"
-    return False, f"no goal after {MAX_RUN_STEPS} actions"
-
-
-def _true(domain: Domain, state: State) -> str:
-    names = [n for n, v in zip(domain.condition_names, state, strict=True) if v]
-    return "{" + ", ".join(names) + "}"
+    return goal_verdict(domain, tree, start, MAX_RUN_STEPS)
 
 
 def as_json(evaluation: Evaluation) -> dict:

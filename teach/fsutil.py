@@ -11,6 +11,8 @@ Writing: every output goes through ``atomic_write_bytes``: a temporary file in t
 fsynced, renamed over the target, the folder fsynced; it refuses to replace anything that is
 not a regular file and to write through a symbolic link inside the project, removes its
 temporary file on every error and turns OS errors into one line naming the file.
+``append_durably`` adds to a file written that way (the session journal's saves): fsynced, and
+cut back to where it was on an error, so no half line stays.
 """
 
 from __future__ import annotations
@@ -319,6 +321,34 @@ def atomic_write_bytes(path: str | Path, data: bytes, root: str | Path | None = 
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+def append_durably(path: str | Path, data: bytes) -> None:
+    """Append ``data`` to an existing regular file (never through a symbolic link) and fsync it,
+    so a save costs what it adds. An OS error is one ``TeachError`` naming the file, and the file
+    is cut back to its length before, so what follows is never appended to half of this."""
+    target = Path(path)
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_APPEND | os.O_NOFOLLOW | os.O_CLOEXEC)
+    except OSError as exc:
+        raise TeachError(f"cannot write: {exc.strerror or exc}", target) from None
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise TeachError(f"is {_kind(info.st_mode)}: refusing to append to it", target)
+        try:
+            rest = memoryview(data)
+            while rest:
+                rest = rest[os.write(fd, rest):]
+            os.fsync(fd)
+        except OSError as exc:
+            try:
+                os.ftruncate(fd, info.st_size)
+            except OSError:
+                pass
+            raise TeachError(f"cannot write: {exc.strerror or exc}", target) from None
+    finally:
+        os.close(fd)
 
 
 def _fsync_folder(folder: Path) -> None:

@@ -66,3 +66,26 @@ def run_to_goal(domain: Domain, tree: Node, start: State, max_steps: int) -> Goa
             return run
         seen.add(state)
     return run
+
+
+MAX_RUN_STEPS = 50
+"""A tree that needs more ticks than this to reach its goal is looping."""
+
+
+def goal_verdict(domain: Domain, tree: Node, start: State, max_steps: int = MAX_RUN_STEPS) -> tuple[bool, str]:
+    """Whether ``tree`` reaches the goal of ``domain``'s action model from ``start``, and why not
+    in words (it fails, loops, or runs out of steps)."""
+    result = run_to_goal(domain, tree, start, max_steps)
+    if result.end is RunEnd.SUCCESS:
+        trace = f" ({' → '.join(result.actions)})" if result.actions else ""
+        return True, "usable: reaches the goal from the empty state" + trace
+    if result.end is RunEnd.FAILURE:
+        return False, f"the tree fails in {_true(domain, result.state)}"
+    if result.end is RunEnd.LOOP:
+        return False, f"{result.actions[-1]} changes nothing in {_true(domain, result.state)}: the tree loops"
+    return False, f"no goal after {max_steps} actions"
+
+
+def _true(domain: Domain, state: State) -> str:
+    names = [n for n, v in zip(domain.condition_names, state, strict=True) if v]
+    return "{" + ", ".join(names) + "}"

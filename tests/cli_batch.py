@@ -16,17 +16,25 @@ import gc
 import importlib
 import json
 import os
+import pkgutil
 import signal
 import sys
 import time
 import traceback
 
-PRELOADED = ("teach.cli", "teach.bt.xml", "teach.bt.render", "teach.bt.tick", "teach.demos", "teach.domain",
-             "teach.replay", "teach.learn.specialize", "teach.learn.model", "teach.learn.pabt", "teach.learn.prune",
-             "teach.learn.order", "teach.session.machine", "teach.session.setup", "teach.terminal.scripted",
-             "teach.dialogue.oracle", "teach.dialogue.script", "teach.dialogue.model_repair", "teach.terminal.app",
-             "rich.console",
-             "rich.table")
+PRELOADED = ("rich.console", "rich.table", "rerun", "rerun.chunk")
+"""Libraries some commands import only when they need them (reading a recording: rerun's reader,
+about a second); every module of teach is imported too."""
+
+
+def preload() -> None:
+    """Import what the commands use, once, so no job pays for it."""
+    import teach
+
+    for module in PRELOADED:
+        importlib.import_module(module)
+    for found in pkgutil.walk_packages(teach.__path__, "teach."):
+        importlib.import_module(found.name)
 
 
 def _child(job: dict) -> None:
@@ -59,8 +67,7 @@ def _child(job: dict) -> None:
 def main(argv: list[str]) -> int:
     parallel = int(argv[0]) if argv else 2
     jobs = json.load(sys.stdin)
-    for module in PRELOADED:
-        importlib.import_module(module)
+    preload()
     gc.freeze()  # the collector then never walks (and so never copies) the parent's objects in a child
     results: list[dict | None] = [None] * len(jobs)
     running: dict[int, tuple[int, float]] = {}

@@ -1,20 +1,20 @@
 """Helpers of the kill test: a scripted session run in this process with the journal looked at
 after every line (what an unkilled session has on disk at each point of its dialogue), the same
-dialogue run by the CLI and killed with SIGKILL at a moment measured from its first line, and
-what the teacher had seen acknowledged before the kill."""
+dialogue run by the CLI (a child of a preloaded process, tests/preloaded_cli.py) and killed with
+SIGKILL at a moment measured from its first line, and what the teacher had seen acknowledged
+before the kill."""
 
 from __future__ import annotations
 
 import json
-import os
-import signal
-import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from conftest import journal_data
+from preloaded_cli import PreloadedCli
 
 from teach.dialogue.model_repair import ModelOracle
 from teach.dialogue.oracle import SituationOracle, answer_open_questions
@@ -32,7 +32,7 @@ def journal_key(path: Path) -> str:
     moves it on) and the replay's origin; empty before the session saved one."""
     if not path.exists():
         return ""
-    data = json.loads(path.read_text(encoding="utf-8"))
+    data = journal_data(path)
     for volatile in ("step", "origin"):
         data.pop(volatile, None)
     return json.dumps(data, sort_keys=True)
@@ -83,39 +83,40 @@ class Killed:
         return next((line for line in reversed(self.transcript) if line.strip()), "")
 
 
-def kill_after_marker(command: list[str], after_line: int | None = None, delay: float = 0.0) -> Killed:
-    """Run ``command`` and SIGKILL it ``delay`` seconds after it printed line ``after_line`` (0:
-    its first, which it prints once open; None: let it finish); the whole transcript, read to its
-    end after the kill, with when each line came, in seconds from the first. Counting lines, not
-    seconds from the process start, puts a kill at the same point of the session however loaded
-    the machine is; only ``delay``, within one line's work, is measured in time."""
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                               encoding="utf-8", env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
+def kill_after_marker(cli: PreloadedCli, argv: list[str], after_line: int | None = None,
+                      delay: float = 0.0) -> Killed:
+    """Run ``teach`` with ``argv`` (a child of the preloaded ``cli``) and SIGKILL it ``delay``
+    seconds after it printed line ``after_line`` (0: its first, which it prints once open; None:
+    let it finish); the whole transcript, read to its end after the kill, with when each line
+    came, in seconds from the first. Counting lines, not seconds from the process start, puts a
+    kill at the same point of the session however loaded the machine is; only ``delay``, within
+    one line's work, is measured in time."""
+    child = cli.start(argv)
     killed = Killed()
-    reached = threading.Event()
+    reached, ended = threading.Event(), threading.Event()
     began = time.monotonic()
 
     def read() -> None:
         nonlocal began
-        assert process.stdout is not None
-        for line in process.stdout:
-            if not killed.transcript:
-                began = time.monotonic()
-                killed.started = line.startswith(MARKER)
-            killed.times.append(time.monotonic() - began)
-            killed.transcript.append(line.rstrip("\n"))
-            if after_line is not None and len(killed.transcript) > after_line:
-                reached.set()
-        reached.set()  # the process ended (or died) before that line
+        with child.stdout:
+            for line in child.stdout:
+                if not killed.transcript:
+                    began = time.monotonic()
+                    killed.started = line.startswith(MARKER)
+                killed.times.append(time.monotonic() - began)
+                killed.transcript.append(line.rstrip("\n"))
+                if after_line is not None and len(killed.transcript) > after_line:
+                    reached.set()
+        ended.set()  # the process ended (or died): its output is closed
+        reached.set()  # before that line, maybe
 
     reader = threading.Thread(target=read)
     reader.start()
     if after_line is not None:
         reached.wait()
         time.sleep(delay)
-        if process.poll() is None:
-            os.kill(process.pid, signal.SIGKILL)
-    process.wait()
+        if not ended.is_set():
+            child.kill()
     reader.join()
     return killed
 
@@ -156,5 +157,3 @@ def run_cut(transcript: list[str]) -> list[str]:
     return [] if any(line.startswith("I did") for line in block) else announced
 
 
-def sys_command(*args: str) -> list[str]:
-    return [sys.executable, "-m", "teach.cli", *args]

@@ -3,10 +3,8 @@ a rerun recording read back, the eight study participants with and without an or
 
 from __future__ import annotations
 
-import json
-
 import pytest
-from conftest import ROOT
+from conftest import ROOT, journal_data
 
 from teach.cli import main
 
@@ -29,7 +27,7 @@ def test_quickstart_in_mujoco_with_a_recording(tmp_path, capsys):
     demos = sorted((tmp_path / "demos" / "quickstart").glob("demo-*.csv"))
     trees = sorted((tmp_path / "trees" / "quickstart").glob("gen-*.xml"))
     assert len(demos) >= 3 and len(trees) >= len(demos)
-    journal = json.loads((tmp_path / "recordings" / "quickstart.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "quickstart.journal.json")
     assert [e["kind"] for e in journal["events"]].count("demo") == len(demos)
     recording = tmp_path / "recordings" / "quickstart.rrd"
     assert recording.stat().st_size > 0
@@ -52,7 +50,7 @@ def test_study_with_five_oracle_questions(tmp_path, capsys):
     for path in STUDY:
         base = tmp_path / path.stem
         out = replay([path, "--base", base, "--no-record", "--oracle-model", TRUE_MODEL], capsys)
-        journal = json.loads((base / "recordings" / f"{path.stem}.journal.json").read_text())
+        journal = journal_data(base / "recordings" / f"{path.stem}.journal.json")
         asked[participant(path)] = [e for e in journal["events"] if e["kind"] == "model_answer"]
         finished = "The task is finished" in out or "Die Aufgabe ist erledigt" in out
         if finished and participant(path) not in (4, 5, 7, 8):

@@ -26,6 +26,26 @@ def test_demo_round_trip(ball, tmp_path):
     assert again.steps == tuple(Step(s.state, s.action, s.line) for s in demo.steps)
 
 
+def test_a_set_is_read_in_name_order_and_one_too_many_files_is_refused_before_any_is_read(ball, tmp_path):
+    from teach import limits
+
+    folder = tmp_path / "d"
+    folder.mkdir()
+    for name in ["b.csv", "a.csv", "c.csv"]:
+        (folder / name).write_text("0;0;0;0;0;1\n1;0;0;0;0;0\n", encoding="utf-8")
+    (folder / "sub.csv").mkdir()  # a folder is no demonstration; nor are .csv and notes.txt
+    (folder / ".csv").write_text("junk", encoding="utf-8")
+    (folder / "notes.txt").write_text("junk", encoding="utf-8")
+    _, demos = read_demo_set(folder, ball)
+    assert [d.name for d in demos] == ["a", "b", "c"]
+    for number in range(limits.MAX_DEMOS + 1 - 3):  # empty: reading any of them would be an error
+        (folder / f"e{number:05d}.csv").touch()
+    with pytest.raises(FormatError) as caught:
+        read_demo_set(folder, ball)
+    assert caught.value.message == f"more than {limits.MAX_DEMOS} demonstrations: a set may hold at most " \
+                                   f"{limits.MAX_DEMOS}"
+
+
 @pytest.mark.parametrize("text, line, words", [
     ("0;0;0;0;1\n", 1, "expected 6 fields"),
     ("0;0;2;0;0;1\n", 1, "must be 0 or 1"),

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import ROOT
+from conftest import ROOT, journal_data
 
 from teach import messages as m
 from teach.cli import main
@@ -138,7 +138,7 @@ def test_replacing_another_session_needs_overwrite(tmp_path, capsys):
     assert snapshot(tmp_path).keys() == before.keys()
     assert main(["replay", str(other), "--session", "keep", "--no-record", "--base", str(tmp_path),
                  "--overwrite"]) == 0
-    assert json.loads((tmp_path / "recordings" / "keep.journal.json").read_text())["origin"] == \
+    assert journal_data(tmp_path / "recordings" / "keep.journal.json")["origin"] == \
         f"replay:{other.resolve()}"
     assert dialogue.exists()
 
@@ -151,7 +151,7 @@ def test_every_thanks_and_generation_is_on_disk_when_it_is_shown(tmp_path):
     seen: list[tuple[str, list[str]]] = []
 
     def shown(reply: Reply) -> None:
-        kinds = [e["kind"] for e in json.loads(journal.read_text())["events"]] if journal.exists() else []
+        kinds = [e["kind"] for e in journal_data(journal)["events"]] if journal.exists() else []
         seen.append((reply.text, kinds))
 
     with opened_session(settings) as manager:
@@ -178,7 +178,7 @@ def test_an_orphaned_demonstration_is_set_aside_on_resume(tmp_path, capsys):
     assert result.returncode == 0, result.stderr
     assert "demo-099.csv" in result.stderr and "orphaned" in result.stderr
     assert not orphan.exists() and (demos / "orphaned" / "demo-099.csv").is_file()
-    journalled = {e["file"] for e in json.loads((tmp_path / "recordings" / "keep.journal.json").read_text())["events"]
+    journalled = {e["file"] for e in journal_data(tmp_path / "recordings" / "keep.journal.json")["events"]
                   if e["kind"] == "demo"}
     assert {p.name for p in demos.glob("demo-*.csv")} == journalled
 
@@ -297,7 +297,7 @@ def test_a_full_disk_ends_a_live_session_in_one_line_and_it_resumes(small_disk):
     resumed = subprocess.run([*command, "--resume", "full"], input="quit\n", capture_output=True, text=True,
                              timeout=300)
     assert resumed.returncode == 0, resumed.stderr
-    journal = json.loads((small_disk / "recordings" / "full.journal.json").read_text())
+    journal = journal_data(small_disk / "recordings" / "full.journal.json")
     journalled = {e["file"] for e in journal["events"] if e["kind"] == "demo"}
     assert f"Resumed session full: {len(journalled)} demonstrations" in resumed.stdout
     assert {p.name for p in (small_disk / "demos" / "full").glob("demo-*.csv")} == journalled

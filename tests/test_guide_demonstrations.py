@@ -18,14 +18,14 @@ import pytest
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Status
 from teach.demos import format_demonstration
 from teach.domain import Literal
-from teach.errors import FormatError
+from teach.errors import DomainError, FormatError
 from teach.learn.recognise import question
 from teach.sim.executor import run_tree
 from teach.sim.guide import Guide, parse_guide_line
 from teach.sim.guided_skill import guided_skill, load_motion, motion_from_segment, motion_text, save_motion
 from teach.sim.recorder import RecordedStep, Recorder
 from teach.sim.segment import Segmenter, explain_segments, guided_demonstration, segment
-from teach.sim.skills import SKILLS, register, run_skill
+from teach.sim.skills import register, run_skill, skill_for
 from teach.sim.world import GRASP_OFFSET, LIFT_CARRY, LIFT_PLACE, World, _wrap
 
 CLEAR = 0.5  # the teacher keeps the chassis this far from the bin, as the skills do
@@ -264,33 +264,51 @@ def test_a_push_taught_by_guidance_becomes_a_replayable_skill(push: tuple[World,
     save_motion(motion, path)
     loaded = load_motion(path, world.domain)
     assert motion_text(loaded) == path.read_text(encoding="utf-8")
-    register(guided_skill(loaded))
-    try:
-        pushed = 0
-        for seed in (11, 12, 14):
-            other = World(seed=0)
-            other.arrange({"BallFound": True, "BallClose": True}, seed=seed)
-            ball = other.ball_position()
-            status = run_skill(other, "PushBall")
-            moved = float(np.linalg.norm(other.ball_position()[:2] - ball[:2]))
-            pushed += status is Status.SUCCESS and not other.conditions()["BallClose"] and moved > 0.1
-        assert pushed == 3
-    finally:
-        SKILLS.pop("PushBall")
+    pushed = 0
+    for seed in (11, 12, 14):
+        other = World(seed=0)
+        register(other, guided_skill(loaded))
+        other.arrange({"BallFound": True, "BallClose": True}, seed=seed)
+        ball = other.ball_position()
+        status = run_skill(other, "PushBall")
+        moved = float(np.linalg.norm(other.ball_position()[:2] - ball[:2]))
+        pushed += status is Status.SUCCESS and not other.conditions()["BallClose"] and moved > 0.1
+    assert pushed == 3
 
 
 def test_the_executor_runs_a_guided_skill_in_a_tree(push: tuple[World, Segmenter]) -> None:
     world, segmenter = push
-    register(guided_skill(motion_from_segment("PushBall", segmenter.segments[0], world.domain)))
+    other = World(seed=0)
+    register(other, guided_skill(motion_from_segment("PushBall", segmenter.segments[0], world.domain)))
+    other.arrange({"BallFound": True, "BallClose": True}, seed=13)
+    # "? (not BallClose) PushBall": push until the ball is out of reach
+    push_until_out_of_reach = Fallback((Inverter(Condition("BallClose")), Action("PushBall")))
+    trace = run_tree(other, push_until_out_of_reach)
+    assert trace.outcome == "success" and set(trace.actions[:-1]) == {"PushBall"}
+    assert not other.conditions()["BallClose"]
+    # a skill taught in one world is no skill of the next (a later session in the same process)
+    later = World(seed=0)
+    later.arrange({"BallFound": True, "BallClose": True}, seed=13)
+    with pytest.raises(DomainError, match="no skill for action 'PushBall'"):
+        run_tree(later, push_until_out_of_reach)
+    with pytest.raises(DomainError):
+        skill_for(later, "PushBall")
+
+
+def test_an_action_taught_by_guidance_in_one_session_is_no_skill_of_the_next(push: tuple[World, Segmenter]) -> None:
+    from teach.world.mujoco_world import MujocoWorld
+
+    world, segmenter = push
+    motion = motion_from_segment("PushBall", segmenter.segments[0], world.domain)
+    first, later = MujocoWorld(world.domain), MujocoWorld(world.domain)  # two sessions' worlds, one process
     try:
-        other = World(seed=0)
-        other.arrange({"BallFound": True, "BallClose": True}, seed=13)
-        # "? (not BallClose) PushBall": push until the ball is out of reach
-        trace = run_tree(other, Fallback((Inverter(Condition("BallClose")), Action("PushBall"))))
-        assert trace.outcome == "success" and set(trace.actions[:-1]) == {"PushBall"}
-        assert not other.conditions()["BallClose"]
+        first.learn_skill(motion)
+        assert skill_for(first.world, "PushBall").motion is motion  # type: ignore[attr-defined]
+        with pytest.raises(DomainError, match="no skill for action 'PushBall'"):
+            skill_for(later.world, "PushBall")
     finally:
-        SKILLS.pop("PushBall")
+        first.close()
+        later.close()
 
 
 def test_a_motion_near_the_bin_replays_relative_to_the_bin() -> None:
@@ -303,16 +321,13 @@ def test_a_motion_near_the_bin_replays_relative_to_the_bin() -> None:
     motion = motion_from_segment("DropInBin", segmenter.segments[0], world.domain)
     assert motion.anchor == "bin"
     assert motion.effects == (Literal("BallGrasped", False), Literal("BallPlaced"))
-    register(guided_skill(motion))
-    try:
-        placed = 0
-        for seed in (10, 11, 12):
-            other = World(seed=0)
-            other.arrange(start, seed=seed)
-            placed += run_skill(other, "DropInBin") is Status.SUCCESS and other.conditions()["BallPlaced"]
-        assert placed == 3
-    finally:
-        SKILLS.pop("DropInBin")
+    placed = 0
+    for seed in (10, 11, 12):
+        other = World(seed=0)
+        register(other, guided_skill(motion))
+        other.arrange(start, seed=seed)
+        placed += run_skill(other, "DropInBin") is Status.SUCCESS and other.conditions()["BallPlaced"]
+    assert placed == 3
 
 
 def test_a_guided_skill_fails_without_its_object(push: tuple[World, Segmenter]) -> None:

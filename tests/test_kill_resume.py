@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 import subprocess
@@ -12,6 +11,8 @@ import time
 from pathlib import Path
 
 import pytest
+from conftest import journal_data
+from preloaded_cli import PreloadedCli
 
 from teach import messages as m
 from teach.bt.nodes import Node
@@ -36,14 +37,14 @@ def test_sigkill_then_resume(ball, tmp_path):
     try:
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if journal.exists() and sum(e["kind"] == "demo" for e in json.loads(journal.read_text())["events"]) >= 3:
+            if journal.exists() and sum(e["kind"] == "demo" for e in journal_data(journal)["events"]) >= 3:
                 break
             assert process.poll() is None, process.stderr.read().decode()
             time.sleep(0.05)
         os.kill(process.pid, signal.SIGKILL)
     finally:
         process.wait()
-    events = [e for e in json.loads(journal.read_text())["events"] if e["kind"] == "demo"]  # valid JSON: atomic
+    events = [e for e in journal_data(journal)["events"] if e["kind"] == "demo"]  # valid JSON: atomic
     assert len(events) >= 3
     demos = sorted((tmp_path / "demos" / "long").glob("demo-*.csv"))
     assert len(demos) >= len(events)  # every journalled demonstration is on disk
@@ -74,7 +75,7 @@ def test_recording_survives_a_kill_and_a_resume(tmp_path):
     try:
         deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if journal.exists() and len(json.loads(journal.read_text())["events"]) >= 3:
+            if journal.exists() and len(journal_data(journal)["events"]) >= 3:
                 break
             time.sleep(0.05)
         os.kill(process.pid, signal.SIGKILL)
@@ -93,6 +94,15 @@ def test_recording_survives_a_kill_and_a_resume(tmp_path):
 
 
 KILLS = 20
+
+
+@pytest.fixture(scope="module")
+def cli():
+    """``teach`` command lines started as forked children of one process that imported teach and
+    MuJoCo once (a fresh interpreter pays seconds of imports before its first line)."""
+    launcher = PreloadedCli()
+    yield launcher
+    launcher.close()
 
 
 def _acknowledged(transcript: str) -> tuple[int, int]:
@@ -145,7 +155,7 @@ def _taught(manager: SessionManager) -> list[object]:
     return taught
 
 
-def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
+def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path, cli):
     """A scripted MuJoCo session (steps one by one and a line at once, runs, a correction, questions
     answered by an oracle) is killed with SIGKILL at 20 seeded moments, placed by the line the
     session printed last before them (so a loaded machine moves them little) and a delay after
@@ -160,7 +170,7 @@ def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
     from concurrent.futures import ThreadPoolExecutor
 
     from conftest import BALL_DOMAIN
-    from killed_session import drive, journal_key, kill_after_marker, run_cut, since_last_prompt, sys_command
+    from killed_session import drive, journal_key, kill_after_marker, run_cut, since_last_prompt
 
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import oracle_from_model
@@ -191,10 +201,9 @@ def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
 
     # the CLI session unkilled: how long it takes from its first line, on this machine now
     def replay(base: Path) -> list[str]:
-        return sys_command("replay", str(script), "--no-record", "--base", str(base),
-                           "--oracle-model", str(BALL_DOMAIN))
+        return ["replay", str(script), "--no-record", "--base", str(base), "--oracle-model", str(BALL_DOMAIN)]
 
-    timed = kill_after_marker(replay(tmp_path / "trial-tm"))  # the name as long as each trial's: same lines
+    timed = kill_after_marker(cli, replay(tmp_path / "trial-tm"))  # the name as long as each trial's: same lines
     assert timed.started and any(line.startswith("Saved:") for line in timed.transcript), timed.transcript
     duration = timed.times[-1]
     # half the kills one in each tenth of the session's time (steps and runs take most of it), half
@@ -213,7 +222,7 @@ def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
     after_lines = [max(i for i, when in enumerate(timed.times) if when <= moment) for moment in moments]
     # the next session is run and killed while this one is resumed and checked (two processes, two cores)
     killer = ThreadPoolExecutor(max_workers=1)
-    kills = [killer.submit(kill_after_marker, replay(base), line, moment - timed.times[line])
+    kills = [killer.submit(kill_after_marker, cli, replay(base), line, moment - timed.times[line])
              for base, line, moment in zip(bases, after_lines, moments, strict=True)]
     try:
         for trial, (moment, base, kill) in enumerate(zip(moments, bases, kills, strict=True)):
@@ -294,21 +303,19 @@ def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path):
     assert len(phases) >= 4  # the kills spread over steps, runs, learning, questions, the journal's saves
 
 
-def _killed_while_running(command: list[str], base: Path, at_action: int) -> list[str]:
-    """Run ``command`` and SIGKILL it as soon as the teacher has seen the ``at_action``-th action
-    of a run begin; the whole transcript it printed."""
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                               env={**os.environ, "PYTHONUNBUFFERED": "1", "COLUMNS": "200"})
-    assert process.stdout is not None
+def _killed_while_running(cli: PreloadedCli, argv: list[str], at_action: int) -> list[str]:
+    """Run ``teach`` with ``argv`` and SIGKILL it as soon as the teacher has seen the
+    ``at_action``-th action of a run begin; the whole transcript it printed."""
+    child = cli.start(argv)
     lines, seen = [], 0
-    for line in process.stdout:
-        lines.append(line.rstrip("\n"))
-        seen += line.startswith("→ ")
-        if seen == at_action:
-            os.kill(process.pid, signal.SIGKILL)
-            break
-    lines += process.stdout.read().splitlines()  # what it printed before it died
-    process.wait()
+    with child.stdout:
+        for line in child.stdout:
+            lines.append(line.rstrip("\n"))
+            seen += line.startswith("→ ")
+            if seen == at_action:
+                child.kill()
+                break
+        lines += child.stdout.read().splitlines()  # what it printed before it died
     return lines
 
 
@@ -323,7 +330,7 @@ def _check_run_resumed(base: Path, session: str, transcript: list[str]) -> bool:
     block = transcript[last_prompt + 1:]
     announced = [line[2:] for line in block if line.startswith("→ ")]
     cut = bool(announced) and not any(line.startswith("I did") for line in block)
-    journal = json.loads((base / "recordings" / f"{session}.journal.json").read_text())
+    journal = journal_data(base / "recordings" / f"{session}.journal.json")
     with opened_session(Settings(session, base=base, record=False), resume=True, note=lambda _: None) as resumed:
         kept = resumed.open.words if resumed.open is not None else []
         did = [m.ROBOT_DID_STEP("en", action=action) for action in announced]
@@ -339,7 +346,7 @@ def _check_run_resumed(base: Path, session: str, transcript: list[str]) -> bool:
 
 
 @pytest.mark.parametrize(("world", "kills", "most"), [("symbolic", 6, 40), ("mujoco", 2, 12)])
-def test_kills_during_runs_keep_every_step_the_robot_was_seen_to_do(tmp_path, world, kills, most):
+def test_kills_during_runs_keep_every_step_the_robot_was_seen_to_do(tmp_path, cli, world, kills, most):
     """Runs of the plan the action definitions give, from changing starts, killed at seeded
     moments while the robot acts (MuJoCo and symbolic)."""
     import random
@@ -355,8 +362,8 @@ def test_kills_during_runs_keep_every_step_the_robot_was_seen_to_do(tmp_path, wo
     for trial, at_action in enumerate(random.Random(16).sample(range(2, most), kills)):
         base = tmp_path / f"trial-{trial}"
         base.mkdir()
-        transcript = _killed_while_running([sys.executable, "-m", "teach.cli", "replay", str(script), "--no-record",
-                                            "--base", str(base)], base, at_action)
+        transcript = _killed_while_running(cli, ["replay", str(script), "--no-record", "--base", str(base)],
+                                           at_action)
         cut += _check_run_resumed(base, "runs", transcript)
     print(f"{world}: {kills} kills during runs, {cut} cut a run the teacher had seen begin")
     assert cut >= 1

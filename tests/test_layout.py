@@ -1,5 +1,6 @@
-"""The layout's rules, read from the code itself: rerun only in teach/observe/, mujoco only in
-teach/sim/, and no file I/O in the session machine or its learning."""
+"""The layout's rules, read from the code itself: imports between the packages of teach/ point
+down their layers only, rerun only in teach/observe/, mujoco only in teach/sim/, and no file I/O
+in the session machine or its learning."""
 
 from __future__ import annotations
 
@@ -25,6 +26,98 @@ def imported(path: Path) -> set[str]:
         elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
             names.add(node.module.split(".")[0])
     return names
+
+
+# --- the layers: an import points down only -------------------------------------------------------
+
+LAYERS: list[tuple[str, ...]] = [
+    ("errors", "limits", "display"),
+    ("fsutil",),
+    ("lock", "bt"),
+    ("domain",),
+    ("demos", "symbolic", "generations"),
+    ("replay",),
+    ("learn",),
+    ("evaluate",),
+    ("observe",),
+    ("sim",),
+    ("world",),
+    ("messages", "text"),  # where the message catalogue goes when it leaves session/ (either name)
+    ("dialogue",),
+    ("session",),
+    ("voice",),
+    ("terminal", "review"),
+    ("commands",),
+    ("cli",),
+]
+"""The packages and top-level modules of teach/, bottom to top: a module may import from its own
+package and from the layers below it, never from its own layer's other members or from above
+(imports inside functions and under TYPE_CHECKING count too). docs/architecture.md shows the same
+list; a new package must be placed here."""
+
+KNOWN_UPWARD: dict[tuple[str, str], str] = {
+    ("teach/bt/groot.py", "observe"): "GrootTicker is an observer; it becomes a Ticker only (helper 'record')",
+    ("teach/dialogue/oracle.py", "session"): "an oracle answers a SessionManager's open questions (type only)",
+}
+"""Arrows that still run up, each with the reason and who removes it. This list only shrinks:
+delete a line when its arrow is gone; never add one."""
+
+
+def _unit(module: str) -> str:
+    """The layer member a module of teach belongs to: its package, or the top-level module itself."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def teach_imports(text: str, package: str) -> set[str]:
+    """The modules of teach a file of ``package`` imports, anywhere in it (``from teach import x``
+    names teach.x; relative imports are resolved)."""
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.Import):
+            found |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            parts = package.split(".")[:len(package.split(".")) + 1 - node.level] if node.level else []
+            base = ".".join([*parts, *([node.module] if node.module else [])])
+            found |= {f"{base}.{alias.name}" if base == "teach" else base for alias in node.names}
+    return {name for name in found if name.startswith("teach.")}
+
+
+def upward_arrows() -> list[tuple[str, str, str]]:
+    """Every import of a module in the same layer (another member) or above: (file, its unit, the unit)."""
+    layer = {unit: number for number, members in enumerate(LAYERS) for unit in members}
+    arrows = []
+    for path in MODULES:
+        source = _unit(".".join(path.relative_to(ROOT).with_suffix("").parts))
+        if source in ("", "__init__"):
+            continue
+        assert source in layer, f"{path.relative_to(ROOT)}: {source!r} is in no layer of LAYERS: place it"
+        package = ".".join(path.relative_to(ROOT).parts[:-1])
+        imported_units = {_unit(name) for name in teach_imports(path.read_text(encoding="utf-8"), package)}
+        for target in sorted(imported_units - {source, ""}):
+            assert target in layer, f"{path.relative_to(ROOT)} imports {target!r}, which is in no layer of LAYERS"
+            if layer[target] >= layer[source]:
+                arrows.append((str(path.relative_to(ROOT)), source, target))
+    return arrows
+
+
+def test_imports_between_packages_point_down_their_layers():
+    unexpected = [f"{file} ({source}) imports teach.{target}" for file, source, target in upward_arrows()
+                  if (file, target) not in KNOWN_UPWARD]
+    assert unexpected == []
+
+
+def test_the_layer_check_sees_imports_in_functions_and_relative_ones():
+    assert teach_imports("def later():\n    from teach.session.machine import SessionManager\n",
+                         "teach.learn") == {"teach.session.machine"}
+    assert teach_imports("from ..world import protocol\nfrom . import goal\nfrom teach import limits\n",
+                         "teach.learn") == {"teach.world", "teach.learn", "teach.limits"}
+    assert teach_imports("if TYPE_CHECKING:\n    import teach.session\n", "teach.bt") == {"teach.session"}
+
+
+def test_the_architecture_document_shows_the_layers():
+    shown = " < ".join(" ".join(members) for members in LAYERS)
+    assert shown in " ".join((ROOT / "docs" / "architecture.md").read_text(encoding="utf-8").split())
 
 
 @pytest.mark.parametrize(("package", "home"), [("rerun", "observe"), ("mujoco", "sim")])

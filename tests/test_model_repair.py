@@ -3,11 +3,10 @@ real PA-BT, real answers parsed from plain strings."""
 
 from __future__ import annotations
 
-import json
 import random
 
 import pytest
-from conftest import BALL_DOMAIN, ROOT
+from conftest import BALL_DOMAIN, ROOT, journal_data
 
 from teach.dialogue.model_repair import KINDS, ModelOracle, ModelQuestion, ModelRepair, RepairReport, repair
 from teach.dialogue.phrases import UnknownPhrase
@@ -204,7 +203,7 @@ def test_study_dialogues_ask_what_repair_asks(true_model, tmp_path, capsys):
         assert main(["replay", str(path), "--base", str(base), "--no-record", "--oracle-model",
                      str(ROOT / "demos" / "ball" / "domain.toml")]) == 0
         capsys.readouterr()
-        journal = json.loads((base / "recordings" / f"participant{n}.journal.json").read_text())
+        journal = journal_data(base / "recordings" / f"participant{n}.journal.json")
         answered = [e["answer"] for e in journal["events"] if e["kind"] == "model_answer"]
         report = repair(load_domain(ROOT / lines[0].split()[1]), QuestionBudget(5), ModelOracle(true_model), lang)
         assert answered == [step.answer for step in report.steps]

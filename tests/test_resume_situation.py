@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import BALL_DOMAIN
+from conftest import BALL_DOMAIN, journal_data
 
 from teach import messages as m
 from teach.domain import Domain
@@ -103,7 +103,7 @@ def test_a_finished_run_leaves_the_world_at_its_end(ball, tmp_path):
     first.handle(f"model {BALL_DOMAIN}")
     first.handle("start BinClose")
     first.handle("run")
-    journal = json.loads((tmp_path / "recordings" / "s.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "s.journal.json")
     assert journal["events"][-1] == {"kind": "situation", "state": "11111", "how": "run"}
     again, said = resumed(ball, tmp_path)
     assert again.world.state() == (True,) * 5 and again.open is None and m.SITUATION_RESTORED("en") in said
@@ -119,7 +119,7 @@ def test_a_run_the_session_ended_in_becomes_the_correction(ball, tmp_path, world
     kill_at_action(first, 3)
     with pytest.raises(Killed):
         first.handle("run")
-    journal = json.loads((tmp_path / "recordings" / "s.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "s.journal.json")
     assert journal["open_run"] == "ApproachBin" and [s[1] for s in journal["open_steps"]] == [2, 3]
     again, said = resumed(ball, tmp_path, world)
     assert again.open is not None and [s.action for s in again.open.steps] == [2, 3]
@@ -168,7 +168,7 @@ def test_mujoco_reset_n_is_made_again_exactly_and_start_in_conditions_only(ball,
 def test_a_damaged_situation_is_one_line(ball, tmp_path, change, wrong):  # type: ignore[no-untyped-def]
     session(ball, tmp_path).close()
     path = tmp_path / "recordings" / "s.journal.json"
-    journal = json.loads(path.read_text())
+    journal = journal_data(path)
     change(journal)
     path.write_text(json.dumps(journal))
     done = subprocess.run([sys.executable, "-m", "teach.cli", "session", "--resume", "s", "--no-record",

@@ -3,9 +3,8 @@ demonstrations, online learning, the question budget, runs with corrections, und
 
 from __future__ import annotations
 
-import json
-
 import pytest
+from conftest import journal_data
 
 from teach.demos import read_demo_set
 from teach.observe.hook import Observer
@@ -67,7 +66,7 @@ def test_demonstration_learns_saves_and_replays(ball, tmp_path):
     assert any("I can do your demonstration just as you showed it" in r.text for r in replies)
     domain, demos = read_demo_set(tmp_path / "demos" / "t")
     assert [d.actions for d in demos] == [(1, 2, 3, 4, 5)] and demos[0].reached_goal
-    journal = json.loads((tmp_path / "recordings" / "t.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "t.journal.json")
     assert [e["kind"] for e in journal["events"]] == ["demo", "situation"]  # the world at its end, for a resume
     # every line of the dialogue reaches the observer
     assert ("teacher", SEQUENCE) in events.dialogue and any(s == "robot" for s, _ in events.dialogue)
@@ -318,7 +317,7 @@ def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys)
     assert main(["replay", str(dialogue), "--base", str(tmp_path), "--no-record",
                  "--oracle-model", str(ROOT / "demos" / "ball" / "domain.toml")]) == 0
     capsys.readouterr()
-    journal = json.loads((tmp_path / "recordings" / "participant6.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "participant6.journal.json")
     answered = [e["question"] for e in journal["events"] if e["kind"] == "model_answer"]
     assert answered and all(q["literal"] == "" for q in answered)
     resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from teach.bt.nodes import Status
-from teach.sim.skills import SKILLS, run_skill
+from teach.sim.skills import BUILTIN_SKILLS, run_skill
 from teach.sim.world import World
 
 ACTIONS = ["FindBall", "ApproachBall", "GraspBall", "ApproachBin", "PlaceBall"]
@@ -51,4 +51,4 @@ def test_approaching_the_ball_can_leave_the_bin_behind(world: World) -> None:
 
 
 def test_registry_names_every_domain_action(world: World) -> None:
-    assert set(world.domain.action_names) <= set(SKILLS)
+    assert set(world.domain.action_names) <= set(BUILTIN_SKILLS)

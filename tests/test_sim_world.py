@@ -94,3 +94,35 @@ def test_camera_image_when_rendering_is_available(world: World) -> None:
         pytest.skip("no offscreen OpenGL here")
     assert image.shape == (48, 64, 3) and image.dtype == np.uint8
     assert image.std() > 0
+
+
+def test_a_session_that_records_nothing_renders_no_camera_image(tmp_path) -> None:
+    """Rendering costs more than the physics: where nothing records the images, none is made."""
+    from teach.bt.nodes import Action
+    from teach.observe.hook import Observer
+    from teach.session.settings import Settings, WorldKind
+    from teach.session.setup import opened_session
+    from teach.world.mujoco_world import MujocoWorld
+
+    class Cameras(Observer):
+        def __init__(self) -> None:
+            self.images = 0
+
+        def on_camera(self, image: object, camera: str = "robot") -> None:
+            self.images += 1
+
+    shown, unseen = Cameras(), Cameras()
+    recorded, unrecorded = MujocoWorld(World(seed=0).domain, 0, shown), MujocoWorld(World(seed=0).domain, 0, unseen,
+                                                                                      cameras=False)
+    try:
+        for world in (recorded, unrecorded):
+            world.run(Action("FindBall"), max_actions=1)
+        if recorded.world.camera_image(8, 6) is None:
+            pytest.skip("no offscreen OpenGL here")
+        assert shown.images > 0 and unseen.images == 0
+    finally:
+        recorded.close()
+        unrecorded.close()
+    settings = Settings("quiet", world=WorldKind.MUJOCO, base=tmp_path, record=False)
+    with opened_session(settings, note=lambda _: None) as manager:
+        assert manager.world.world.camera_image(8, 6) is None  # type: ignore[attr-defined]

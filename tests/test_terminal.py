@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import io
-import json
 from pathlib import Path
 
+from conftest import journal_data
 from prompt_toolkit.input import create_pipe_input
 from prompt_toolkit.output import DummyOutput
 from rich.console import Console
@@ -98,7 +98,7 @@ def test_a_run_in_the_terminal_reaches_the_recording_the_clock_and_the_journal(b
     # 'run' had a step of its own on the clock, and the journal was saved with it
     steps = [step for speaker, _, step in lines if speaker == "teacher"]
     assert steps == sorted(set(steps)) and run_step == steps[-2]
-    journal = json.loads((tmp_path / "recordings" / "term.journal.json").read_text())
+    journal = journal_data(tmp_path / "recordings" / "term.journal.json")
     assert journal["step"] == manager.step == steps[-1]
 
 

@@ -84,13 +84,19 @@ def run(args: argparse.Namespace) -> int:
             from teach.voice.listen import Listener
 
             listen = Listener(manager.domain, manager.lang, print).listen
-        if not settings.voice:
-            Terminal(manager, history=history, listen=listen).run()
-            return 0
-        from teach.voice.session import spoken_session
+        try:
+            if not settings.voice:
+                Terminal(manager, history=history, listen=listen).run()
+                return 0
+            from teach.voice.session import spoken_session
 
-        with spoken_session(manager) as on_shown:
-            Terminal(manager, history=history, on_shown=on_shown, listen=listen).run()
+            with spoken_session(manager) as on_shown:
+                Terminal(manager, history=history, on_shown=on_shown, listen=listen).run()
+        except OSError as error:
+            if error.filename:
+                raise
+            # prompt_toolkit's line history names no file when writing it fails (a full disk)
+            raise TeachError(f"cannot write: {error.strerror or error}", history) from None
     return 0
 
 

@@ -12,6 +12,7 @@ from teach.bt.nodes import Action, Node, transform
 from teach.bt.nodes import Sequence as SeqNode
 from teach.domain import ActionDef, Domain, Literal
 from teach.errors import LearnError
+from teach.symbolic import goal_verdict
 
 
 @dataclass(frozen=True)
@@ -101,7 +102,6 @@ def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model:
     """PA-BT on ``model``, the tree run in ``model``'s symbolic world from the state where nothing
     holds, and, when ``true_model`` is given, in the true model's world, where an action whose
     true preconditions do not hold fails (as a skill that cannot start does)."""
-    from teach.evaluate import run_to_goal
     from teach.learn.pabt import expand
 
     goal = tuple(model.goal if goal is None else goal)
@@ -111,10 +111,10 @@ def plan_model(model: Domain, goal: Sequence[Literal] | None = None, true_model:
         return PlanOutcome(False, None, error.message, None if true_model is None else False,
                            "" if true_model is None else "no tree")
     start = tuple(False for _ in model.conditions)
-    usable, reason = run_to_goal(model, tree, start)
+    usable, reason = goal_verdict(model, tree, start)
     if true_model is None:
         return PlanOutcome(usable, tree, reason)
-    true_usable, true_reason = run_to_goal(true_model, guarded(tree, true_model), start)
+    true_usable, true_reason = goal_verdict(true_model, guarded(tree, true_model), start)
     return PlanOutcome(usable, tree, reason, true_usable, true_reason)
 
 

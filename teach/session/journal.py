@@ -2,8 +2,14 @@
 
 The journal is the truth of a session: demonstrations are referenced by their CSV files
 (written first), answers are stored with the situation they answered. Events are typed here
-and stored as JSON objects with a ``kind``; ``SessionStore`` rewrites the file atomically
-after every event.
+and stored as JSON objects with a ``kind``.
+
+The file is JSON Lines (version 2): its first line is a snapshot of the whole journal, each
+further line what one save added (new events, the step clock, the open demonstration's new
+steps). ``SessionStore`` writes the snapshot atomically when it first saves (so a resume
+compacts the file) and appends and fsyncs one line per save after that: a save costs what it
+adds, not what the session holds. A last line without its newline is a save a kill cut short,
+never acknowledged: it is left out. A version 1 journal (one JSON document) is still read.
 """
 
 from __future__ import annotations
@@ -15,10 +21,11 @@ from typing import Any, ClassVar
 
 from teach.domain import State
 from teach.errors import FormatError
-from teach.fsutil import Types, parse_json, validate
+from teach.fsutil import Types, decode_text, parse_json, validate
 from teach.session.settings import LANGUAGES, WorldKind
 
-VERSION = 1
+VERSION = 2
+READABLE_VERSIONS = (1, 2)
 
 
 def state_text(state: State) -> str:
@@ -32,6 +39,10 @@ def parse_state_text(text: str) -> State:
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
 _HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str}
+_SAVE_KEYS: dict[str, Types] = {"events": list, "step": int, "open_kept": int, "open_steps": list, "open_state": str,
+                                "open_run": str}
+"""A line after the snapshot: what one save changed. ``open_steps`` replace the open steps from
+number ``open_kept`` on (the steps before it stay)."""
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "demo": ({"kind": str, "file": str, "source": str}, {}),
     "undo": ({"kind": str}, {}),
@@ -195,6 +206,23 @@ def _skipped(event: Event) -> bool:
     return isinstance(event, Answered | ModelAnswered) and event.answer == "skip"
 
 
+_CLOCK_AND_OPEN = ("step", "open_steps", "open_state", "open_run")
+"""The journal's fields a save may change besides adding events; the others never change once written."""
+
+
+@dataclass(frozen=True)
+class Saved:
+    """What a journal file holds after a save, to tell what the next save adds to it."""
+
+    header: tuple[object, ...]
+    events: int
+    last: Event | None
+    step: int
+    open_steps: tuple[tuple[str | int, ...], ...]
+    open_state: str
+    open_run: str
+
+
 @dataclass
 class Journal:
     session: str
@@ -216,38 +244,126 @@ class Journal:
     """The action the robot had begun when the session ended in the middle of a run: then
     ``open_steps`` are the steps it finished and ``open_state`` the world before that action."""
 
-    def to_text(self) -> str:
+    def to_json(self) -> dict[str, Any]:
+        """The whole journal as one JSON object (the snapshot line's content)."""
         data = {f.name: getattr(self, f.name) for f in fields(self)}
         data["events"] = [event_to_json(e) for e in self.events]
-        return json.dumps(data, indent=1, ensure_ascii=False) + "\n"
+        data["version"] = VERSION
+        return data
+
+    def snapshot_text(self) -> str:
+        """The journal as a file of one line: what a first save writes (atomically)."""
+        return json.dumps(self.to_json(), ensure_ascii=False) + "\n"
+
+    def saved(self) -> Saved:
+        return Saved(self._header(), len(self.events), self.events[-1] if self.events else None, self.step,
+                     tuple(map(tuple, self.open_steps)), self.open_state, self.open_run)
+
+    def changes_since(self, saved: Saved) -> str | None:
+        """The line that brings a file holding ``saved`` up to this journal ("" when nothing
+        changed), or None when appending cannot (a field that never changes did, events went)."""
+        if saved.header != self._header() or len(self.events) < saved.events or \
+                (saved.events and self.events[saved.events - 1] is not saved.last):
+            return None
+        change: dict[str, Any] = {}
+        if len(self.events) > saved.events:
+            change["events"] = [event_to_json(e) for e in self.events[saved.events:]]
+        if self.step != saved.step:
+            change["step"] = self.step
+        steps = tuple(map(tuple, self.open_steps))
+        if steps != saved.open_steps:
+            kept = next((n for n, (a, b) in enumerate(zip(steps, saved.open_steps, strict=False)) if a != b),
+                        min(len(steps), len(saved.open_steps)))
+            change["open_kept"], change["open_steps"] = kept, self.open_steps[kept:]
+        for key in ("open_state", "open_run"):
+            if getattr(self, key) != getattr(saved, key):
+                change[key] = getattr(self, key)
+        return json.dumps(change, ensure_ascii=False) + "\n" if change else ""
+
+    def _header(self) -> tuple[object, ...]:
+        return tuple(getattr(self, f.name) for f in fields(self) if f.name not in ("events", *_CLOCK_AND_OPEN))
+
+    @classmethod
+    def from_bytes(cls, data: bytes, where: Path) -> Journal:
+        """A journal file's content: a last line a kill cut short (no newline after a first
+        line) is left out, whatever it holds; the rest as ``from_text``."""
+        if data.split(b"\n", 1)[0].strip() != b"{" and b"\n" in data and not data.endswith(b"\n"):
+            data = data[:data.rindex(b"\n") + 1]
+        return cls.from_text(decode_text(data, "session journal", where), where)
 
     @classmethod
     def from_text(cls, text: str, where: Path) -> Journal:
         """Parse a journal file's text against its schema; damage is a one-line ``FormatError``
-        naming ``where`` and the key that is wrong."""
+        naming ``where``, the line and the key that is wrong."""
         try:
-            return cls._checked(parse_json(text, where, "the session journal"), where)
+            if text.split("\n", 1)[0].strip() == "{":  # version 1: one document over many lines
+                return cls._checked(parse_json(text, where, "the session journal"), where)
+            lines = text.split("\n")
+            if lines[-1] == "" and len(lines) > 1:
+                lines.pop()
+            journal = cls._checked(parse_json(lines[0], where, "the session journal"), where)
+            for number, line in enumerate(lines[1:], start=2):
+                journal._apply(line, where, number)
+            return journal
         except FormatError as error:
             raise FormatError(f"the session journal is damaged: {error.message}", where, error.line) from None
 
+    def _apply(self, line: str, where: Path, number: int) -> None:
+        """One saved change (a line after the snapshot), checked as the snapshot is."""
+        try:
+            change = validate(parse_json(line, where, "the session journal"), where, {}, _SAVE_KEYS)
+            if self.version != VERSION:
+                raise FormatError(f"a version {self.version} journal is one JSON document, not lines", where)
+            stored: list[object] = change.get("events", [])  # type: ignore[assignment]
+            self.events += [event_from_json(e, where, len(self.events) + n) for n, e in enumerate(stored)]
+            if "step" in change:
+                self.step = _at_least_zero("step", change["step"], where)
+            if "open_steps" in change or "open_kept" in change:
+                kept = _at_least_zero("open_kept", change.get("open_kept", 0), where)
+                if kept > len(self.open_steps):
+                    raise FormatError(f"open_kept: {kept}, but only {len(self.open_steps)} steps are open", where)
+                added: list[object] = change.get("open_steps", [])  # type: ignore[assignment]
+                _check_open_steps(added, where, kept)
+                self.open_steps = self.open_steps[:kept] + added  # type: ignore[operator]
+            if "open_state" in change:
+                self.open_state = _checked_open_state(change["open_state"], where)
+            if "open_run" in change:
+                self.open_run = str(change["open_run"])
+        except FormatError as error:
+            raise FormatError(error.message, where, number) from None
+
     @classmethod
     def _checked(cls, data: object, where: Path) -> Journal:
-        if isinstance(data, dict) and data.get("version") != VERSION:
-            raise FormatError(f"not a version {VERSION} session journal", where)
+        if isinstance(data, dict) and data.get("version") not in READABLE_VERSIONS:
+            raise FormatError(f"not a session journal of version {' or '.join(map(str, READABLE_VERSIONS))} "
+                              f"(this teach writes version {VERSION})", where)
         header = validate(data, where, _HEADER, _HEADER_OPTIONAL)
         for key in ("questions", "seed", "step"):
-            if int(header[key]) < 0:  # type: ignore[call-overload]
-                raise FormatError(f"{key}: must be 0 or more, got {header[key]}", where)
+            _at_least_zero(key, header[key], where)
         for key, known in (("lang", LANGUAGES), ("world", tuple(WorldKind))):
             if header[key] not in known:
                 raise FormatError(f"{key}: must be one of {', '.join(known)}, got {str(header[key])[:40]!r}", where)
-        open_steps: list[object] = header.get("open_steps", [])  # type: ignore[assignment]
-        for number, entry in enumerate(open_steps):
-            if not (isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str)
-                    and set(entry[0]) <= {"0", "1"} and type(entry[1]) is int and isinstance(entry[2], str)):
-                raise FormatError(f"open_steps[{number}]: must be [state of 0s and 1s, action id, words]", where)
-        if set(str(header.get("open_state", ""))) - {"0", "1"}:
-            raise FormatError("open_state: must be 0s and 1s", where)
+        _check_open_steps(header.get("open_steps", []), where)  # type: ignore[arg-type]
+        _checked_open_state(header.get("open_state", ""), where)
         stored: list[object] = header.pop("events")  # type: ignore[assignment]
         events = [event_from_json(e, where, n) for n, e in enumerate(stored)]
         return cls(events=events, **header)  # type: ignore[arg-type]
+
+
+def _at_least_zero(key: str, value: object, where: Path) -> int:
+    if int(value) < 0:  # type: ignore[call-overload]
+        raise FormatError(f"{key}: must be 0 or more, got {value}", where)
+    return int(value)  # type: ignore[call-overload]
+
+
+def _check_open_steps(open_steps: list[object], where: Path, first: int = 0) -> None:
+    for number, entry in enumerate(open_steps, start=first):
+        if not (isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str)
+                and set(entry[0]) <= {"0", "1"} and type(entry[1]) is int and isinstance(entry[2], str)):
+            raise FormatError(f"open_steps[{number}]: must be [state of 0s and 1s, action id, words]", where)
+
+
+def _checked_open_state(value: object, where: Path) -> str:
+    if set(str(value)) - {"0", "1"}:
+        raise FormatError("open_state: must be 0s and 1s", where)
+    return str(value)

@@ -36,7 +36,7 @@ def make_world(settings: Settings, domain: Domain, observer: Observer) -> Teachi
     if settings.world is WorldKind.MUJOCO:
         from teach.world.mujoco_world import MujocoWorld
 
-        return MujocoWorld(domain, settings.seed, observer, settings.viewer, settings.pace)
+        return MujocoWorld(domain, settings.seed, observer, settings.viewer, settings.pace, cameras=settings.record)
     if settings.viewer:
         raise TeachError("--viewer shows the MuJoCo world: use it with --world mujoco")
     if settings.world is WorldKind.SYMBOLIC:
@@ -135,6 +135,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
             observer.observers.append(BtlogRecorder(store.run_dir))
         if resume:
             manager = SessionManager.resume(settings, domain, world, observer)
+            manager.store.save_journal(manager.journal)  # its first save writes the journal whole: compacted
         else:
             manager = SessionManager(settings, domain, world, observer)
             manager.journal.origin = origin

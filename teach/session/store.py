@@ -12,9 +12,9 @@ from teach.bt.nodes import Node
 from teach.demos import Demonstration, read_demonstration, write_demonstration
 from teach.domain import Domain, load_domain
 from teach.errors import FormatError
-from teach.fsutil import atomic_write_text, read_text
+from teach.fsutil import append_durably, atomic_write_text, read_bytes, read_text
 from teach.generations import last_generation, write_generation
-from teach.session.journal import DemoLearned, Journal, effective_events
+from teach.session.journal import DemoLearned, Journal, Saved, effective_events
 
 if TYPE_CHECKING:
     from teach.sim.guided_skill import GuidedMotion
@@ -30,6 +30,8 @@ class SessionStore:
         self.journal_path = base / "recordings" / f"{session}.journal.json"
         self.recording = base / "recordings" / f"{session}.rrd" if record else None
         self.run_dir = base / "recordings" / session  # run-NNN.btlog, each run for Groot2
+        self._saved: Saved | None = None
+        """What this store last wrote to the journal file; None: its next save writes it whole."""
 
     def prepare(self, domain: Domain) -> None:
         """Create the session's folders; keep a copy of the domain beside its demonstrations."""
@@ -45,6 +47,7 @@ class SessionStore:
         for stale in (self.demo_dir, self.tree_dir, self.run_dir):
             shutil.rmtree(stale, ignore_errors=True)
         self.journal_path.unlink(missing_ok=True)
+        self._saved = None
 
     def exists(self) -> bool:
         """Whether anything of a session of this name is on disk."""
@@ -171,7 +174,19 @@ class SessionStore:
     # --- the journal -----------------------------------------------------------------------
 
     def save_journal(self, journal: Journal) -> None:
-        atomic_write_text(self.journal_path, journal.to_text())
+        """The journal on disk, durably: this store's first save writes it whole as one line,
+        atomically (which compacts a resumed session's file), every later one appends and fsyncs
+        the line of what changed since (nothing when nothing did), so a save's cost does not grow
+        with the session. After a failed write the next save writes the file whole again."""
+        line = journal.changes_since(self._saved) if self._saved is not None else None
+        if line == "":
+            return
+        self._saved = None
+        if line is None:
+            atomic_write_text(self.journal_path, journal.snapshot_text())
+        else:
+            append_durably(self.journal_path, line.encode("utf-8"))
+        self._saved = journal.saved()
 
     def has_journal(self) -> bool:
         return self.journal_path.exists()
@@ -180,8 +195,8 @@ class SessionStore:
         """The journal, read through the bounded reader and checked against its schema."""
         if not self.journal_path.exists() and not self.journal_path.is_symlink():
             raise FormatError("no such session journal (was the session id right?)", self.journal_path)
-        return Journal.from_text(read_text(self.journal_path, "session journal", limits.MAX_JSON_BYTES),
-                                 self.journal_path)
+        return Journal.from_bytes(read_bytes(self.journal_path, "session journal", limits.MAX_JSON_BYTES),
+                                  self.journal_path)
 
 
 def _learned_files(journal: Journal) -> set[str]:

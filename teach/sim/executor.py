@@ -19,6 +19,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from teach.bt.nodes import Node, Status
+from teach.bt.run import Outcome, Ticker
 from teach.bt.tick import TickResult, tick
 from teach.demos import Demonstration, Step
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
@@ -28,7 +29,6 @@ from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, Skill, skill_for
 from teach.sim.slip import SLIP, SlipWatch, let_fall
 from teach.sim.world import CONTROL_STEPS, World
-from teach.world.protocol import Outcome, Ticker
 
 
 @dataclass(frozen=True, slots=True)
@@ -129,7 +129,7 @@ def run_tree(world: World, tree: Node, observer: Observer | None = None, max_tic
             if skill is not None:
                 skill.halt()
             begun[0], watch[0] = world.state(), SlipWatch(world, name)
-            skill = running[0] = skill_for(name)(world)
+            skill = running[0] = skill_for(world, name)(world)
             fresh[0] = True
         return skill.tick()
 

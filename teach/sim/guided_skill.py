@@ -221,7 +221,7 @@ class GuidedSkill(Skill):
 
 
 def guided_skill(motion: GuidedMotion) -> type[GuidedSkill]:
-    """A skill class for ``motion`` under its action name (``teach.sim.skills.register`` takes it)."""
+    """A skill class for ``motion`` under its action name (``teach.sim.skills.register`` adds it to a world)."""
     timeout = APPROACH_TIMEOUT + motion.duration + SETTLE + 1.0
     return type(motion.name, (GuidedSkill,), {"name": motion.name, "motion": motion, "timeout": timeout})
 

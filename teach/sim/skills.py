@@ -21,7 +21,8 @@ special case in Δ2): that is physics, not a rule.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
 
 import numpy as np
 
@@ -299,25 +300,25 @@ def _detour(start: np.ndarray, end: np.ndarray, bin_xy: np.ndarray) -> np.ndarra
     return bin_xy + side * (BIN_CLEARANCE + 0.15) * normal
 
 
-SKILLS: dict[str, type[Skill]] = {}
+BUILTIN_SKILLS: Mapping[str, type[Skill]] = MappingProxyType(
+    {skill.name: skill for skill in (FindBall, ApproachBall, GraspBall, ApproachBin, PlaceBall)})
+"""The ball-in-bin skills, the same in every world; a world's own are in ``World.taught_skills``."""
 
 
-def register(skill: type[Skill]) -> type[Skill]:
-    """Make a skill available under its action name (tests may register scripted ones)."""
-    SKILLS[skill.name] = skill
+def register(world: World, skill: type[Skill]) -> type[Skill]:
+    """Make a skill runnable under its action name in ``world`` only: an action one session taught
+    by guidance is no skill of another session's world, even in the same process."""
+    world.taught_skills[skill.name] = skill
     return skill
 
 
-for _skill in (FindBall, ApproachBall, GraspBall, ApproachBin, PlaceBall):
-    register(_skill)
-
-
-def skill_for(name: str) -> type[Skill]:
-    try:
-        return SKILLS[name]
-    except KeyError:
+def skill_for(world: World, name: str) -> type[Skill]:
+    """The skill for action ``name`` in ``world``: one taught there, else a built-in one."""
+    skill = world.taught_skills.get(name) or BUILTIN_SKILLS.get(name)
+    if skill is None:
         raise DomainError(f"the simulation has no skill for action {name!r} "
-                          f"(it has {', '.join(sorted(SKILLS))})") from None
+                          f"(it has {', '.join(sorted({*BUILTIN_SKILLS, *world.taught_skills}))})")
+    return skill
 
 
 class FrameClock:
@@ -358,7 +359,7 @@ def run_skill(world: World, name: str, observer: Observer | None = None, max_sec
 
     ``halt_when`` is asked after every control period; when it says so the skill is halted
     where it is and RUNNING returned: it did not finish, something else stopped it."""
-    skill = skill_for(name)(world)
+    skill = skill_for(world, name)(world)
     report = frames or FrameClock(world, observer)
     deadline = world.sim_time + max_seconds
     status = RUNNING

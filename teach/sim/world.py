@@ -34,13 +34,16 @@ import math
 from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mujoco
 import numpy as np
 
 from teach.domain import Domain, State, load_domain
 from teach.errors import DomainError
+
+if TYPE_CHECKING:
+    from teach.sim.skills import Skill
 from teach.observe.scene import SceneShape
 
 ASSETS = Path(str(resources.files("teach.sim") / "assets"))
@@ -77,7 +80,7 @@ def _wrap(angle: float) -> float:
 class World:
     """The ball-in-bin scene, its robot, and the robot's memory of where the ball is."""
 
-    def __init__(self, seed: int = 0, domain: Domain | None = None):
+    def __init__(self, seed: int = 0, domain: Domain | None = None, cameras: bool = True):
         self.domain = domain if domain is not None else load_domain(DOMAIN_FILE)
         unknown = [n for n in self.domain.condition_names if n not in CONDITIONS]
         if unknown:
@@ -98,11 +101,14 @@ class World:
                      ("drive_x", "drive_y", "turn", "lift", "finger_left", "finger_right")}
         tan_v = math.tan(math.radians(m.cam_fovy[self._cam]) / 2)
         self._tan_view = (tan_v * 4 / 3, tan_v)  # the 4:3 image of camera_image's default size
-        self._renderers: dict[tuple[int, int], Any] | None = {}  # None: no offscreen rendering here
+        # None: no offscreen rendering here (``cameras`` False: nothing records the images)
+        self._renderers: dict[tuple[int, int], Any] | None = {} if cameras else None
         self._cameras = {"robot": self._cam, "overview": m.camera("overview").id}
         self._time_before_reset = 0.0
         self._memory: np.ndarray | None = None
         self.rng = np.random.default_rng(seed)
+        self.taught_skills: dict[str, type[Skill]] = {}
+        """Skills of actions taught by guidance in this world (``teach.sim.skills.register``)."""
         self.reset(seed)
 
     # --- time -------------------------------------------------------------------------------

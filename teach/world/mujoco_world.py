@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import Any
 
 from teach.bt.nodes import Node, Status
+from teach.bt.run import Outcome, Ticker
 from teach.bt.tick import TickResult, tick
 from teach.display import has_display
 from teach.domain import Domain, State
@@ -24,7 +25,7 @@ from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, register, run_skill
 from teach.sim.slip import SLIP, SLIP_DE, SLIP_EN, SlipWatch, let_fall
 from teach.sim.world import World
-from teach.world.protocol import ActResult, Outcome, RunResult, Ticker, WorldEvent
+from teach.world.protocol import ActResult, RunResult, WorldEvent
 
 TICK_HZ = 10.0
 SECONDS_PER_ACTION = 30.0
@@ -70,8 +71,10 @@ class _Pacer:
 
 class MujocoWorld:
     def __init__(self, domain: Domain, seed: int = 0, observer: Observer | None = None, viewer: bool = False,
-                 pace: float = 0.0):
-        self.world = World(seed, domain)
+                 pace: float = 0.0, cameras: bool | None = None):
+        """``cameras``: render the camera images the observer is shown (default: when there is an
+        observer); off where nothing records them, since rendering costs more than the physics."""
+        self.world = World(seed, domain, cameras=observer is not None if cameras is None else cameras)
         self.domain = self.world.domain
         self.observer = observer or Observer()
         self.ticker: Ticker = tick
@@ -173,7 +176,7 @@ class MujocoWorld:
 
     def learn_skill(self, motion: GuidedMotion) -> None:
         """Make a motion taught by guidance runnable under its action name, like any skill."""
-        register(guided_skill(motion))
+        register(self.world, guided_skill(motion))
 
     def adopt_domain(self, domain: Domain) -> None:
         """The session's domain grew an action taught by guidance (the conditions are the same)."""

@@ -5,9 +5,10 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from teach.bt.nodes import Node
+from teach.bt.run import Outcome, Ticker
 from teach.bt.tick import tick
 from teach.domain import Domain, State
-from teach.world.protocol import ActResult, Outcome, RunResult, Ticker, WorldEvent
+from teach.world.protocol import ActResult, RunResult, WorldEvent
 
 
 class OfflineWorld:

@@ -2,17 +2,18 @@
 
 Three worlds implement it: ``OfflineWorld`` (no world, only a state), ``SymbolicWorld`` (an
 action model's pre/ram) and ``MujocoWorld`` (the ball-in-bin physics of ``teach.sim``).
+``Outcome`` and ``Ticker`` live in ``teach.bt.run`` (the MuJoCo executor below the worlds uses
+them too) and are imported here for the worlds' users.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from enum import StrEnum
 from typing import NamedTuple, Protocol
 
-from teach.bt.nodes import Node, Status
-from teach.bt.tick import TickResult
+from teach.bt.nodes import Node
+from teach.bt.run import Outcome, Ticker
 from teach.domain import Domain, State
 
 
@@ -46,15 +47,6 @@ class ActResult:
         return self.events[0].before if self.events else self.after
 
 
-class Outcome(StrEnum):
-    """How a run of the learned tree ended."""
-
-    SUCCESS = "success"
-    FAILURE = "failure"
-    TIMEOUT = "timeout"
-    INTERRUPTED = "interrupted"
-
-
 @dataclass
 class RunResult:
     """A run of the learned tree: outcome and the (state, action) steps it executed; ``events``
@@ -64,10 +56,6 @@ class RunResult:
     steps: list[tuple[State, str]] = field(default_factory=list)
     final_state: State = ()
     events: list[tuple[int, WorldEvent]] = field(default_factory=list)
-
-
-Ticker = Callable[[Node, Callable[[str], bool] | Mapping[str, bool], Callable[[str], Status]], TickResult]
-"""What ticks a tree once: ``teach.bt.tick.tick``, or BehaviorTree.CPP (``teach.bt.groot``)."""
 
 
 class TeachingWorld(Protocol):

@@ -7,12 +7,13 @@ import random
 from collections.abc import Callable
 
 from teach.bt.nodes import Node, Status
+from teach.bt.run import Outcome
 from teach.bt.tick import always_running
 from teach.domain import Domain
 from teach.observe.hook import Observer
 from teach.symbolic import apply_action, assign, missing_preconditions
 from teach.world.offline import OfflineWorld
-from teach.world.protocol import ActResult, Outcome, RunResult, WorldEvent
+from teach.world.protocol import ActResult, RunResult, WorldEvent
 
 
 class SymbolicWorld(OfflineWorld):
