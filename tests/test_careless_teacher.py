@@ -50,7 +50,7 @@ GERMAN = [
     "zum Eimer gehen, leg ihn in den Eimer",
     "ok fertig",
     "?",
-    "start du siehst den Ball",
+    "start ich sehe den Ball",
     "geh zum Ball, nimm ihn, zum Eimer gehen, Ball in den Eimer legen",
     "fertig",
 ]

@@ -14,8 +14,8 @@ import pytest
 from conftest import ROOT, journal_data
 from teacher_loop import honest_answer
 
+from teach import messages as m
 from teach.cli import main
-from teach.session import messages as m
 from teach.session.replies import Reply
 from teach.session.settings import Settings, WorldKind
 from teach.session.setup import opened_session

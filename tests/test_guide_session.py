@@ -15,9 +15,9 @@ from every_start import mujoco_outcomes
 from rich.console import Console
 from test_guide_demonstrations import Teacher
 
+from teach import messages as m
 from teach.dialogue.script import read_script
 from teach.domain import load_domain
-from teach.session import messages as m
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import ReplyKind
 from teach.session.settings import Settings, WorldKind
@@ -186,7 +186,7 @@ def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> N
                  output=DummyOutput()).run()
     out = buffer.getvalue()
     assert out.count(m.GUIDE_MODE_ON("en")) == 2 and m.GUIDE_MODE_OFF("en") in out
-    assert "✓ You moved me so that now you can see the ball: that was “find the ball”." in out
+    assert "✓ You moved me so that now I can see the ball: that was “find the ball”." in out
     assert session.open is not None and session.open.words[0] == m.GUIDED_WORDS("en", action="find the ball")
     assert session.finished and session.guiding.budget.used == 0
 

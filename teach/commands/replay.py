@@ -55,13 +55,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
+    from teach import messages as m
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import SituationOracle, oracle_from_model, oracle_from_tree
     from teach.dialogue.phrases import PhraseBook
-    from teach.dialogue.script import AUDIO, check_lines, read_script
+    from teach.dialogue.script import AUDIO, read_script
     from teach.domain import load_domain
     from teach.errors import TeachError
-    from teach.session import messages as m
+    from teach.session.dialogue_check import check_lines
     from teach.session.settings import Settings, WorldKind
     from teach.session.setup import dialogue_events, opened_session, session_domain
     from teach.session.store import SessionStore

@@ -59,7 +59,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from teach.session import messages as m
+    from teach import messages as m
     from teach.session.settings import Settings
     from teach.session.setup import opened_session
     from teach.terminal.app import Terminal

@@ -37,12 +37,12 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.bt.nodes import Node, Status, transform
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
-from teach.session import messages as m
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
