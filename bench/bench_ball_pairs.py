@@ -46,6 +46,7 @@ BALL = ROOT / "demos" / "ball"
 QUESTIONS = 5
 QUICK_STRIDE = 7
 TARGET_MEAN, TARGET_WORST = 41, 37
+LEARNERS = {"model": (False,), "safe": (True,), "both": (False, True)}
 
 
 @dataclass(frozen=True)
@@ -82,12 +83,13 @@ def actions_shown(demos: list[Demonstration]) -> set[int]:
     return {a for demo in demos for a in demo.actions}
 
 
-def run_pair(ball: Ball, pair: tuple[Demonstration, Demonstration], budget: int = QUESTIONS) -> list[Measured]:
+def run_pair(ball: Ball, pair: tuple[Demonstration, Demonstration], budget: int = QUESTIONS,
+             safe: bool = True) -> list[Measured]:
     """The pair after 0, 1, ... answered questions (fewer when the learner has none left)."""
     train = list(pair)
     names = (pair[0].name, pair[1].name)
     shows_all = actions_shown(train) == {a.id for a in ball.domain.actions}
-    learner = learn_online(ball.domain, train)
+    learner = learn_online(ball.domain, train, safe=safe)
     answers: list[Answered] = []
 
     def measure() -> Measured:
@@ -130,14 +132,24 @@ def report(rows: list[Measured], total: int, states: int) -> str:
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help=f"every {QUICK_STRIDE}th pair only")
+    parser.add_argument("--learner", choices=tuple(LEARNERS), default="both",
+                        help="the model learner (guesses), the safe one, or both (default)")
     args = parser.parse_args(argv)
     started = time.perf_counter()
     ball = load()
     pairs = list(itertools.combinations(ball.delta2, 2))
     chosen = pairs[::QUICK_STRIDE] if args.quick else pairs
+    for safe in LEARNERS[args.learner]:
+        print(f"== the {'safe' if safe else 'model (guessing)'} learner")
+        report_learner(ball, pairs, chosen, safe)
+    print(f"{time.perf_counter() - started:.0f} s")
+
+
+def report_learner(ball: Ball, pairs: list[tuple[Demonstration, Demonstration]],
+                   chosen: list[tuple[Demonstration, Demonstration]], safe: bool) -> None:
     runs = []
     for number, pair in enumerate(chosen, start=1):
-        runs.append(run_pair(ball, pair))
+        runs.append(run_pair(ball, pair, safe=safe))
         if number % 25 == 0 or number == len(chosen):
             print(f"\rpair {number}/{len(chosen)}", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
@@ -157,7 +169,6 @@ def main(argv: list[str] | None = None) -> None:
         met = statistics.mean(five) >= TARGET_MEAN and min(five) >= TARGET_WORST
         print(f"issue 18's target, pairs showing all five actions with <= {QUESTIONS} questions: mean >= "
               f"{TARGET_MEAN}/{total} and worst >= {TARGET_WORST}/{total}: {'met' if met else 'not met'}")
-    print(f"{time.perf_counter() - started:.0f} s")
 
 
 def breakdown(rows: list[Measured]) -> str:

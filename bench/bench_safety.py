@@ -52,7 +52,7 @@ TRAIN_SIZES = (2, 5, TRAINING_STARTS)
 QUESTIONS = 5
 HELD_OUT = 100
 SEEDS = 3
-ROWS = ("learner", "learner+5q", "sam", "detect", "specialize")
+ROWS = ("learner", "learner+5q", "guessing", "sam", "detect", "specialize")
 LOOPS = (("learner", Learner, 0), ("learner+5q/round", Learner, QUESTIONS), ("sam", SamLearner, 0))
 
 

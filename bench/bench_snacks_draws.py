@@ -124,11 +124,11 @@ def starts(domain: Domain) -> list[tuple[State, Mapping[str, int]]]:
 
 
 def measure(goalless: Domain, teacher: ReferenceTeacher, data: Draw, world: HiddenStateWorld,
-            goal: tuple[Literal, ...]) -> list[Row]:
+            goal: tuple[Literal, ...], safe: bool = True) -> list[Row]:
     """The rows of ``ROWS`` for one draw, learned on the domain without its goal."""
     rows = []
     for count, budget in ROWS:
-        learner = learn_online(goalless, data.train[:count])
+        learner = learn_online(goalless, data.train[:count], safe=safe)
         answers = tuple(ask(learner, teacher, budget))
         outcomes, _unsafe = tally(learner.tree, world, goal, starts(goalless))
         rows.append(Row(count, budget, len(answers), count_reproduced(learner.tree, goalless, data.held_out),
@@ -149,15 +149,23 @@ def main(argv: list[str] | None = None) -> None:
     gen = generator()
     print(f"snacks without a declared goal: {TRAIN} training demonstrations, {FEW} + <= {QUESTIONS} questions "
           f"answered by the reference tree; strict replay of each draw's held-out set")
-    print(f"{'draw':<10}" + "".join(f"{f'{c} demos, <= {b} q':>22}" for c, b in ROWS) + f"{'unchanged answers':>20}")
-    results: list[list[Row]] = []
     sets = [committed(domain)]
     for seed in range(1, args.draws + 1):
         sets.append(draw(seed, domain, world, gen))
         print(f"\rdrawn {seed}/{args.draws}", end="", file=sys.stderr, flush=True)
     print(file=sys.stderr)
+    for safe in (False, True):
+        print(f"== the {'safe' if safe else 'model (guessing)'} learner")
+        report_learner(goalless, teacher, sets, quiet, domain, safe)
+    print(f"{time.perf_counter() - started:.0f} s")
+
+
+def report_learner(goalless: Domain, teacher: ReferenceTeacher, sets: list[Draw], quiet: HiddenStateWorld,
+                   domain: Domain, safe: bool) -> None:
+    results: list[list[Row]] = []
+    print(f"{'draw':<10}" + "".join(f"{f'{c} demos, <= {b} q':>22}" for c, b in ROWS) + f"{'unchanged answers':>20}")
     for data in sets:
-        rows = measure(goalless, teacher, data, quiet, domain.goal)
+        rows = measure(goalless, teacher, data, quiet, domain.goal, safe)
         if data.name != "committed":
             results.append(rows)
         answers = [a for row in rows for a in row.answers]
@@ -175,7 +183,6 @@ def main(argv: list[str] | None = None) -> None:
             f"  | target >= {100 * target:.0f}% on every draw: {'met' if min(shares) >= target else 'not met'}"
         print(f"  {count:>2} demonstrations, <= {budget} questions: {100 * statistics.mean(shares):3.0f}% "
               f"({100 * min(shares):3.0f}%)  | {success}{verdict}")
-    print(f"{time.perf_counter() - started:.0f} s")
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parent.parent
 FIRST_LINE = """
 import sys, tempfile, threading, time
 from pathlib import Path
-from teach.session import messages as m
+from teach import messages as m
 from teach.voice.lines import Line
 from teach.voice.speaker import Speaker
 lang = sys.argv[1]

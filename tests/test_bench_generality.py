@@ -42,14 +42,25 @@ def test_outcomes_in_the_true_ball_model():
     assert from_every_state(Action("FindBall"), model) == ({"unsafe": 32}, {"FindBall without !BallFound": 32})
 
 
-def test_yes_no_answers_from_the_table61_tree():
-    domain = load_domain(BALL / "domain.toml")
+def test_may_i_questions_of_the_safe_learner_are_answered_as_a_teacher_does():
+    domain, delta4 = read_demo_set(BALL / "delta4")
     teacher = ReferenceTeacher(read_tree(BALL / "reference" / "table61.xml"), domain)
-    assert teacher.precondition_needed("PlaceBall", "BallGrasped", True)
-    assert teacher.precondition_needed("PlaceBall", "BinClose", True)
-    assert not teacher.precondition_needed("FindBall", "BinClose", False)  # it looks for the ball by the bin too
-    assert not teacher.precondition_needed("ApproachBin", "BallFound", True)  # a grasped ball need not be seen
-    assert teacher.goal_needed("BallPlaced", True) and not teacher.goal_needed("BallGrasped", True)
+    learner = learn_online(domain, delta4, safe=True)
+    # "is the task done once the ball is in the bin, whatever else holds?": yes
+    done = SituationQuestion((False, False, False, False, True), "must-goal", settles=(("BallFound", True),))
+    assert answer(learner, done, teacher, "question 1").answer == "yes"
+    assert learner.goal_holds((False, False, False, False, True))
+    # "may I go to the bin without the ball in view?": Table 6.1 does, with the ball in hand
+    state = (False, False, True, False, False)
+    going = SituationQuestion(state, "must-precondition", action="ApproachBin",
+                              settles=(("BallFound", True), ("BallClose", True)))
+    assert answer(learner, going, teacher, "question 2").answer == "yes"
+    assert learner.answer_in(state) == "ApproachBin"
+    # "may I grasp the ball when it is out of reach?": no, Table 6.1 goes to it first
+    grasping = SituationQuestion((True, False, False, False, False), "must-precondition", action="GraspBall",
+                                 settles=(("BallClose", True),))
+    assert answer(learner, grasping, teacher, "question 3").answer == "ApproachBall"
+    assert (1, True) in learner.model["GraspBall"].confirmed
 
 
 def test_a_situation_answer_is_taught_and_says_whether_the_tree_changed():
@@ -70,9 +81,11 @@ def test_ball_pairs_smallest_case_the_thesis_pair():
     runs = bench_ball_pairs.run_pair(ball, pair)  # type: ignore[arg-type]
     assert runs[0].shows_all and runs[0].questions == 0 and len(runs) == 6
     assert all(r.training_kept and sum(r.outcomes.values()) == 32 for r in runs)
-    # the thesis's specialization reproduced 35/43 from this pair; the default learner must not do worse
-    assert runs[0].reproduced >= 35
+    assert all(r.outcomes["unsafe"] == r.outcomes["false done"] == 0 for r in runs)  # the safe learner
     assert [len(r.answers) for r in runs] == list(range(6))
+    assert runs[5].reproduced > runs[0].reproduced  # the answers pay
+    # the thesis's specialization reproduced 35/43 from this pair; the guessing learner does not do worse
+    assert bench_ball_pairs.run_pair(ball, pair, budget=0, safe=False)[0].reproduced >= 35  # type: ignore[arg-type]
 
 
 def test_snacks_smallest_draw_is_the_generator_s_own_behaviour():

@@ -20,13 +20,13 @@ from foreign import ipc, strips  # noqa: E402
 from foreign.judge import judge, run  # noqa: E402
 from foreign.learners import BATCH  # noqa: E402
 from foreign.model import Task  # noqa: E402
-from foreign.questions import answer_question, ask, needed  # noqa: E402
+from foreign.questions import answer_question, ask, may  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
 from foreign.teaching import ceiling, demonstration, split_starts  # noqa: E402
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence  # noqa: E402
 from teach.bt.tick import compile_tree  # noqa: E402
-from teach.learn.inquiry import SituationQuestion  # noqa: E402
+from teach.learn.inquiry import SituationQuestion, next_question  # noqa: E402
 from teach.learn.learner import Learner  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 
@@ -142,16 +142,19 @@ def test_answers_come_from_the_true_model(ferry: Task) -> None:
     assert sum(a.charged for a in answers) <= 3
 
 
-def test_yes_no_answers_read_the_true_preconditions_and_goal(ferry: Task) -> None:
-    assert needed(ferry, "must-precondition", "board_c1_p1", "empty_ferry", True)
-    assert not needed(ferry, "must-precondition", "board_c1_p1", "empty_ferry", False)
-    assert not needed(ferry, "must-precondition", "board_c1_p1", "at_c2_p2", True)
-    assert needed(ferry, "must-goal", None, "at_c1_p2", True)
-    assert not needed(ferry, "must-goal", None, "at_ferry_p1", True)
-    task = next(t for t in (strips.random_task(6, 5, seed) for seed in range(10)) if t.model.goal_false)
-    index = task.model.goal_false.bit_length() - 1
-    assert needed(task, "must-goal", None, f"c{index}", False)
-    assert not needed(task, "must-goal", None, f"c{index}", True)
+def test_may_i_answers_read_the_true_preconditions_and_goal(ferry: Task) -> None:
+    there = ferry.mask(ferry.domain.state(["at_ferry_p1", "empty_ferry", "at_c1_p1", "at_c2_p2", "at_c3_p3"]))
+    assert may(ferry, "board_c1_p1", there)
+    assert not may(ferry, "board_c2_p2", there)  # the ferry is not where that car is
+    assert not may(ferry, None, there) and may(ferry, None, ferry.model.goal_true)
+    learner = Learner(ferry.domain)
+    learner.update(demonstration(ferry, state_with(ferry, *START), "d"))
+    for number in range(1, 6):
+        question = next_question(learner)
+        if question is None:
+            break
+        said = answer_question(learner, question, ferry, f"q{number}")
+        assert said.said in ("yes", "no", "done", "impossible") or said.said in ferry.domain.action_names
 
 
 def test_random_strips_preconditions_are_positive_and_negative_alike() -> None:

@@ -9,10 +9,10 @@ starts there, and replayed in the symbolic world (where the knock is only an unk
 
 from __future__ import annotations
 
-import itertools
-
 import pytest
 from conftest import ROOT
+from every_start import mujoco_outcomes, sixteen_starts
+from teacher_loop import correct_until_it_works
 
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
@@ -20,7 +20,6 @@ from teach.cli import main
 from teach.demos import read_demo_set
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
-from teach.sim.executor import run_tree
 from teach.sim.world import World
 from teach.symbolic import RunEnd, run_to_goal
 from teach.world.symbolic import SymbolicWorld
@@ -51,18 +50,11 @@ GERMAN = [
     "zum Eimer gehen, leg ihn in den Eimer",
     "ok fertig",
     "?",
-    "start du siehst den Ball",
+    "start ich sehe den Ball",
     "geh zum Ball, nimm ihn, zum Eimer gehen, Ball in den Eimer legen",
     "fertig",
 ]
 GUESSES = {"chnge smthing", "etwas andrn"}
-
-
-def sixteen_starts(domain):
-    """Every situation in which the goal does not hold yet."""
-    others = [n for n in domain.condition_names if n != "BallPlaced"]
-    return [domain.state([n for n, v in zip(others, bits, strict=True) if v])
-            for bits in itertools.product([False, True], repeat=len(others))]
 
 
 @pytest.mark.parametrize(("lang", "lines"), [("en", ENGLISH), ("de", GERMAN)])
@@ -75,8 +67,10 @@ def test_a_careless_teacher_still_teaches_the_task(ball, tmp_path, lang, lines):
         assert session.open is None or -1 not in [s.action for s in session.open.steps]  # no event was guessed
         if session.pending is not None:  # a wrong answer, then taken back
             asked = session.pending.state
-            answered = session.handle("go to the bin" if asked[ball.index("BinClose")] else "put the ball in the bin")
-            assert answered[0].kind.name != "ERROR" and session.learning.labels[asked] in ("ApproachBin", "PlaceBall")
+            # wrong, but nothing the domain file can tell: an action that can run there
+            wrong = next(a for a in ball.actions if ball.applicable(a.name, asked) and a.name != "PlaceBall")
+            answered = session.handle(wrong.label(lang))
+            assert answered[0].kind.name != "ERROR" and session.learning.labels[asked] == wrong.name
             if session.pending is not None:  # undo at answer> takes nothing back: leave the next question first
                 session.handle("skip")
             undone = session.handle("undo")  # the wrong answer, not the skip (a skip taught nothing)
@@ -86,10 +80,20 @@ def test_a_careless_teacher_still_teaches_the_task(ball, tmp_path, lang, lines):
         assert bool(errors) == (line in GUESSES), (line, errors)
     assert len(session.demos) == 2
     assert [s.action for s in session.demos[0].steps] == [1, 2, 3, 4, 5, 0]
+    # two demonstrations leave the robot unsure in some starts: it stops there, never guesses ...
+    stuck = [start for start in sixteen_starts(ball)
+             if run_to_goal(ball, session.learning.tree, start, 20).end is not RunEnd.SUCCESS]
+    assert stuck and all(run_to_goal(ball, session.learning.tree, start, 20).end is RunEnd.FAILURE for start in stuck)
+    # ... and the teacher, running it from each start and answering or showing where it stops, teaches the rest
+    corrections = correct_until_it_works(session, ball, sixteen_starts(ball))
     for start in sixteen_starts(ball):
         assert run_to_goal(ball, session.learning.tree, start, 20).end is RunEnd.SUCCESS, start
+    assert corrections.shown + corrections.answers <= 16
 
 
+MUJOCO_REACHED = {"en": 7, "de": 7}
+SYMBOLIC_REACHED = 5
+"""Starts the careless dialogue's tree does the task from in MuJoCo (measured); from the others it stops."""
 SLIPPED = {"en": "Event: the ball fell out of the gripper.", "de": "Ereignis: der Ball ist aus dem Greifer gefallen."}
 # fetch, knock (-1), fetch again, the slip (-1) as the carry began, grasp again, carry, place, goal
 WITH_SLIP = [1, 2, 3, -1, 1, 2, 3, -1, 3, 4, 5, 0]
@@ -116,13 +120,9 @@ def test_the_careless_dialogue_teaches_the_task_in_mujoco(tmp_path, capsys, mujo
     transcript, tree, demos = replayed(tmp_path, capsys, lang)
     assert transcript.count(SLIPPED[lang]) == 1 and "cannot learn" not in transcript.lower()
     assert demos == [WITH_SLIP, [2, 3, 4, 5, 0]]
-    failed = []
-    for number, start in enumerate(sixteen_starts(mujoco.domain)):
-        mujoco.arrange(start, seed=number)
-        trace = run_tree(mujoco, tree)
-        if not (trace.outcome == "success" and mujoco.conditions()["BallPlaced"]):
-            failed.append((start, trace.outcome))
-    assert failed == []
+    ends = mujoco_outcomes(mujoco, tree)
+    # never done wrongly, never anything but done or "show me": where two demonstrations leave it unsure it stops
+    assert set(ends) <= {"reached", "stuck"} and ends["reached"] >= MUJOCO_REACHED[lang], ends
 
 
 @pytest.mark.parametrize("lang", ["en", "de"])
@@ -130,5 +130,9 @@ def test_the_careless_dialogue_teaches_the_task_in_the_symbolic_world(tmp_path, 
     transcript, tree, demos = replayed(tmp_path, capsys, lang, "--world", "symbolic")
     assert SLIPPED[lang] not in transcript  # no physics, no slip: the knock is a line it does not know
     assert demos == [[1, 2, 3, 4, 5, 0], [2, 3, 4, 5, 0]]
-    for start in sixteen_starts(ball):
-        assert run_to_goal(ball, tree, start, 20).end is RunEnd.SUCCESS, start
+    runs = [run_to_goal(ball, tree, start, 20) for start in sixteen_starts(ball)]
+    reached = [run.end is RunEnd.SUCCESS and run.state[ball.index("BallPlaced")] for run in runs]
+    # done only with the ball in the bin; elsewhere it stops and asks to be shown (measured: 5 of 16
+    # done; the answers are written for the questions asked in MuJoCo)
+    assert all(ok or run.end is RunEnd.FAILURE for ok, run in zip(reached, runs, strict=True))
+    assert sum(reached) >= SYMBOLIC_REACHED

@@ -186,8 +186,8 @@ def test_runs_are_disturbed_by_events_and_repeat_for_the_same_seed(tmp_path):
     run = runs[0]
     assert run.outcome == "success" and domain.holds(Literal("SinkEmpty"), run.final_state)
     # every dish brought during the run was washed too
-    assert run.external and all(name == "more_dishes" for _, name, _ in run.external)
-    assert sum(1 for _, action in run.steps if action == "WashDish") == at_start[0] + len(run.external)
+    assert run.events and all(event.name == "more_dishes" for _, event in run.events)
+    assert sum(1 for _, action in run.steps if action == "WashDish") == at_start[0] + len(run.events)
 
 
 def test_runs_without_events_do_exactly_what_is_hidden(tmp_path):
@@ -195,7 +195,7 @@ def test_runs_without_events_do_exactly_what_is_hidden(tmp_path):
     world = HiddenStateWorld(domain, load_world(path, domain), events_in_runs=False)
     world.arrange(domain.state([]), {"dishes": 3})
     run = world.run(wash_until_empty())
-    assert run.outcome == "success" and run.external == []
+    assert run.outcome == "success" and run.events == []
     assert [action for _, action in run.steps] == ["GoToSink", "WashDish", "WashDish", "WashDish"]
 
 

@@ -1,4 +1,5 @@
-"""Situation questions for the model-based learner: never about a known state, never twice."""
+"""Situation questions for the model learner that guesses (``safe=False``): never about a known state,
+never twice. The safe learner's questions: tests/test_safe_learner.py."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ BALL = Path(__file__).resolve().parent.parent / "demos" / "ball"
 
 def ball_learner() -> Learner:
     domain, demos = read_demo_set(BALL / "delta4")
-    return learn_online(domain, demos)
+    return learn_online(domain, demos, safe=False)
 
 
 def test_questions_are_new_unlabelled_states_and_never_repeat() -> None:
@@ -57,7 +58,7 @@ def test_the_first_question_fixes_the_accidental_precondition_of_delta4() -> Non
 def test_the_goal_bound_question_finds_a_goal_literal_the_cover_left_out() -> None:
     # one demonstration ending with X and Y, Y made first: the cover keeps only X, the last one missing
     domain = Domain("bound", (ConditionDef("X"), ConditionDef("Y")), (ActionDef(1, "MakeX"), ActionDef(2, "MakeY")))
-    learner = Learner(domain)
+    learner = Learner(domain, safe=False)
     learner.update(Demonstration("one", (Step((False, False), 2, 1), Step((False, True), 1, 2),
                                          Step((True, True), 0, 3))))
     assert learner.goal.cover == [(0, True)]
@@ -71,7 +72,7 @@ def test_the_goal_bound_question_finds_a_goal_literal_the_cover_left_out() -> No
 
 def test_a_conflict_is_asked_first() -> None:
     domain = Domain("two", (ConditionDef("A"), ConditionDef("B")), (ActionDef(1, "X"), ActionDef(2, "Y")))
-    learner = Learner(domain)
+    learner = Learner(domain, safe=False)
     learner.update(Demonstration("one", (Step((False, False), 1, 1), Step((True, False), 0, 2))))
     learner.update(Demonstration("two", (Step((False, False), 2, 1), Step((False, True), 0, 2))))
     question = next_question(learner)
@@ -81,7 +82,7 @@ def test_a_conflict_is_asked_first() -> None:
 
 def test_nothing_left_to_ask_when_every_state_is_known() -> None:
     domain = Domain("one", (ConditionDef("A"),), (ActionDef(1, "X"),))
-    learner = Learner(domain)
+    learner = Learner(domain, safe=False)
     learner.update(Demonstration("d", (Step((False,), 1, 1), Step((True,), 0, 2))))
     assert next_question(learner) is None
     assert all(state in learner.situations for state in itertools.product((False, True), repeat=1))
@@ -97,7 +98,7 @@ def test_questions_answered_by_the_table_6_1_tree_reproduce_all_of_delta5() -> N
     oracle = compile_tree(read_tree(BALL / "reference" / "table61.xml"), domain.condition_names)
     for name, budget in (("delta4", 5), ("delta3", 2)):
         _domain, train = read_demo_set(BALL / name, domain)
-        learner = learn_online(domain, train)
+        learner = learn_online(domain, train, safe=False)
         asked: list[tuple[bool, ...]] = []
         for number in range(budget):
             question = next_question(learner, asked)

@@ -14,9 +14,9 @@ import pytest
 from conftest import journal_data
 from preloaded_cli import PreloadedCli
 
+from teach import messages as m
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
-from teach.session import messages as m
 from teach.session.journal import Answered, DemoLearned
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind

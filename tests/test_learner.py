@@ -61,7 +61,7 @@ def test_delta4_generalises_to_delta5_without_questions() -> None:
     domain, delta4 = read_demo_set(BALL / "delta4")
     _domain, delta5 = read_demo_set(BALL / "delta5", domain)
     # the thesis's specialization reached 35/43 from these two demonstrations
-    assert replay(learn(domain, delta4), domain, delta5).reproduced >= 35
+    assert replay(learn(domain, delta4, safe=False), domain, delta5).reproduced >= 35  # by guessing
 
 
 def test_repeats_loops_and_external_events_are_reproduced() -> None:

@@ -103,9 +103,9 @@ def test_the_first_question_for_participant_1_asks_about_timing_in_plain_words()
     session = ModelRepair(participant(1), QuestionBudget(5))
     question = session.ask()
     assert question == ModelQuestion("timing", "FindBall", Literal("BallFound"))
-    assert session.text(question) == ("When you “find the ball”: must “you can see the ball” already hold before "
-                                      "you start, or does it only hold afterwards? (before / after / both / neither)")
-    assert session.text(question, "de").startswith("Bei „Ball finden“: muss „du siehst den Ball“ schon vorher")
+    assert session.text(question) == ("When I “find the ball”: must “I can see the ball” already hold before "
+                                      "I start, or does it only hold afterwards? (before / after / both / neither)")
+    assert session.text(question, "de").startswith("Bei „Ball finden“: muss „ich sehe den Ball“ schon vorher")
 
 
 def test_nonsense_answers_give_one_line_with_a_suggestion_and_change_nothing():
@@ -136,14 +136,14 @@ def test_timing_answers_in_either_language(answer):
 def test_effects_answers_name_conditions_true_or_untrue():
     session = ModelRepair(participant(3), QuestionBudget(5), lang="de")
     change = session.apply(ModelQuestion("effects", "PlaceBall"),
-                           "der Ball ist im Eimer und du hast den Ball nicht in der Hand")
+                           "der Ball ist im Eimer und ich habe den Ball nicht in der Hand")
     assert session.model.action("PlaceBall").ram == (Literal("BallGrasped", False), Literal("BallPlaced"))
     assert change.startswith("Also gilt nach „Ball in den Eimer legen“")
     session.apply(ModelQuestion("effects", "ApproachBall"), "nothing")
     assert session.model.action("ApproachBall").ram == ()
     with pytest.raises(UnknownPhrase):  # both true and untrue at once
         session.apply(ModelQuestion("effects", "ApproachBall"),
-                      "the ball is in your hand, the ball is not in your hand")
+                      "the ball is in my hand, the ball is not in my hand")
 
 
 def test_a_condition_nothing_makes_true_leads_to_asking_whether_it_is_needed():
@@ -158,7 +158,7 @@ def test_a_condition_nothing_makes_true_leads_to_asking_whether_it_is_needed():
     assert session.apply(first, "nothing") == "So nothing makes “the key is in hand” true."
     second = session.ask()
     assert second == ModelQuestion("never", "Go", Literal("B"))
-    assert session.text(second) == "Can you “open the door” while “the key is missing”? (yes / no)"
+    assert session.text(second) == "Can I “open the door” while “the key is missing”? (yes / no)"
     assert session.apply(second, "ja") == "So “open the door” does not need “the key is in hand”."
     assert session.plan().usable and session.ask() is None and session.budget.used == 2
 
@@ -268,4 +268,4 @@ def test_effects_that_undo_each_other_are_asked_about_action_by_action():
     report = repair(told, QuestionBudget(5), ModelOracle(true))
     assert not report.before.usable and report.after.usable and report.after.true_usable
     assert [(s.question, s.answer) for s in report.steps] == [
-        ("What is different after you “make x”? (what is true then, or “nothing”)", "x holds")]
+        ("What is different after I “make x”? (what is true then, or “nothing”)", "x holds")]

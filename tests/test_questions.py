@@ -28,10 +28,10 @@ def test_budget_is_never_exceeded():
 
 def test_situation_in_words(ball):
     state = ball.state(["BallGrasped"])
-    assert describe_situation(ball, state) == ("the ball is in your hand, but you cannot see the ball, the ball is "
+    assert describe_situation(ball, state) == ("the ball is in my hand, but I cannot see the ball, the ball is "
                                                "out of reach, the bin is out of reach and the ball is not in the bin")
     german = describe_situation(ball, state, "de")
-    assert german.startswith("du hast den Ball in der Hand, aber du siehst den Ball nicht")
+    assert german.startswith("ich habe den Ball in der Hand, aber ich sehe den Ball nicht")
 
 
 def test_causal_prior_from_demonstrations(ball):

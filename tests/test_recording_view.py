@@ -135,7 +135,7 @@ def test_labels_are_the_sessions_language(tmp_path: Path, ball: Domain) -> None:
     graph = next(row for row in _rows(path, "/tree/graph") if row.get("GraphNodes:node_ids"))
     labels = [label.replace("\n", " ") for label in graph["GraphNodes:labels"]]
     assert "Ball finden" in labels
-    assert "du siehst den Ball?" in labels
+    assert "ich sehe den Ball?" in labels
     assert not any("find the ball" in label for label in labels)
     assert graph["GraphNodes:positions"] is not None and graph["GraphNodes:show_labels"] == [True]
     # the legend explains the symbols and colours in the session's language
@@ -165,8 +165,10 @@ def test_counts_are_drawn_as_steps_from_zero(recorded: Path) -> None:
 
 def test_the_layout_is_top_down_and_compact_for_35_nodes(ball: Domain) -> None:
     """A 35-node tree: no two boxes on a level overlap, children sit below their parent, and the
-    drawing fits the tree panel of a 1600x900 viewer at no less than 0.45 of its size: its 15
-    leaves side by side are the widest a top-down tree of this shape gets, so its labels wrap narrow."""
+    drawing fits the tree panel of a 1600x900 viewer at no less than 0.43 of its size: its 15
+    leaves side by side are the widest a top-down tree of this shape gets, so its labels wrap narrow
+    (0.43, not 0.45, since the robot speaks of itself: "I can see\nthe ball?" wraps wider than
+    "you can\nsee the\nball?")."""
     pairs = [("BallFound", "FindBall"), ("BallClose", "ApproachBall"), ("BallGrasped", "GraspBall"),
              ("BinClose", "ApproachBin"), ("BallPlaced", "PlaceBall")]
     guarded = [Fallback((Condition(c), Sequence((Condition("BallFound"), Condition(c), Action(a)))))
@@ -182,7 +184,7 @@ def test_the_layout_is_top_down_and_compact_for_35_nodes(ball: Domain) -> None:
     for level in set(y.tolist()):
         row = sorted((x[i] - widths[i] / 2, x[i] + widths[i] / 2) for i in range(len(nodes)) if y[i] == level)
         assert all(left[1] <= right[0] + 1e-3 for left, right in zip(row, row[1:], strict=False))
-    assert panel_scale(view.positions, view.labels) >= 0.45  # 0.37 with every leaf wrapped at 14 characters
+    assert panel_scale(view.positions, view.labels) >= 0.43  # 0.37 with every leaf wrapped at 14 characters
 
 
 def test_camera_and_study_entities_are_recorded(recorded: Path) -> None:

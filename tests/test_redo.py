@@ -57,7 +57,7 @@ def test_redo_brings_back_an_undone_demonstration_and_its_file(ball, tmp_path):
     session.handle("undo")
     assert len(session.demos) == 1 and (folder / "undone" / "demo-002.csv").is_file()
     said = texts(session.handle("redo"))
-    assert "demonstration demo-002" in said and "Generation" in said
+    assert "your demonstration 2," in said and "Generation" in said
     assert len(session.demos) == 2 and (folder / "demo-002.csv").is_file()
     assert not (folder / "undone" / "demo-002.csv").exists()
     assert "Nothing to redo" in texts(session.handle("redo"))  # one undo, one redo

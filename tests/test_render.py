@@ -116,7 +116,7 @@ def test_show_and_dot_commands(tmp_path: Path) -> None:
     assert shown.returncode == 0 and shown.stdout == COLLEDANCHISE_TEXT
     ticked = teach("show", str(path), "--state", "BallFound", "--domain", str(ROOT / "demos/ball/domain.toml"))
     assert ticked.returncode == 0, ticked.stderr
-    assert "(BallFound) · you can see the ball [SUCCESS]" in ticked.stdout
+    assert "(BallFound) · I can see the ball [SUCCESS]" in ticked.stdout
     assert ticked.stdout.endswith("status RUNNING, running ApproachBall\n")
     out = tmp_path / "tree.dot"
     assert teach("dot", str(path), "-o", str(out)).returncode == 0

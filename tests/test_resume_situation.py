@@ -13,8 +13,8 @@ from pathlib import Path
 import pytest
 from conftest import BALL_DOMAIN, journal_data
 
+from teach import messages as m
 from teach.domain import Domain
-from teach.session import messages as m
 from teach.session.machine import SessionManager
 from teach.session.replies import Reply
 from teach.session.settings import Settings, WorldKind
@@ -126,7 +126,7 @@ def test_a_run_the_session_ended_in_becomes_the_correction(ball, tmp_path, world
     assert again.open.words[0] == m.ROBOT_DID_STEP("en", action="go to the ball")
     assert again.world.state() == ball.state(["BallFound", "BallClose", "BallGrasped"])
     label = ball.action("ApproachBin").label("en")
-    assert m.RUN_RESTORED("en", action=label, count=2) in said
+    assert m.RUN_RESTORED("en", action=label, steps="2 steps") in said
     again.handle("go to the bin, put the ball in the bin")
     again.handle("done")
     assert [d.actions for d in again.demos] == [(2, 3, 4, 5)]
@@ -194,4 +194,4 @@ def test_every_step_shown_while_a_line_runs_is_on_disk(ball, tmp_path):
         first.handle(SEQUENCE)
     again, said = resumed(ball, tmp_path)
     assert again.open is not None and [s.action for s in again.open.steps] == [1, 2]
-    assert m.OPEN_RESTORED("en", count=2) in said
+    assert m.OPEN_RESTORED("en", steps="2 steps") in said

@@ -125,14 +125,14 @@ def test_the_tree_at_a_step_is_coloured_by_each_nodes_status_there(recording: Pa
     assert last.action == "ApproachBall" and last.step is not None
     styles = _styles(step_tree(contents, last.step))
     assert styles["go to the ball"] == {"bold black on yellow"}  # the running action, in the session's words
-    assert styles["you can see the ball?"] == {"green"} and styles["the ball is within reach?"] == {"red"}
+    assert styles["I can see the ball?"] == {"green"} and styles["the ball is within reach?"] == {"red"}
     assert styles["→"] == {"yellow"} and styles["?"] == {"green", "yellow", "dim"}
     assert styles["put the ball in the bin"] == styles["the ball is in the bin?"] == {"dim"}  # not ticked
     # the first tick, on generation 0's tree: it finds the ball
     first = contents.ticks[0]
     assert first.step is not None
     early = _styles(step_tree(contents, first.step))
-    assert early["find the ball"] == {"bold black on yellow"} and early["you can see the ball?"] == {"red"}
+    assert early["find the ball"] == {"bold black on yellow"} and early["I can see the ball?"] == {"red"}
     assert "go to the ball" in early and early["go to the ball"] == {"dim"}
 
 

@@ -34,7 +34,7 @@ def test_german_sentence_teaches_a_tree_and_ctrl_d_saves(ball, tmp_path):
             "\x04")  # Ctrl-D
     out, manager = drive(ball, tmp_path, keys)
     assert "Generation 1" in out and "was ich tue" in out
-    assert "Ich bin fertig, sobald gilt: der Ball ist im Eimer." in out
+    assert "Ich bin fertig, sobald gilt: der Ball ist im Eimer" in out
     assert "(BallPlaced)" not in out  # the symbols are for 'zeige ganz' and the facilitator
     assert "Auf Wiedersehen" in out  # Ctrl-D leaves after saving
     assert manager.finished and (tmp_path / "recordings" / "term.journal.json").is_file()
@@ -46,7 +46,7 @@ def test_tab_completion_and_help(ball, tmp_path):
     keys = "Ball fi\t\rhilfe\rquit\r"
     out, manager = drive(ball, tmp_path, keys)
     assert "✓ Ball finden" in out
-    assert "zeigen [Schritte]" in out  # the help lists the commands, in German
+    assert "vorführen [Schritte]" in out  # the help lists the commands, in German
     assert manager.finished
 
 
@@ -118,7 +118,7 @@ def test_question_mark_and_ok_done_are_commands(ball, tmp_path):
 def test_the_state_line_is_plain_words_unless_asked_for_in_full(ball, tmp_path):
     out, _ = drive(ball, tmp_path, "Ball finden\rzustand ganz\rquit\r")
     before_full = out.split("Zustand: BallFound=1", 1)[0]
-    assert "Zustand: du siehst den Ball" in before_full and "BallFound=" not in before_full
+    assert "Zustand: ich sehe den Ball" in before_full and "BallFound=" not in before_full
     assert "Zustand: BallFound=1" in out
 
 
@@ -141,8 +141,8 @@ def test_tab_completes_labels_after_why_and_start(ball, tmp_path):
         return [c.text for c in completer.get_completions(Document(text), CompleteEvent(completion_requested=True))]
 
     assert offered("warum Ball g") == ["Ball greifen"]
-    assert offered("start du s") == ["du siehst den Ball"]
-    assert offered("start du siehst den Ball, der E") == ["der Eimer ist in Reichweite"]
+    assert offered("start ich s") == ["ich sehe den Ball"]
+    assert offered("start ich sehe den Ball, der E") == ["der Eimer ist in Reichweite"]
     assert offered("warum der Ball ist i") == ["der Ball ist in Reichweite", "der Ball ist im Eimer"]
 
 

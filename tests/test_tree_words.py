@@ -8,7 +8,7 @@ from pathlib import Path
 from hypothesis import given, settings
 from strategies import trees
 
-from teach.bt.nodes import Action, walk
+from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, walk
 from teach.bt.xml import read_tree
 from teach.demos import read_demo_set
 from teach.learn.learner import learn_online
@@ -22,19 +22,19 @@ def test_table_6_1_in_english_and_german(ball):
     assert tree_lines(tree, ball, "en") == [
         "When the ball is in the bin, I am done.",
         "Otherwise I do the first that fits:",
-        "  – if the ball is not in your hand and you cannot see the ball, I find the ball",
-        "  – if the ball is not in your hand and the ball is out of reach, I go to the ball",
-        "  – if the ball is not in your hand, I grasp the ball",
+        "  – if the ball is not in my hand and I cannot see the ball, I find the ball",
+        "  – if the ball is not in my hand and the ball is out of reach, I go to the ball",
+        "  – if the ball is not in my hand, I grasp the ball",
         "  – if the bin is out of reach, I go to the bin",
         "  – otherwise, I put the ball in the bin",
     ]
     assert tree_lines(tree, ball, "de") == [
         "Ich bin fertig, sobald gilt: der Ball ist im Eimer.",
         "Sonst tue ich das Erste, was passt:",
-        "  – wenn gilt: du hast den Ball nicht in der Hand und du siehst den Ball nicht, dann: „Ball finden“",
-        "  – wenn gilt: du hast den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
+        "  – wenn gilt: ich habe den Ball nicht in der Hand und ich sehe den Ball nicht, dann: „Ball finden“",
+        "  – wenn gilt: ich habe den Ball nicht in der Hand und der Ball ist nicht in Reichweite, "
         "dann: „zum Ball gehen“",
-        "  – wenn gilt: du hast den Ball nicht in der Hand, dann: „Ball greifen“",
+        "  – wenn gilt: ich habe den Ball nicht in der Hand, dann: „Ball greifen“",
         "  – wenn gilt: der Eimer ist nicht in Reichweite, dann: „zum Eimer gehen“",
         "  – sonst: „Ball in den Eimer legen“",
     ]
@@ -70,3 +70,17 @@ def test_any_tree_is_said_in_words_naming_every_action(tree):
         text = "\n".join(lines)
         assert all(ball.action(n.name).label(lang) in text for n in walk(tree) if isinstance(n, Action))
         assert not any(name in text for name in (*ball.condition_names, *ball.action_names))
+
+
+def test_a_rule_an_earlier_one_always_comes_before_is_not_said(ball):
+    # "if the bin is out of reach, I go to the bin" comes first: a later rule that goes to the
+    # bin when it checks the same and more ("... and I cannot see the ball") says nothing new
+    out_of_reach = Inverter(Condition("BinClose"))
+    tree = Fallback((Sequence((out_of_reach, Action("ApproachBin"))),
+                     Sequence((out_of_reach, Inverter(Condition("BallFound")), Action("ApproachBin"))),
+                     Action("PlaceBall")))
+    assert tree_lines(tree, ball, "en") == [
+        "I do the first that fits:",
+        "  – if the bin is out of reach, I go to the bin",
+        "  – otherwise, I put the ball in the bin",
+    ]

@@ -7,7 +7,9 @@ turns it into ``xfrc_applied``). The real mouse is not driven: where the robot a
 screen would have to be computed, and xdotool adds nothing the viewer's own code does not.
 Checked: Ctrl+left-drag turns the robot until it sees the ball, recognised as "find the ball";
 dragging the ball out of reach is an external step (-1), "you moved the ball"; a drag that
-changes nothing is said so and not recorded; without a viewer, ``guide hand`` is refused."""
+changes nothing is said so and not recorded; without a viewer, ``guide hand`` is refused; and
+the screen shows the robot, the ball and the bin, no panels (issue 21: the camera follows the
+robot from above and behind)."""
 
 from __future__ import annotations
 
@@ -51,7 +53,7 @@ def _server() -> Iterator[str]:
                                "-nolisten", "tcp", "-noreset"], pass_fds=(write,), stderr=subprocess.DEVNULL)
     os.close(write)
     try:
-        ready = os.read(read, 16).decode().strip()  # Xvfb writes the number once it takes clients
+        ready = _line(read)  # Xvfb writes the number once it takes clients
         os.close(read)
         if ready != str(number):
             pytest.skip(f"Xvfb did not start on :{number}")
@@ -59,6 +61,18 @@ def _server() -> Iterator[str]:
     finally:
         server.terminate()
         server.wait()
+
+
+def _line(fd: int) -> str:
+    """What Xvfb writes to its -displayfd, up to the newline: the write may come in parts, and
+    closing the pipe before the last one kills the server ("Cannot write display number")."""
+    data = b""
+    while not data.endswith(b"\n"):
+        part = os.read(fd, 16)
+        if not part:
+            break
+        data += part
+    return data.decode().strip()
 
 
 def _in_viewer(display: str, scenario: str) -> dict[str, object]:
@@ -100,11 +114,19 @@ def test_a_drag_that_changes_nothing_is_said_and_not_recorded(display: str) -> N
     assert seen["steps"] == []
 
 
+def test_the_viewer_shows_the_robot_the_ball_and_the_bin_without_panels(display: str) -> None:
+    """What --viewer opens, grabbed from the X screen: the robot (blue), the ball (orange) and
+    the bin (green) are in view from the first frames, and no panel covers the window's sides."""
+    seen = _in_viewer(display, "screenshot")
+    assert seen["robot"] > 200 and seen["ball"] > 20 and seen["bin"] > 100, seen  # type: ignore[operator]
+    assert not seen["panels"], seen
+
+
 def test_guide_hand_needs_the_viewer(tmp_path: Path) -> None:
     from conftest import BALL_DOMAIN
 
+    from teach import messages as m
     from teach.domain import load_domain
-    from teach.session import messages as m
     from teach.session.machine import SessionManager
     from teach.session.settings import Settings
     from teach.world.mujoco_world import MujocoWorld
@@ -141,6 +163,8 @@ def _scenario(name: str) -> dict[str, object]:
 
     nothing = {c: False for c in loaded.condition_names}
     result: dict[str, object] = {}
+    if name == "screenshot":
+        return _screenshot(world)
     if name == "turn":  # the ball lies 3 m away, 67 degrees to the robot's right
         world.world.arrange(nothing, seed=11)
         yaw = world.world.base_pose()[2]
@@ -152,7 +176,7 @@ def _scenario(name: str) -> dict[str, object]:
     else:  # the ball lies in front of the gripper; the mouse drags it away (or barely), then holds still
         world.world.arrange({**nothing, "BallFound": True, "BallClose": True}, seed=3)
         start = world.world.ball_position()
-        mouse.grab("ball", mujoco.mjtMouse.mjMOUSE_MOVE_V, (0.02 if name == "ball" else 0.001, 0.0))
+        mouse.grab("ball", mujoco.mjtMouse.mjMOUSE_MOVE_H, (0.012, 0.0) if name == "ball" else (0.001, 0.0))
         say("guide hand 0.6")
         mouse.step = (0.0, 0.0)
         say("guide hand 0.6")
@@ -163,6 +187,32 @@ def _scenario(name: str) -> dict[str, object]:
     steps = manager.open.steps if manager.open is not None else []
     result.update(replies=replies, steps=[[list(s.state), s.action] for s in steps], after=list(world.state()))
     return result
+
+
+def _screenshot(world: object) -> dict[str, object]:
+    """Pixels of the robot's, the ball's and the bin's colours on the X screen, a few frames
+    after the viewer opened; and whether the window's left and right strips look like panels
+    (MuJoCo's panels are flat grey boxes the height of the window)."""
+    import time
+
+    import numpy as np
+    from PIL import ImageGrab
+
+    time.sleep(1.5)  # the viewer's thread draws its first frames
+    for _ in range(5):
+        world.viewer.sync()  # type: ignore[attr-defined]
+        time.sleep(0.2)
+    image = np.asarray(ImageGrab.grab(xdisplay=os.environ["DISPLAY"]).convert("RGB")).astype(int)
+    r, g, b = image[..., 0], image[..., 1], image[..., 2]
+    drawn = image.sum(axis=2) > 30
+    rows, columns = np.nonzero(drawn)
+    window = image[rows.min():rows.max() + 1, columns.min():columns.max() + 1]
+    strip = max(1, window.shape[1] // 6)
+    flat = [float(np.std(part.reshape(-1, 3), axis=0).mean()) for part in (window[:, :strip], window[:, -strip:])]
+    return {"robot": int(((b > r + 60) & (b > g + 25)).sum()), "ball": int(((r > 150) & (g > 50) & (g < r - 60)
+                                                                            & (b < g - 20)).sum()),
+            "bin": int(((g > r + 40) & (g > b + 25)).sum()), "panels": all(v < 4.0 for v in flat),
+            "window": [int(window.shape[1]), int(window.shape[0])]}
 
 
 if __name__ == "__main__":  # the child process: one scenario, its result as one JSON line

@@ -36,9 +36,11 @@ def _refusing(learn: Learn) -> Learn:
 
 BATCH: dict[str, Learn] = {
     "learner": lambda domain, demos: learn_online(domain, demos).tree,
+    "guessing": lambda domain, demos: learn_online(domain, demos, safe=False).tree,
     "sam": sam_tree,
     "detect": _refusing(lambda domain, demos: learn_detect(domain, demos)[-1]),
     "specialize": _refusing(lambda domain, demos: specialize(domain, demos).tree),
 }
-"""``learner``: the default online learner; ``sam``: the SAM-style baseline; ``detect`` and
+"""``learner``: the default online learner (safe); ``guessing``: the same learner guessing
+(``safe=False``, the default before issue 18); ``sam``: the SAM-style baseline; ``detect`` and
 ``specialize``: the thesis's Approaches 2 and 3, which may refuse a set (None)."""

@@ -34,8 +34,9 @@ ORDER = 15
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("source", type=Path, metavar="DEMO_DIR",
                         help="folder of CSV demonstrations (pabt: a domain.toml or a folder with one)")
-    parser.add_argument("--approach", choices=("model", "pabt", "detect", "specialize"), default="model",
-                        help="which learner (default: model)")
+    parser.add_argument("--approach", choices=("safe", "model", "pabt", "detect", "specialize"),
+                        default="safe", help="which learner (default: safe, which never acts on a guess; model: "
+                                             "the same learner guessing, for comparison)")
     parser.add_argument("--prune", action="store_true", help="remove redundant nodes (Alg. 4.1-4.4)")
     parser.add_argument("--domain", type=Path, help="domain.toml (default: in the folder or its parent)")
     parser.add_argument("--goal", nargs="+", metavar="LIT",
@@ -120,10 +121,10 @@ def _learn(approach: str, domain, demos, goal):  # type: ignore[no-untyped-def]
     if not any(demo.actions for demo in demos):
         raise LearnError("no demonstration shows an action (only goal states), so there is no behaviour to learn",
                          demos[0].path.parent if demos and demos[0].path else None)
-    if approach == "model":
+    if approach in ("model", "safe"):
         from teach.learn.learner import learn_online
 
-        model_learner = learn_online(domain, [])
+        model_learner = learn_online(domain, [], safe=approach == "safe")
         model_generations = [model_learner.tree]
         for demo in demos:
             if model_learner.update(demo).changed:

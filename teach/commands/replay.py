@@ -46,6 +46,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--base", type=Path, default=Path("."), help="folder holding demos/, trees/, recordings/")
     parser.add_argument("--overwrite", action="store_true",
                         help="replace a session of the same name that was not made by replaying this dialogue")
+    parser.add_argument("--guess", action="store_true",
+                        help="learn as the earlier model learner did, generalising by guessing (it may act where a "
+                             "precondition does not hold; for comparison only: the default never acts on a guess)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--lenient", action="store_true",
@@ -55,13 +58,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from rich.console import Console
 
+    from teach import messages as m
     from teach.dialogue.model_repair import ModelOracle
     from teach.dialogue.oracle import SituationOracle, oracle_from_model, oracle_from_tree
     from teach.dialogue.phrases import PhraseBook
-    from teach.dialogue.script import AUDIO, check_lines, read_script
+    from teach.dialogue.script import AUDIO, read_script
     from teach.domain import load_domain
     from teach.errors import TeachError
-    from teach.session import messages as m
+    from teach.session.dialogue_check import check_lines
     from teach.session.settings import Settings, WorldKind
     from teach.session.setup import dialogue_events, opened_session, session_domain
     from teach.session.store import SessionStore
@@ -81,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),
         base=args.base, record=not args.no_record, label_questions=args.label_questions,
-        facilitator=args.facilitator, groot=args.groot, pace=pace)
+        facilitator=args.facilitator, groot=args.groot, safe=not args.guess, pace=pace)
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)

@@ -45,6 +45,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pace", type=float, default=1.0,
                         help="simulated seconds per wall-clock second, so you can watch and interrupt "
                              "(default 1: real time; 0 = as fast as possible)")
+    parser.add_argument("--guess", action="store_true",
+                        help="learn as the earlier model learner did, generalising by guessing (it may act where a "
+                             "precondition does not hold; for comparison only: the default never acts on a guess)")
     parser.add_argument("--facilitator", action="store_true",
                         help="show identifiers as well: conditions by name, the symbolic tree (default: plain words)")
     parser.add_argument("--voice", "--stimme", action="store_true",
@@ -56,7 +59,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from teach.session import messages as m
+    from teach import messages as m
     from teach.session.settings import Settings
     from teach.session.setup import opened_session
     from teach.terminal.app import Terminal
@@ -75,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
     settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
-                        facilitator=args.facilitator, groot=args.groot, voice=args.voice)
+                        facilitator=args.facilitator, groot=args.groot, voice=args.voice, safe=not args.guess)
     with opened_session(settings, resume=bool(args.resume)) as manager:
         history = args.base / "recordings" / ".teach_history"
         history.parent.mkdir(parents=True, exist_ok=True)

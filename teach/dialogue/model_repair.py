@@ -9,15 +9,15 @@ or actions that wait for each other. People think in actions, not preconditions,
 about five questions, so each question here is about one concrete action or a pair of them,
 phrased from the domain's own labels:
 
-- ``timing``: "When you find the ball: must “you can see the ball” hold before you start, or
+- ``timing``: "When I find the ball: must “I can see the ball” hold before I start, or
   does it only hold afterwards?" (one condition both before and after one action);
-- ``effects``: "What is different after you go to the ball?" (an action with several such
+- ``effects``: "What is different after I go to the ball?" (an action with several such
   conditions, or the only action that changes nothing while a needed condition has no cause);
-- ``achiever``: "What do you do so that “the ball is within reach”?" (a needed condition that
+- ``achiever``: "What should I do so that “the ball is within reach”?" (a needed condition that
   no action makes true);
-- ``order``: "What do you do first: find the ball or go to the ball?" (actions that wait for
+- ``order``: "What should I do first: find the ball or go to the ball?" (actions that wait for
   each other's results);
-- ``never``: "Can you find the ball while “the ball is out of reach”?" (a precondition that
+- ``never``: "Can I find the ball while “the ball is out of reach”?" (a precondition that
   can never become true, once the teacher has said no action makes it true).
 
 Which question comes first follows only the structure of the model (contradictions first,
@@ -33,6 +33,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from enum import StrEnum
 
+from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import ActionDef, Domain, Literal
@@ -46,8 +47,7 @@ from teach.learn.model_gaps import (
     reachable,
     requires,
 )
-from teach.session import messages as m
-from teach.session.messages import Text
+from teach.messages import Text
 
 
 class QuestionKind(StrEnum):
@@ -249,7 +249,7 @@ class _Conditions:
             self._map.setdefault(key, literal)
 
     def parse(self, text: str, lang: str) -> list[Literal]:
-        """All conditions in an answer like "the ball is in the bin and the ball is not in your hand"."""
+        """All conditions in an answer like "the ball is in the bin and the ball is not in my hand"."""
         whole = self._one(text)
         if whole is not None:
             return [whole]

@@ -58,7 +58,8 @@ class PlanningOracle:
     the shortest plan from s to the model's goal (ties: the first in the model's action order,
     searched breadth-first), or None where the goal holds. Only the situation asked about
     matters, so a model whose goal some states cannot reach answers every other state; a
-    question in a state it cannot reach is refused (``DomainError``)."""
+    question in a state from which the goal cannot be reached is answered ``SKIP`` (the teacher
+    cannot show a way either): the safe learner's "may I still …?" situations are often such."""
 
     def __init__(self, model: Domain, domain: Domain, source: str = "model"):
         if not model.goal:
@@ -75,10 +76,10 @@ class PlanningOracle:
     def answer(self, state: State) -> str | None:
         start = sum(1 << i for i, value in enumerate(state) if value)
         if start not in self._answers:
-            self._answers[start] = self._plan_from(start, state)
+            self._answers[start] = self._plan_from(start)
         return self._answers[start]
 
-    def _plan_from(self, start: int, state: State) -> str | None:
+    def _plan_from(self, start: int) -> str | None:
         def reached(mask: int) -> bool:
             return mask & self._goal[0] == self._goal[0] and not mask & self._goal[1]
 
@@ -102,9 +103,7 @@ class PlanningOracle:
                         return first[after]
                     following.append(after)
             frontier = following
-        goal = " and ".join(str(literal) for literal in self.model.goal)
-        raise DomainError(f"a question asks what to do in [{self.model.describe(state)}], but from there the "
-                          f"model cannot reach its goal {goal}, so it cannot answer", self.model.path)
+        return SKIP
 
 
 def _masks(model: Domain, literals: Iterable[Literal]) -> tuple[int, int]:

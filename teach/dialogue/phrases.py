@@ -45,6 +45,7 @@ _SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|\band\b|
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
 _TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close
 _SUGGEST_CUTOFF = 0.45  # similarity from which a phrase is offered as "Did you mean"
+_SUGGEST_MARGIN = 0.1  # ... when no other action or event comes this close
 _EVENT_SUGGEST_CUTOFF = _TYPO_CUTOFF  # outside "perturb" an event is offered only for a typo of it
 _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 
@@ -95,9 +96,11 @@ class Suggestion:
     topic: str | None = None  # the object named last before them
 
     def question(self) -> str:
+        """The whole reading so far with the guess at its end: a yes confirms what was shown, all of it."""
+        reading = ", ".join(t.text for t in (*self.before, self.candidate))
         if self.lang == "de":
-            return f"Meintest du „{self.candidate.text}“?"
-        return f"Did you mean “{self.candidate.text}”?"
+            return f"Meintest du „{reading}“?"
+        return f"Did you mean “{reading}”?"
 
 
 class UnknownPhrase(TeachError):
@@ -109,7 +112,10 @@ class UnknownPhrase(TeachError):
         self.suggestion = suggestion
         self.suggestions = [suggestion.candidate.text] + suggestions if suggestion is not None else suggestions
         shown = _shorten(text)
-        if lang == "de":
+        if suggestion is not None:
+            hint = " " + suggestion.question()
+            message = f"Das kenne ich nicht: „{shown}“.{hint}" if lang == "de" else f"I don't know “{shown}”.{hint}"
+        elif lang == "de":
             hint = f" Meintest du „{self.suggestions[0]}“?" if self.suggestions else ""
             message = f"Das kenne ich nicht: „{shown}“.{hint}"
         else:
@@ -155,8 +161,8 @@ def normalize(text: str) -> str:
     return " ".join(w for w in _words(text) if w not in _FILLERS)
 
 
-def _key(text: str) -> tuple[str, ...]:
-    """The words of a phrase that matter for matching."""
+def phrase_key(text: str) -> tuple[str, ...]:
+    """The words of a phrase that matter for matching: two phrases with one key read the same."""
     return tuple(w for w in _words(text) if w not in _IGNORED)
 
 
@@ -270,7 +276,7 @@ class PhraseBook:
 
     def _enter(self, entry: _Entry) -> None:
         """The first phrase of each kind keeps a key: an action and an event may share one."""
-        key = _key(entry.phrase)
+        key = phrase_key(entry.phrase)
         if key:
             entries = self._entries.setdefault(key, [])
             if all(e.kind != entry.kind for e in entries):
@@ -288,13 +294,13 @@ class PhraseBook:
 
     def topic_in(self, text: str) -> str | None:
         """The object a line names last ("start ball found": the ball), or None."""
-        return self._last_noun(_key(text))
+        return self._last_noun(phrase_key(text))
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """The object named last in ``tokens``: what "it" means in the next line."""
         topic = None
         for token in tokens:
-            topic = self._last_noun(_key(token.text)) or topic
+            topic = self._last_noun(phrase_key(token.text)) or topic
         return topic
 
     # --- parsing ------------------------------------------------------------------------------------
@@ -319,14 +325,14 @@ class PhraseBook:
         later part of the line)."""
         candidate = replace(suggestion.candidate, guessed=False)
         tokens = [*suggestion.before, candidate]
-        topic = self._last_noun(_key(candidate.text)) or suggestion.topic
+        topic = self._last_noun(phrase_key(candidate.text)) or suggestion.topic
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
     def _read(self, chunks: list[str], lang: str, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = _key(chunk)
+            words = phrase_key(chunk)
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -340,7 +346,7 @@ class PhraseBook:
                 if typo is None:
                     raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
                 tokens.append(typo)
-                topic = self._last_noun(_key(typo.text)) or topic
+                topic = self._last_noun(phrase_key(typo.text)) or topic
                 continue
             for number, piece in enumerate(pieces):
                 said = chunk if len(pieces) == 1 else " ".join(piece.words)
@@ -500,10 +506,30 @@ class PhraseBook:
                 ratio, entry = event_ratio, event
         elif self._best(said, "action")[0] >= ratio:
             entry = None  # an action's words after "perturb": no event to offer
-        if entry is None or ratio < _SUGGEST_CUTOFF:
+        pronoun_event = entry is not None and entry.kind == "event" and ratio == 1.0
+        if entry is None or ratio < _SUGGEST_CUTOFF \
+                or not (pronoun_event or self._clearly_nearest(said, entry, ratio, lang)):
             return UnknownPhrase(chunk, [], lang)
         candidate = Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
         return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
+
+    def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: str) -> bool:
+        """Whether ``entry`` is the one phrase ``said`` is near: a word of it is one the teacher
+        typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"), and every phrase of another
+        action or event in the session's language within ``_SUGGEST_MARGIN`` of it has fewer
+        such words ("Ball fahren" is "zum Ball fahren", not "den Ball aufheben"): "go get it" is
+        not "go to the bin", and "the ball" names no step."""
+        shared = self._shared(said, entry.phrase)
+        if not shared:
+            return False
+        return all(self._shared(said, other.phrase) < shared for r, other in self._ranked(said)
+                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, ""))
+
+    @staticmethod
+    def _shared(said: str, phrase: str) -> int:
+        """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
+        theirs = [w for w in phrase_key(phrase) if w not in _ARTICLES]
+        return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
 
     def _text(self, entry: _Entry, lang: str) -> str:
         """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""
@@ -514,6 +540,16 @@ class PhraseBook:
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
         return found[-1] if found else None
+
+
+def _alike(typed: str, word: str) -> bool:
+    """A word the teacher typed stands for ``word``: three letters or more inside it or its
+    start, five or more also spelled nearly like it; two letters only as the start of a longer
+    word ("bi" for "bin", never "go" for "go": words that short say nothing about which phrase
+    was meant)."""
+    if len(typed) < 3:
+        return len(typed) == 2 and len(word) > 2 and word.startswith(typed)
+    return typed in word or (len(typed) >= 5 and _ratio(typed, word) >= _WORD_CUTOFF)  # "nein" is not "rein"
 
 
 def _substituted(words: tuple[str, ...], noun: str) -> list[tuple[str, ...]]:

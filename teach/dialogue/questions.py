@@ -37,12 +37,12 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.bt.nodes import Node, Status, transform
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
-from teach.session import messages as m
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
@@ -95,9 +95,23 @@ class Question:
     expected: tuple[tuple[str, float], ...] = ()  # (answer or "done", committee share)
     shown: tuple[str, ...] = ()
     """For a conflict: the answers demonstrated here (action names, "" for "done")."""
+    kind: str = ""
+    """"must-precondition" (may I still do ``about`` here?), "must-goal" (is the task done here?),
+    or a plain situation question."""
+    action: str | None = None
+    """The action a must-precondition question asks about; a yes is the answer "do it here"."""
+    settles: tuple[tuple[str, bool], ...] = ()
+    """The literals (condition, value) that always held so far and do not hold here."""
 
     def text(self, domain: Domain, lang: str = "en") -> str:
         situation = describe_situation(domain, self.state, lang)
+        if self.kind in ("must-precondition", "must-goal"):
+            held = join_words([domain.condition(name).label(lang, value) for name, value in self.settles], lang)
+            if self.kind == "must-goal":
+                return m.MUST_GOAL_QUESTION(lang, held=held, situation=situation)
+            assert self.action is not None
+            return m.MUST_ACTION_QUESTION(lang, held=held, action=domain.action(self.action).label(lang),
+                                          situation=situation)
         if self.shown:
             labels = [domain.action(a).label(lang) if a else m.DONE_WORD(lang) for a in self.shown]
             return m.CONFLICT_QUESTION(lang, shown=m.OR(lang).join(labels), situation=situation)
@@ -108,14 +122,15 @@ def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     """A state in plain words: what holds, then ``but`` what does not."""
     true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
-    joiner, but = m.AND(lang), m.BUT(lang)
-
-    def join(items: list[str]) -> str:
-        return items[0] if len(items) == 1 else ", ".join(items[:-1]) + joiner + items[-1]
-
+    but = m.BUT(lang)
     if true and false:
-        return f"{join(true)},{but}{join(false)}"
-    return join(true or false)
+        return f"{join_words(true, lang)},{but}{join_words(false, lang)}"
+    return join_words(true or false, lang)
+
+
+def join_words(items: list[str], lang: str) -> str:
+    """``a``, ``a and b``, ``a, b and c`` in the session's language."""
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
 
 
 # --- what the demonstrations say about cause and effect ---------------------------------------

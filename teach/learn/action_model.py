@@ -22,7 +22,13 @@ Per robot action (external events, -1, belong to nobody and teach no action anyt
   and **maintained** ones: a literal the teacher restored at once every time an event took it
   away, once another action was shown to need it, is assumed for every action it held for;
 - **guessed effects** of an action never demonstrated, from an answer (until its first
-  transition replaces them).
+  transition replaces them);
+- **ruled out** preconditions: possible ones the teacher said are not needed.
+
+The **required** preconditions are the possible ones not ruled out. They are the safe bound
+(SAM): in STRIPS-like worlds every real precondition is among them, so a tree that checks
+all of them before an action never runs it where a real precondition is false. The assumed
+ones only order the tree (which literals to achieve first); the rest are checked, not pursued.
 
 Everything is updated in O(conditions) per transition; nothing is ever recomputed from the
 old demonstrations.
@@ -30,6 +36,7 @@ old demonstrations.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 Lit = tuple[int, bool]
@@ -72,6 +79,7 @@ class ActionKnowledge:
     confirmed: dict[Lit, str] = field(default_factory=dict)
     maintained: dict[Lit, str] = field(default_factory=dict)
     guessed: dict[Lit, str] = field(default_factory=dict)
+    ruled_out: dict[Lit, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.held_true = self.held_false = self.full
@@ -102,9 +110,23 @@ class ActionKnowledge:
         return self.held_true, self.held_false
 
     @property
-    def assumed(self) -> tuple[int, int]:
-        """The preconditions the planner uses: possible ones with a reason, plus confirmed ones."""
+    def required(self) -> tuple[int, int]:
+        """The safe bound the tree checks: every possible precondition the teacher did not rule out."""
         pos, neg = self.possible
+        out_pos, out_neg = literal_masks(self.ruled_out)
+        return pos & ~out_pos, neg & ~out_neg
+
+    @property
+    def unsure(self) -> tuple[int, int]:
+        """Required preconditions nobody confirmed: what a question about this action can settle."""
+        pos, neg = self.required
+        sure_pos, sure_neg = literal_masks({**self.confirmed, **self.maintained})
+        return pos & ~sure_pos, neg & ~sure_neg
+
+    @property
+    def assumed(self) -> tuple[int, int]:
+        """The preconditions the planner pursues: required ones with a reason, plus confirmed ones."""
+        pos, neg = self.required
         made_true, made_false = self.effects
         enabled_true, enabled_false = (self.enabled_true, self.enabled_false) if self.followed else (0, 0)
         keep_pos = pos & (made_false | enabled_true)
@@ -117,7 +139,7 @@ class ActionKnowledge:
         return keep_pos, keep_neg
 
     def reason(self, literal: Lit) -> str:
-        """Why ``literal`` is an assumed precondition, in words."""
+        """Why ``literal`` is a required precondition, in words."""
         index, value = literal
         if literal in self.confirmed:
             return f"added back at {self.confirmed[literal]} to reproduce what was shown there"
@@ -127,7 +149,10 @@ class ActionKnowledge:
         made_true, made_false = self.effects
         if (made_false if value else made_true) >> index & 1:
             return "it runs only while its own effect does not hold yet"
-        return "the step right before it made it hold every time it followed another step"
+        pos, neg = self.assumed
+        if (pos if value else neg) >> index & 1:
+            return "the step right before it made it hold every time it followed another step"
+        return "nobody has told me yet that it is not needed, so I check it first"
 
 
 class ActionModel:
@@ -169,6 +194,13 @@ class ActionModel:
         """Keep ``literal`` as a precondition of ``name`` from now on (it had to be added back)."""
         self.actions[name].confirmed.setdefault(literal, source)
 
+    def rule_out(self, name: str, literal: Lit, source: str) -> None:
+        """The teacher said ``literal`` is not needed before ``name``."""
+        knowledge = self.actions[name]
+        knowledge.ruled_out.setdefault(literal, source)
+        knowledge.confirmed.pop(literal, None)
+        knowledge.maintained.pop(literal, None)
+
     def guess(self, name: str, literal: Lit, source: str) -> None:
         """An effect inferred from an answer (see ``Learner.teach_step``); transitions of the
         action, once demonstrated, replace every guess."""
@@ -184,6 +216,17 @@ class ActionModel:
                 found.append(knowledge)
         found.sort(key=lambda k: (-k.made[literal].count if literal in k.made else 0, k.order))
         return [k.name for k in found]
+
+
+def literal_masks(literals: Iterable[Lit]) -> tuple[int, int]:
+    """(true mask, false mask) of some literals."""
+    pos = neg = 0
+    for index, value in literals:
+        if value:
+            pos |= 1 << index
+        else:
+            neg |= 1 << index
+    return pos, neg
 
 
 def literals_of(pos: int, neg: int, width: int) -> list[Lit]:

@@ -7,6 +7,9 @@ precondition is expanded the same way until it has no achiever or already appear
 path from the root (so loops in the model end). A precondition that is the negation of the
 literal being achieved is left out: inside its Fallback the literal is false already.
 
+The learner passes every precondition it has not ruled out (the assumed ones first), so each
+action runs only where all of them hold: the order is a guess, the checks are not.
+
 Optionally a *weak last resort* ends each Fallback: the first achiever again with none of its
 preconditions, so where a precondition can neither be checked true nor achieved the robot
 still tries the action that was shown for this literal instead of giving up.

@@ -3,8 +3,11 @@
 Two bounds, as for preconditions:
 
 - the **candidates** (the over-specific bound): the literals that held in every goal state;
-  every answer "the task is done here" and every new goal state can only narrow them;
-- the **goal** the tree checks: the smallest set of candidates that explains why the teacher
+  every answer "the task is done here" and every new goal state can only narrow them, and the
+  teacher can rule one out ("it need not hold for the task to be done"). The candidates not
+  ruled out are the **required** goal: the tree says "done" only where all of them hold, so it
+  never says done where a literal it has not ruled out is false;
+- the **cover** orders the tree's work: the smallest set of candidates that explains why the teacher
   kept acting, i.e. every state in which the teacher chose an action violates at least one of
   them (a greedy set cover). The intersection alone keeps accidental literals nothing
   achieves, so the tree would fail everywhere; the cover keeps only what the teacher's
@@ -32,6 +35,8 @@ class GoalLearner:
         self._true_in_acting = [0] * width
         self.cover: list[Lit] = []
         self.unexplained: set[int] = set()
+        self.ruled_out: dict[Lit, str] = {}
+        self.confirmed: dict[Lit, str] = {}
 
     # --- the bounds ---------------------------------------------------------------------------
 
@@ -52,9 +57,30 @@ class GoalLearner:
                 result.append((index, False))
         return result
 
+    def required(self) -> list[Lit]:
+        """The candidates not ruled out: what must hold before the tree says "done"."""
+        return [lit for lit in self.candidates() if lit not in self.ruled_out]
+
+    def unsure(self) -> list[Lit]:
+        """Required literals the teacher's behaviour does not show to matter and nobody confirmed."""
+        sure = set(self.cover) | set(self.confirmed)
+        return [lit for lit in self.required() if lit not in sure]
+
     def holds(self, mask: int) -> bool:
-        """Does the learned goal hold in this state (False while no goal is known)?"""
+        """Does the cover hold in this state (False while no goal is known)?"""
         return self.known and all(bool(mask >> i & 1) == v for i, v in self.cover)
+
+    def rule_out(self, literal: Lit, source: str) -> None:
+        """The teacher said ``literal`` need not hold for the task to be done."""
+        self.ruled_out.setdefault(literal, source)
+        self.confirmed.pop(literal, None)
+        if literal in self.cover:
+            self._recompute()
+
+    def confirm(self, literal: Lit, source: str) -> None:
+        """The teacher said ``literal`` must hold for the task to be done."""
+        if literal not in self.ruled_out:
+            self.confirmed.setdefault(literal, source)
 
     def violations(self, literal: Lit) -> int:
         """How many acting states violate ``literal``."""
@@ -69,11 +95,11 @@ class GoalLearner:
         if evidence is not None:
             evidence.add(source)
             return
-        before = set(self.candidates())
+        before = set(self.required())
         self.goal_states[mask] = Evidence()
         self.goal_states[mask].add(source)
         self._count(self._true_in_goals, mask, 1)
-        lost = before - set(self.candidates()) if before else set()
+        lost = before - set(self.required()) if before else set()
         if not before or lost & set(self.cover):
             self._recompute()
 
@@ -89,7 +115,7 @@ class GoalLearner:
         self._count(self._true_in_acting, mask, 1)
         if not self.known or self._violates_cover(mask):
             return
-        violated = [lit for lit in self.candidates() if bool(mask >> lit[0] & 1) != lit[1]]
+        violated = [lit for lit in self.required() if bool(mask >> lit[0] & 1) != lit[1]]
         if not violated:
             self.unexplained.add(mask)
             return
@@ -117,7 +143,7 @@ class GoalLearner:
         """Greedy set cover of the acting states by candidate literals."""
         self.cover = []
         self.unexplained = set()
-        candidates = self.candidates()
+        candidates = self.required()
         if not self.goal_states:
             return
         uncovered: list[int] = []

@@ -62,11 +62,20 @@ class SituationQuestion:
     tree_does: str = ""
     """What the robot would do there now: an action name, "done", or "nothing". The session
     words the question ("If <state>, what should I do?") in the teacher's language."""
+    value: bool = True
+    settles: tuple[tuple[str, bool], ...] = ()
+    """For the safe learner's "must-" kinds: the unsure literals (condition, value) false in
+    ``state`` (``teach.learn.safe_inquiry``); ``value`` is the first one's."""
 
 
 def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
-    """The most decisive open situation, or None when nothing is left to ask."""
-    skip = set(asked)
+    """The most decisive open situation, or None when nothing is left to ask (the safe learner's
+    questions come from ``teach.learn.safe_inquiry``)."""
+    if learner.safe:
+        from teach.learn.safe_inquiry import next_safe_question
+
+        return next_safe_question(learner, asked)
+    skip = set(asked) | {learner.state_of(mask) for mask in learner.impossible}
     labelled = learner.situations
     for question in _candidates(learner, first=not skip):
         if question.state in skip:
@@ -77,21 +86,28 @@ def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQue
     return None
 
 
+def tree_does(learner: Learner, state: State) -> str:
+    """What the learner's tree does in ``state``: an action name, "done", or "nothing"."""
+    result = learner.answer_in(state)
+    return "done" if result is None else "nothing" if result is False else str(result)
+
+
+def flipped(state: State, index: int) -> State:
+    """``state`` with condition ``index`` the other way."""
+    return tuple(not v if i == index else v for i, v in enumerate(state))
+
+
 def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
     names = learner.names
     width = len(names)
 
     def does(state: State) -> str:
-        result = learner.answer_in(state)
-        return "done" if result is None else "nothing" if result is False else str(result)
-
-    def flipped(state: State, index: int) -> State:
-        return tuple(not v if i == index else v for i, v in enumerate(state))
+        return tree_does(learner, state)
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
 
-    yield from _unmet_goal(learner, does, flipped)
+    yield from unmet_goal_situations(learner, does, flipped)
     if first:
         yield from _goal_bound(learner, does, flipped)
     yield from _preconditions(learner, does, flipped, ("possible-precondition",))
@@ -177,7 +193,7 @@ def _goal_bound(learner: Learner, does: Callable[[State], str],
                 yield SituationQuestion(probe, "goal-bound", tree_does=now)
 
 
-def _unmet_goal(learner: Learner, does: Callable[[State], str],
+def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
                 flipped: Callable[[State, int], State]) -> Iterable[SituationQuestion]:
     """Situations where the declared goal does not hold and the tree says "done" or does nothing,
     searched outwards from the labelled ones (one condition changed, then two, ...), so the
@@ -197,6 +213,8 @@ def _unmet_goal(learner: Learner, does: Callable[[State], str],
                 probe = flipped(state, index)
                 if probe in seen:
                     continue
+                if len(seen) >= MAX_PROBED:  # bounded inside a ring too: the cost is fixed at any size
+                    return
                 seen.add(probe)
                 reached.append(probe)
                 now = does(probe)

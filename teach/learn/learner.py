@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
+from typing import Protocol
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
 from teach.bt.tick import CompiledTree, compile_tree
@@ -66,6 +67,19 @@ class Situation:
     allowed: frozenset[Answer]
     answer: Answer
     sources: list[str] = field(default_factory=list)
+
+
+class Hypothesis(Protocol):
+    """A question about unsure literals (``teach.learn.inquiry.SituationQuestion``): may ``action``
+    run in ``state`` (``action`` None: is the task done in ``state``)? ``settles``: the unsure
+    literals (condition name, value) that are false in ``state``."""
+
+    @property
+    def state(self) -> State: ...
+    @property
+    def action(self) -> str | None: ...
+    @property
+    def settles(self) -> tuple[tuple[str, bool], ...]: ...
 
 
 @dataclass(frozen=True)
@@ -115,15 +129,17 @@ class _Exception:
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
-    def __init__(self, domain: Domain, weak_last_resort: bool = True):
+    def __init__(self, domain: Domain, safe: bool = True):
         self.domain = domain
         self.names = domain.condition_names
         self._n = len(self.names)
         self._full = (1 << self._n) - 1
         self.model = ActionModel(domain.action_names, self._n)
         self.goal = GoalLearner(self._n)
-        self._weak = weak_last_resort
+        self.safe = safe
+        self._weak = not safe
         self._situations: dict[int, Situation] = {}
+        self._situations_view: dict[State, frozenset[Answer]] | None = None
         self._restored: set[Lit] = set()
         self._left_broken: set[Lit] = set()
         self._columns = _Columns(self._n)
@@ -138,6 +154,8 @@ class Learner:
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
+        self.impossible: dict[int, str] = {}
+        self._refused: dict[str | None, list[tuple[frozenset[Lit], str, bool]]] = {}
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -155,8 +173,11 @@ class Learner:
 
     @property
     def situations(self) -> dict[State, frozenset[Answer]]:
-        """Every labelled state with the answers allowed there."""
-        return {s.state: s.allowed for s in self._situations.values()}
+        """Every labelled state with the answers allowed there (kept until a label changes: the
+        question selectors read it often)."""
+        if self._situations_view is None:
+            self._situations_view = {s.state: s.allowed for s in self._situations.values()}
+        return self._situations_view
 
     def update(self, demo: Demonstration, source: str | None = None) -> Update:
         """Learn one more demonstration (any order, repeats, loops, external events)."""
@@ -255,10 +276,110 @@ class Learner:
         else:
             if answer is not None:
                 self.domain.action(answer)
+                if self.safe:
+                    self.model.applied(answer, mask, source)  # the teacher chose it here: it can run here
             allowed, chosen = frozenset({answer}), answer
         self._relabel(mask, situation, allowed, chosen)
         situation.sources.append(source)
         return self._finish(source, [mask], [])
+
+    def settle(self, hypothesis: Hypothesis, needed: bool, source: str) -> Update:
+        """The teacher's answer to "may I do ``action`` here?" (or "is the task done here?"): no
+        (``needed``) means one of the literals it settles is needed, and a single one is then kept
+        for good; yes rules every literal false there out (the action can run there, the task is
+        done there)."""
+        mask = self._checked_mask(hypothesis.state, source)
+        literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+        action = hypothesis.action
+        if not needed and action is None:
+            return self.teach_step(hypothesis.state, None, source)
+        if not needed:
+            assert action is not None
+            self.model.applied(action, mask, source)
+        elif len(literals) == 1:
+            self._keep(action, next(iter(literals)), source)
+        else:
+            self._refused.setdefault(action, []).append((literals, source, True))
+        self._infer_needed()
+        return self._finish(source, [], [])
+
+    def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
+        """The teacher's answer to "may I still do ``asked_about`` here?" (``asked_about`` None: "is
+        the task done here?") given as what to do there: the action asked about (or done) is a yes;
+        anything else is a no to it and the label of ``state`` as well."""
+        if answer == asked_about:
+            return self.teach_step(state, answer, source)
+        mask = self._checked_mask(state, source)
+        if asked_about is None:
+            required = self.goal.required()
+        else:
+            required = literals_of(*self.model[asked_about].required, self._n)
+        false = frozenset(lit for lit in required if bool(mask >> lit[0] & 1) != lit[1])
+        if len(false) == 1:
+            self._keep(asked_about, next(iter(false)), source)
+        elif false and not false & self._confirmed(asked_about):
+            self._refused.setdefault(asked_about, []).append((false, source, True))
+        self._infer_needed()
+        return self.teach_step(state, answer, source)
+
+    def rule_out(self, state: State, source: str, hypothesis: Hypothesis | None = None) -> None:
+        """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
+        and changes no tree); a group question about it is asked again in halves."""
+        self.impossible[self._checked_mask(state, source)] = source
+        if hypothesis is not None and len(hypothesis.settles) > 1:
+            literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+            self._refused.setdefault(hypothesis.action, []).append((literals, source, False))
+
+    def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
+        """The groups of unsure literals worth asking about next, best first: all of them and then
+        each half, or, where a group inside them was refused (or was impossible), each half of
+        what is left of that group (a yes to all of it is known not to come)."""
+        current = list(literals)
+        for group, _source, _needed in reversed(self._refused.get(action, [])):
+            left = [lit for lit in current if lit in group]
+            if len(left) >= 2:
+                half = len(left) // 2
+                return [left[:half], left[half:]]
+        half = len(current) // 2
+        return [current, current[:half], current[half:]] if half else [current] if current else []
+
+    def _unsure(self, action: str | None) -> set[Lit]:
+        if action is None:
+            return set(self.goal.unsure())
+        return set(literals_of(*self.model[action].unsure, self._n))
+
+    def _keep(self, action: str | None, literal: Lit, source: str) -> None:
+        if action is None:
+            self.goal.confirm(literal, source)
+        else:
+            self.model.confirm(action, literal, source)
+
+    def _infer_needed(self) -> None:
+        """A refused group with one unsure literal left: that one is needed."""
+        for action, groups in self._refused.items():
+            unsure = self._unsure(action)
+            kept = []
+            for group, source, needed in groups:
+                left = group & unsure
+                if len(left) == 1 and needed and len(group) > 1 and not group & self._confirmed(action):
+                    self._keep(action, next(iter(left)), source)
+                elif len(left) > 1:
+                    kept.append((group, source, needed))
+            groups[:] = kept
+
+    def _confirmed(self, action: str | None) -> frozenset[Lit]:
+        if action is None:
+            return frozenset(self.goal.confirmed)
+        knowledge = self.model[action]
+        return frozenset((*knowledge.confirmed, *knowledge.maintained))
+
+    def state_mask(self, state: Seq[bool]) -> int:
+        """The bitmask (bit i = condition i) of a state."""
+        return self._mask(state)
+
+    def labelled_masks(self) -> Seq[int]:
+        """The labelled states as bitmasks (bit i = condition i), in the order they were labelled."""
+        return self._situations.keys()  # type: ignore[return-value]
 
     def state_of(self, mask: int) -> State:
         """The state a bitmask (bit i = condition i) stands for."""
@@ -282,8 +403,12 @@ class Learner:
         return None if bound is None else compile_tree(bound, self.names)
 
     def goal_holds(self, state: State) -> bool:
-        """Does the learned goal hold in ``state`` (never before a goal state was shown)?"""
-        return self.goal.holds(self._mask(state))
+        """Does the learned goal hold in ``state`` (never before a goal state was shown)? The safe
+        learner's goal is every literal not ruled out."""
+        mask = self._mask(state)
+        if self.safe:
+            return self.goal.known and all(bool(mask >> i & 1) == v for i, v in self.goal.required())
+        return self.goal.holds(mask)
 
     def answer_in(self, state: State) -> Answer | bool:
         """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
@@ -320,6 +445,7 @@ class Learner:
         situation = self._situations.get(mask)
         if situation is None:
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
+            self._situations_view = None
             self._columns.add(mask, frozenset({answer}))
             self._recount(state, frozenset(), frozenset({answer}))
             self._feed_goal(mask, frozenset({answer}), source)
@@ -343,6 +469,7 @@ class Learner:
         self._columns.relabel(mask, old, allowed)
         self._recount(situation.state, old, allowed)
         situation.allowed, situation.answer = allowed, answer
+        self._situations_view = None
         self._feed_goal(mask, allowed, situation.sources[-1])
 
     def _feed_goal(self, mask: int, allowed: frozenset[Answer], source: str) -> None:
@@ -382,14 +509,25 @@ class Learner:
 
     def _current_view(self) -> PlanView:
         rank = self._rank
-        goal = tuple(sorted(self.goal.cover, key=rank))
+        cover = set(self.goal.cover) | set(self.goal.confirmed)
+        if self.safe:
+            goal = tuple(sorted(self.goal.required(), key=lambda lit: (lit not in cover, rank(lit))))
+        else:
+            goal = tuple(sorted(self.goal.cover, key=rank))
         preconditions = []
         achievers: dict[Lit, list[str]] = {}
         for name, knowledge in self.model.actions.items():
             made_true, made_false = knowledge.effects
             if not made_true | made_false:
                 continue
-            preconditions.append((name, tuple(sorted(literals_of(*knowledge.assumed, self._n), key=rank))))
+            # every required precondition is checked (or achieved) before the action: the
+            # assumed ones first, in the order the demonstrations establish them
+            pos, neg = knowledge.assumed
+            need_pos, need_neg = knowledge.required
+            pursued = sorted(literals_of(pos, neg, self._n), key=rank)
+            if self.safe:
+                pursued += sorted(literals_of(need_pos & ~pos, need_neg & ~neg, self._n), key=rank)
+            preconditions.append((name, tuple(pursued)))
         for index in range(self._n):
             for value in (True, False):
                 found = self.model.achievers((index, value))
@@ -552,12 +690,15 @@ class Learner:
         answer = situation.answer
         chosen = 0
         if answer is None:
-            for index, _value in self.goal.cover:
+            for index, _value in (self.goal.required() if self.safe else self.goal.cover):
                 chosen |= 1 << index
         else:
             violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
             if violated is not None:
                 chosen |= 1 << violated[0]
+            if self.safe:  # an exception never licenses an action where a required precondition is false
+                need_pos, need_neg = self.model[answer].required
+                chosen |= need_pos | need_neg
         chosen = self._columns.separate(mask, answer, chosen)
         value = mask & chosen
         leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
@@ -698,14 +839,14 @@ class _Columns:
         return chosen
 
 
-def learn_online(domain: Domain, demos: Seq[Demonstration]) -> Learner:
+def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Learner:
     """A learner after every demonstration in turn."""
-    learner = Learner(domain)
+    learner = Learner(domain, safe)
     for demo in demos:
         learner.update(demo)
     return learner
 
 
-def learn(domain: Domain, demos: Seq[Demonstration]) -> Node:
+def learn(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Node:
     """The batch helper for ``teach learn`` and the benchmarks: the tree after all demonstrations."""
-    return learn_online(domain, demos).tree
+    return learn_online(domain, demos, safe).tree

@@ -1,77 +1,119 @@
-"""The commands a teacher can type, in both languages, and how a line names one."""
+"""The commands a teacher can type, each declared once: its words in both languages, its usage
+and its help line. ``Verb.X`` is the command; the session's handler for it is the method
+``cmd_x`` (``teach.session.machine`` refuses to load when one is missing). A new command is one
+member here and its handler."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import Enum, auto
+from enum import Enum
 
 from teach.dialogue.phrases import normalize
-from teach.session import messages as m
-from teach.session.messages import Text
-
-
-class Verb(Enum):
-    HELP = auto()
-    DEMONSTRATE = auto()
-    DONE = auto()
-    CANCEL = auto()
-    UNDO = auto()
-    REDO = auto()
-    PERTURB = auto()
-    RUN = auto()
-    STOP = auto()
-    SHOW = auto()
-    STATE = auto()
-    START = auto()
-    RESET = auto()
-    ASK = auto()
-    MODEL = auto()
-    PLAN = auto()
-    SKIP = auto()
-    WHY = auto()
-    SAVE = auto()
-    QUIT = auto()
-    STEPS = auto()
-    GUIDE = auto()
+from teach.messages import Text
 
 
 @dataclass(frozen=True)
-class Command:
-    verb: Verb
-    names: tuple[str, ...]
-    """The words that name it, normalized (see ``teach.dialogue.phrases.normalize``)."""
+class _Declared:
+    en: tuple[str, ...]
+    """English words, as typed: one word also starts a line ("run 3"), several words are a
+    whole line only ("take that back")."""
+    de: tuple[str, ...]
     usage: Text
     help: Text
 
 
-COMMANDS: tuple[Command, ...] = (
-    Command(Verb.HELP, ("help", "hilfe", "h"), m.USAGE_HELP, m.HELP_HELP),
-    Command(Verb.DEMONSTRATE, ("demonstrate", "demo", "zeigen", "vorfuhren"), m.USAGE_DEMONSTRATE,
-            m.HELP_DEMONSTRATE),
-    Command(Verb.DONE, ("done", "fertig"), m.USAGE_DONE, m.HELP_DONE),
-    Command(Verb.CANCEL, ("cancel", "abbrechen"), m.USAGE_CANCEL, m.HELP_CANCEL),
-    Command(Verb.UNDO, ("undo", "ruckgangig", "zuruck"), m.USAGE_UNDO, m.HELP_UNDO_TO_STEP),
-    Command(Verb.REDO, ("redo", "wiederholen", "wiederherstellen"), m.USAGE_REDO, m.HELP_REDO),
-    Command(Verb.STEPS, ("steps", "schritte"), m.USAGE_STEPS, m.HELP_STEPS),
-    Command(Verb.GUIDE, ("guide", "fuhren"), m.USAGE_GUIDE, m.HELP_GUIDE),
-    Command(Verb.PERTURB, ("perturb", "storen", "ereignis"), m.USAGE_PERTURB, m.HELP_PERTURB),
-    Command(Verb.RUN, ("run", "los", "ausfuhren"), m.USAGE_RUN, m.HELP_RUN),
-    Command(Verb.STOP, ("stop", "halt"), m.USAGE_STOP, m.HELP_STOP),
-    Command(Verb.SHOW, ("show", "zeige", "baum"), m.USAGE_SHOW, m.HELP_SHOW),
-    Command(Verb.STATE, ("state", "zustand"), m.USAGE_STATE, m.HELP_STATE),
-    Command(Verb.START, ("start", "situation"), m.USAGE_START, m.HELP_START),
-    Command(Verb.RESET, ("reset", "neu"), m.USAGE_RESET, m.HELP_RESET),
-    Command(Verb.ASK, ("ask", "frag", "frage"), m.USAGE_ASK, m.HELP_ASK),
-    Command(Verb.MODEL, ("model", "modell"), m.USAGE_MODEL, m.HELP_MODEL),
-    Command(Verb.PLAN, ("plan", "planen"), m.USAGE_PLAN, m.HELP_PLAN),
-    Command(Verb.SKIP, ("skip", "weiter"), m.USAGE_SKIP, m.HELP_SKIP),
-    Command(Verb.WHY, ("why", "warum"), m.USAGE_WHY, m.HELP_WHY),
-    Command(Verb.SAVE, ("save", "speichern"), m.USAGE_SAVE, m.HELP_SAVE),
-    Command(Verb.QUIT, ("quit", "exit", "beenden", "tschuss"), m.USAGE_QUIT, m.HELP_QUIT),
-)
+class Verb(Enum):
+    HELP = _Declared(("help", "h"), ("hilfe",), Text("help", "hilfe"), Text("show this help", "diese Hilfe zeigen"))
+    DEMONSTRATE = _Declared(("demonstrate", "demo"), ("vorführen", "vormachen"),
+                            Text("demonstrate [steps]", "vorführen [Schritte]"),
+                            Text("start a demonstration", "eine Vorführung beginnen"))
+    DONE = _Declared(("done", "finished", "that's it", "that is it", "all done", "i'm finished"),
+                     ("fertig", "das war's", "das war es", "das wärs", "erledigt", "ich bin fertig"),
+                     Text("done", "fertig"),
+                     Text("the task is finished: learn this demonstration; also 'that's it'",
+                          "die Aufgabe ist erledigt: diese Vorführung lernen; auch 'das war's'"))
+    CANCEL = _Declared(("cancel",), ("abbrechen",), Text("cancel", "abbrechen"),
+                       Text("discard the open demonstration", "die Vorführung verwerfen"))
+    UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
+                      "take it back", "oops take that back", "oops"),
+                     ("rückgängig", "zurück", "falsch", "das war falsch", "nein das war falsch", "nein falsch",
+                      "nimm das zurück", "hoppla"),
+                     Text("undo [N] / undo to step N", "zurück [N] / zurück bis Schritt N"),
+                     Text("take back the last step (N: steps N to the end), demonstration or answer; "
+                          "also 'that was wrong'",
+                          "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen; "
+                          "auch 'das war falsch'"))
+    REDO = _Declared(("redo",), ("wiederholen", "wiederherstellen"), Text("redo", "wiederherstellen"),
+                     Text("take back the last undo (steps, a demonstration or an answer)",
+                          "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)"))
+    STEPS = _Declared(("steps",), ("schritte",), Text("steps", "schritte"),
+                      Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen"))
+    GUIDE = _Declared(("guide",), ("führen",),
+                      Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
+                           "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]"),
+                      Text("move the robot yourself (MuJoCo world); alone: steer it with the keys "
+                           "(↑/↓ move, ←/→ turn, PgUp/PgDn lift, space hand, Esc ends)",
+                           "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken "
+                           "(↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste Hand, Esc Ende)"))
+    PERTURB = _Declared(("perturb",), ("stören", "ereignis"), Text("perturb EVENT", "stören EREIGNIS"),
+                        Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)"))
+    RUN = _Declared(("run",), ("los", "ausführen"), Text("run [N]", "los [N]"),
+                    Text("let the robot do the task (N: stop after N actions)",
+                         "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten)"))
+    STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
+                     Text("interrupt the robot", "den Roboter anhalten"))
+    SHOW = _Declared(("show", "tree"), ("baum", "zeige"), Text("show [full]", "baum [ganz]"),
+                     Text("show the learned tree", "den gelernten Baum zeigen"))
+    STATE = _Declared(("state",), ("zustand",), Text("state [full]", "zustand [ganz]"),
+                      Text("show the current situation", "die aktuelle Lage zeigen"))
+    START = _Declared(("start",), ("situation",), Text("start COND ...", "start BEDINGUNG ..."),
+                      Text("put the world in a situation (named conditions true)",
+                           "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"))
+    RESET = _Declared(("reset",), ("neu",), Text("reset [N]", "neu [N]"),
+                      Text("new random start (N: start number N, the same each time)",
+                           "neuer zufälliger Start (N: Start Nummer N, jedes Mal derselbe)"))
+    ASK = _Declared(("ask",), ("frag", "frage"), Text("ask", "frag"),
+                    Text("let the robot ask a question", "den Roboter fragen lassen"))
+    MODEL = _Declared(("model",), ("modell",), Text("model FILE", "modell DATEI"),
+                      Text("load action definitions (pre/ram) and plan with them",
+                           "Handlungsbeschreibungen laden und damit planen"))
+    PLAN = _Declared(("plan",), ("planen",), Text("plan", "planen"),
+                     Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben"))
+    SKIP = _Declared(("skip",), ("weiter",), Text("skip", "weiter"),
+                     Text("leave a question unanswered", "eine Frage offen lassen"))
+    WHY = _Declared(("why",), ("warum",), Text("why NAME", "warum NAME"),
+                    Text("why a step or a condition is in the tree (why grab it)",
+                         "warum ein Schritt oder eine Bedingung im Baum ist (warum greifen)"))
+    SAVE = _Declared(("save",), ("speichern",), Text("save", "speichern"),
+                     Text("save everything now", "alles jetzt speichern"))
+    QUIT = _Declared(("quit", "exit"), ("beenden", "tschüss"), Text("quit / Ctrl-D", "beenden / Strg-D"),
+                     Text("save and leave (--resume goes on later)", "speichern und beenden (--resume macht später "
+                          "weiter)"))
 
-COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names)
-"""Every word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The words and sayings that name it in either language, normalized (see ``normalize``)."""
+        return tuple(dict.fromkeys(normalize(word) for word in (*self.value.en, *self.value.de)))
+
+    @property
+    def usage(self) -> Text:
+        return self.value.usage
+
+    @property
+    def help(self) -> Text:
+        return self.value.help
+
+    @property
+    def handler(self) -> str:
+        """The name of the session's method that carries it out."""
+        return f"cmd_{self.name.lower()}"
+
+
+Command = Verb
+"""What a line names: one of the verbs, each with its words, usage and help."""
+COMMANDS: tuple[Verb, ...] = tuple(Verb)
+COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names if " " not in name)
+"""Every single word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
 
 BLOCKED_WHILE_ASKING = frozenset({Verb.GUIDE, Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB,
                                   Verb.MODEL, Verb.ASK})
@@ -81,21 +123,25 @@ ANSWERING = frozenset({Verb.DONE, Verb.SKIP})
 LOOKING = frozenset({Verb.HELP, Verb.STATE, Verb.SHOW, Verb.STEPS, Verb.WHY, Verb.SAVE, Verb.QUIT})
 """Commands that only look (or leave), allowed while a labelling question is open."""
 
-DONE_WORDS = {"done", "finished", "nothing", "nothing task is done", "fertig", "nichts", "ziel erreicht"}
-SKIP_WORDS = {"skip", "dont know", "don t know", "i dont know", "i don t know", "weiter", "weiss nicht",
-              "ich weiss nicht", "keine ahnung", "uberspringen"}
+DONE_WORDS = set(Verb.DONE.names) | {"nothing", "nothing task is done", "nichts", "ziel erreicht"}
+IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen", "cannot happen", "impossible",
+                    "that is impossible", "das gibt es nicht", "gibt es nicht", "das geht nicht", "unmoglich",
+                    "das ist unmoglich", "das kann nicht sein"}
+"""Answers saying the asked-about situation cannot happen: free, and never asked again."""
+SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
+                                     "ich weiss nicht", "keine ahnung", "uberspringen"}
 
 
 def parse_command(line: str) -> tuple[Command | None, str]:
-    """The command a line starts with (or is, as a whole phrase) and the rest of the line;
-    ``(None, line)`` when it names none."""
+    """The command a line starts with (one of its single words) or is as a whole ("that was
+    wrong"), and the rest of the line; ``(None, line)`` when it names none."""
+    whole = normalize(line)
+    for command in COMMANDS:
+        if whole and whole in command.names:
+            return command, ""
     words = line.split(maxsplit=1)
     head = normalize(words[0]) if words else ""
     for command in COMMANDS:
-        if head in command.names:
+        if head and head in command.names:
             return command, words[1] if len(words) > 1 else ""
-    whole = normalize(line)
-    for command in COMMANDS:
-        if whole in command.names:
-            return command, ""
     return None, line

@@ -6,9 +6,9 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.domain import Domain, Literal, State
 from teach.errors import LearnError
-from teach.session import messages as m
 
 if TYPE_CHECKING:
     from teach.learn.learner import Explanation, Update
@@ -76,7 +76,7 @@ def source_words(source: str, lang: str) -> str:
 
 
 def literals_label(text: str, domain: Domain, lang: str) -> str:
-    """"!BallFound & BinClose" → "you cannot see the ball and the bin is within reach"."""
+    """"!BallFound & BinClose" → "I cannot see the ball and the bin is within reach"."""
     labels = []
     for part in text.split("&"):
         literal = Literal.parse(part)

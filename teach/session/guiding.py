@@ -24,13 +24,13 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
+from teach import messages as m
 from teach.demos import Step
 from teach.dialogue.phrases import PhraseBook, is_no, is_yes, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
 from teach.learn.recognise import Recognition, changed_literals, describe_change, explain, question, recognise
-from teach.session import messages as m
 from teach.session.commands import SKIP_WORDS
 from teach.session.journal import GuidedActionTaught
 from teach.session.replies import Reply, ReplyKind
@@ -131,7 +131,25 @@ class Guiding:
         replies = self.manager._flush(self.begin())
         assert self.guide is not None
         self.guide.run(command)
+        self._settle()
         return replies + self.label(final=False)
+
+    def _settle(self) -> None:
+        """A change the command made counts once it has held (the segmenter's hold time): wait
+        that long now, so its ✓ comes with this command, not only after the next one."""
+        assert self.guide is not None and self.segmenter is not None
+        tail = self.segmenter.tail()
+        if tail and tail[-1].state != tail[0].state:
+            self.guide.wait(self.segmenter.hold)
+
+    def feedback(self) -> Reply | None:
+        """Where the ball and the bin are from the hand, the lift, the hand and what the last
+        command did (``teach.session.feedback``); None when nobody is guiding."""
+        from teach.session.feedback import feedback_line
+
+        if self.guide is None:
+            return None
+        return Reply(ReplyKind.INFO, feedback_line(self.guide.feedback(), self.lang))
 
     def _feed(self, sample: Sample) -> None:
         """A guided sample to the segmenter, unless the teacher's hand is moving the ball or the

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from teach.session import messages as m
+from teach import messages as m
 from teach.session.replies import Reply, ReplyKind
 from teach.sim.hand import PUSH_EPSILON, Moved, ObjectWatch, robot_bodies, robot_wrench
 from teach.world.protocol import WorldEvent

@@ -38,7 +38,8 @@ def parse_state_text(text: str) -> State:
 
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
-_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str}
+_HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str,
+                                      "guess": bool}
 _SAVE_KEYS: dict[str, Types] = {"events": list, "step": int, "open_kept": int, "open_steps": list, "open_state": str,
                                 "open_run": str}
 """A line after the snapshot: what one save changed. ``open_steps`` replace the open steps from
@@ -49,7 +50,7 @@ _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
     "redo": ({"kind": str}, {}),
     "model": ({"kind": str, "file": str}, {}),
     "asked": ({"kind": str}, {"state": str, "model_question": dict}),
-    "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {}),
+    "answer": ({"kind": str, "state": str, "answer": str, "question": str}, {"asked_about": str}),
     "model_answer": ({"kind": str, "question": dict, "answer": str}, {}),
     "guided_action": ({"kind": str, "name": str, "motion": str}, {}),
     "situation": ({"kind": str, "state": str, "how": str}, {"seed": int}),
@@ -101,6 +102,9 @@ class Answered:
     answer: str
     """An action name, "done" or "skip"."""
     question: str
+    asked_about: str | None = None
+    """For "may I still do X here?": X; for "is the task done here?": "done" (an answer that
+    names something else also says no to it)."""
 
 
 @dataclass(frozen=True)
@@ -243,6 +247,8 @@ class Journal:
     open_run: str = ""
     """The action the robot had begun when the session ended in the middle of a run: then
     ``open_steps`` are the steps it finished and ``open_state`` the world before that action."""
+    guess: bool = False
+    """The session learns with the guessing learner (``--guess``), not the safe one."""
 
     def to_json(self) -> dict[str, Any]:
         """The whole journal as one JSON object (the snapshot line's content)."""

@@ -22,26 +22,29 @@ from teach.observe.hook import Observer
 from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
 
-LEARNER_NAME = "model-based learner"
-"""How the recording names the learner below (``teach review`` says which learner learned what)."""
+LEARNER_NAMES = {True: "model-based learner (safe)", False: "model-based learner (guessing)"}
+"""How the recording names the learner below, by ``safe`` (``teach review`` says which learner learned what)."""
+DONE_ABOUT = "done"
+"""``asked_about`` of an "is the task done here?" question."""
 
 
-def make_learner(domain: Domain) -> Learner:
-    return Learner(domain)
+def make_learner(domain: Domain, safe: bool = True) -> Learner:
+    return Learner(domain, safe)
 
 
 class Learning:
     """One session's learner with the demonstrations and labels it learned from."""
 
-    def __init__(self, domain: Domain, store: SessionStore, observer: Observer):
+    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = True):
         self.domain = domain
+        self.safe = safe
         self.store = store
         self.observer = observer
         self.restart()
 
     def restart(self) -> None:
         """Forget everything learned (an undo or a resume then learns the journal again)."""
-        self.learner = make_learner(self.domain)
+        self.learner = make_learner(self.domain, self.safe)
         self.demos: list[Demonstration] = []
         self.labels: dict[State, Answer] = {}
         self.asked: set[State] = set()
@@ -76,11 +79,16 @@ class Learning:
                 self.labels[step.state] = self.domain.action(step.action).name
         return update
 
-    def learn_answer(self, state: State, answer: str | None, source: str) -> Update:
-        """Learn what to do in an asked-about situation; an answer about a conflict settles it."""
+    def learn_answer(self, state: State, answer: str | None, source: str, asked_about: str | None = None) -> Update:
+        """Learn what to do in an asked-about situation; an answer about a conflict settles it.
+        ``asked_about``: the action a "may I still …?" question asked about ("done": "is the task
+        done here?"); an answer naming something else says no to it."""
         before = self._actions()
         if any(conflict.state == state for conflict in self.learner.conflicts):
             update = self.learner.resolve(state, answer, source)
+        elif asked_about is not None:
+            update = self.learner.answer_question(state, None if asked_about == DONE_ABOUT else asked_about, answer,
+                                                  source)
         else:
             update = self.learner.teach_step(state, answer, source=source)
         self._learned_actions = _in_order(self._actions() - before, [answer] if answer else [])
@@ -97,7 +105,23 @@ class Learning:
         if question.kind == "conflict":
             conflict = next(c for c in self.learner.conflicts if c.state == question.state)
             shown = tuple(dict.fromkeys("" if answer is None else answer for answer, _ in conflict.labels))
-        return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown)
+        return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown, kind=question.kind,
+                        action=question.action, settles=question.settles)
+
+    def question_where_stuck(self, state: State) -> Question | None:
+        """The safe learner, stopped in ``state``: what it was unsure of there, as a question."""
+        from teach.learn.safe_inquiry import unsure_here
+
+        question = unsure_here(self.learner, state) if self.learner.safe else None
+        if question is None:
+            return None
+        return Question(state, 1.0, expected=(("nothing", 1.0),), kind=question.kind, action=question.action,
+                        settles=question.settles)
+
+    def rule_out(self, question: Question, source: str) -> None:
+        """The teacher said the asked-about situation cannot happen: it is never asked again."""
+        self.learner.rule_out(question.state, source)
+        self.asked.add(question.state)
 
     def _actions(self) -> set[str]:
         return {node.name for node in walk(self.learner.tree) if isinstance(node, Action)}
@@ -126,7 +150,7 @@ class Learning:
     def report(self, event: str, update: Update, lang: str) -> str:
         """Tell the observer what an update changed; returns it in words."""
         change = self.describe(update, lang)
-        self.observer.on_learner(event, change, [], learner=LEARNER_NAME)
+        self.observer.on_learner(event, change, [], learner=LEARNER_NAMES[self.learner.safe])
         return change
 
     def why(self, name: str, lang: str) -> list[str] | None:

@@ -19,6 +19,7 @@ from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration, Step
 from teach.dialogue.phrases import (
@@ -37,13 +38,13 @@ from teach.dialogue.questions import Question, QuestionBudget, describe_situatio
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
-from teach.session import messages as m
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
     COMMAND_WORDS,
     COMMANDS,
     DONE_WORDS,
+    IMPOSSIBLE_WORDS,
     LOOKING,
     SKIP_WORDS,
     Command,
@@ -68,8 +69,9 @@ from teach.session.journal import (
     redoable,
     state_text,
 )
-from teach.session.learning import Learning
+from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.replies import Reply, ReplyKind
+from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_not
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
@@ -80,6 +82,10 @@ if TYPE_CHECKING:
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
+MUST_KINDS = ("must-precondition", "must-goal")
+"""Questions a yes answers: may I still do it here? is the task done here?"""
+IMPOSSIBLE = "impossible"
+"""The journalled answer "that situation cannot happen"."""
 
 
 class Mode(StrEnum):
@@ -136,7 +142,7 @@ class SessionManager:
         self.lang = settings.lang
         self.store = SessionStore(settings.base, settings.session, settings.record)
         self.phrases = PhraseBook(domain, world.events)
-        self.learning = Learning(domain, self.store, self.observer)
+        self.learning = Learning(domain, self.store, self.observer, settings.safe)
         self.budget = QuestionBudget(settings.questions)
         self.pending: Question | None = None
         self.model_repair: ModelRepair | None = None
@@ -155,7 +161,7 @@ class SessionManager:
         self._interrupt: Callable[[], bool] | None = None
         self._turn_questions = 0
         self.journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang,
-                                          settings.questions, settings.world, settings.seed)
+                                          settings.questions, settings.world, settings.seed, guess=not settings.safe)
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self._start_situation = state_text(world.state())
         self.store.prepare(domain)
@@ -276,40 +282,46 @@ class SessionManager:
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
-        answering = command is None or command.verb in ANSWERING
+        # "wrong"/"falsch" undo, but to an open question they are a "no", as before they named a command
+        answering = command is None or command in ANSWERING or is_no(line, self.lang)
         if self.pending_model is not None and answering:
             return self._answer_model(line)
         if self.pending is not None and answering:
             return self._answer(line)
-        if command is not None and self.mode is Mode.ASKING and command.verb in BLOCKED_WHILE_ASKING:
+        if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
         self._turn_questions = 0
+        if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
+            return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if command is None:
             return self._teach_actions(line)
-        return self._handlers[command.verb](self, rest)
+        return self._handler(command)(rest)
 
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
-        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" for c in COMMANDS]
-        examples = "; ".join(self.phrases.phrases(self.lang)[:12])
+        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" if len(c.usage(self.lang)) <= 28
+                 else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang)}" for c in COMMANDS]
+        examples = ", ".join(a.label(self.lang) for a in self.domain.actions)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
     def cmd_guide(self, rest: str) -> list[Reply]:
         if not self.guiding.can_guide():
             return self.guiding.refusal()
-        return self.guiding.command(rest) + [self._state_reply()]
+        replies = self.guiding.command(rest) + [self._state_reply()]
+        feedback = self.guiding.feedback()  # what a person steering by the keys needs to know
+        return replies + ([feedback] if feedback is not None else [])
 
     def _guiding_first(self, line: str, command: Command | None) -> list[Reply] | None:
         """A labelling question takes the line as its answer; a line that is not guiding ends
         guidance first (and waits for the labelling answers). None: go on with the line."""
         if self.guiding.pending is not None:
-            if command is None or command.verb is Verb.SKIP:
+            if command is None or command is Verb.SKIP or is_no(line, self.lang):
                 replies = self.guiding.answer(line)
                 deferred = self.guiding.take_deferred()
                 return replies + (self._dispatch(deferred) if deferred else [])
-            return None if command.verb in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
-        if self.guiding.active and (command is None or command.verb is not Verb.GUIDE):
+            return None if command in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
+        if self.guiding.active and (command is None or command is not Verb.GUIDE):
             self.guiding.end()
             if self.guiding.pending is not None:
                 self.guiding.deferred = line
@@ -361,8 +373,9 @@ class SessionManager:
 
     def _learning_text(self, event: Event, demo: m.Text, answer: m.Text, other: m.Text) -> str:
         """What an undo or redo moved, in words: the demonstration's name or the question answered."""
-        if isinstance(event, DemoLearned):
-            return demo(self.lang, name=Path(event.file).stem)
+        if isinstance(event, DemoLearned):  # demo-004.csv is "4", the teacher's fourth
+            number = re.fullmatch(r"demo-0*([0-9]+)", Path(event.file).stem)
+            return demo(self.lang, name=number.group(1) if number else Path(event.file).stem)
         if isinstance(event, Answered):
             return answer(self.lang, question=event.question)
         return other(self.lang)
@@ -401,7 +414,9 @@ class SessionManager:
                 self.open.add(step, words)
             self.world.arrange(taken.world_after)
             self._save_open()
-            text = m.REDONE_STEPS(self.lang, first=taken.first, last=len(self.open.steps), steps="; ".join(taken.words))
+            last = len(self.open.steps)
+            text = (m.REDONE_ONE_STEP if last == taken.first else m.REDONE_STEPS)(
+                self.lang, first=taken.first, last=last, steps="; ".join(taken.words))
             return [Reply(ReplyKind.INFO, text), self._state_reply()]
         back = redoable(self.journal.events)
         if not back or open_steps:
@@ -445,8 +460,13 @@ class SessionManager:
             self._flush([self._event_reply(event)])
 
         self.observer.on_run_start(tree)
-        result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
-                                stop_after=stop_after, on_action=announce, on_event=heard)
+        ticker = self.world.ticker
+        watch = self.world.ticker = TryWatch(ticker, tree, self.world.state)  # what failed, for the teacher
+        try:
+            result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
+                                    stop_after=stop_after, on_action=announce, on_event=heard)
+        finally:
+            self.world.ticker = ticker
         self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         finished = result.outcome is Outcome.SUCCESS and not unmet
@@ -468,13 +488,19 @@ class SessionManager:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
         replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
+        tried = tried_lines(failed_tries(watch, started, result), self.domain, self.lang)
+        replies += [Reply(ReplyKind.INFO, line) for line in tried]
         if finished:
             replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
             return replies + [self._state_reply()]
-        if result.outcome is Outcome.INTERRUPTED:
+        if result.outcome is Outcome.INTERRUPTED and stop_after is None and started:  # Ctrl-C: say where
+            message = m.STOPPED_DURING(self.lang, action=self.domain.action(started[-1][1]).label(self.lang))
+        elif result.outcome is Outcome.INTERRUPTED:
             message = m.STOPPED(self.lang)
         elif result.outcome is Outcome.SUCCESS:
             message = m.THOUGHT_DONE(self.lang, unmet=unmet)
+        elif result.outcome is Outcome.FAILURE and tried:  # what failed is said above
+            message = m.STUCK_AFTER_TRYING(self.lang)
         else:
             message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
         replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
@@ -507,7 +533,7 @@ class SessionManager:
 
     def _condition_names(self, text: str) -> list[str]:
         """The conditions a teacher names, as labels in either language ("the bin is within reach,
-        du siehst den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+        ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
         names: list[str] = []
         for part in (p for p in _PARTS.split(text) if p.strip()):
             whole = self._condition_named(part)
@@ -528,7 +554,9 @@ class SessionManager:
         return None
 
     def _node_named(self, text: str) -> str:
-        """The action or condition ``why`` asks about, named by its label, a phrase or its name in any case."""
+        """The action or condition ``why`` asks about: its label, its name in any case, or any
+        words the prompt would take as that one step ("grab it", a typo), also a verb alone
+        ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""
         condition = self._condition_named(text)
         if condition is not None:
             return condition
@@ -536,12 +564,14 @@ class SessionManager:
         for action in self.domain.actions:
             if key in {normalize(action.name), normalize(_spelled(action.name))}:
                 return action.name
-        try:
-            tokens = self.phrases.parse(text, self.lang)
-        except UnknownPhrase:
-            return text.strip()
-        actions = [t for t in tokens if t.kind == "action" and not t.guessed]
-        return actions[0].name if len(actions) == 1 and len(tokens) == 1 else text.strip()
+        for words in (text, f"{text} it", f"it {text}"):
+            try:
+                tokens = self.phrases.parse(words, self.lang, topic=self.topic)
+            except UnknownPhrase:
+                continue
+            if len(tokens) == 1 and tokens[0].kind == "action":
+                return tokens[0].name
+        return text.strip()
 
     def cmd_reset(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
@@ -580,7 +610,7 @@ class SessionManager:
         steps = len(self.open.steps) if self.open is not None else 0
         if steps and self._quit_warned_at != self.step - 1:  # not right after the warning
             self._quit_warned_at = self.step
-            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, count=steps))]
+            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, steps=_steps(steps, self.lang)))]
         self.finished = True
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
@@ -671,7 +701,8 @@ class SessionManager:
             label = self.domain.action(token.name).label(self.lang)
             if not result.ok:
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
-                                                                  reason=self._why_not(token.name, result.before))))
+                                                                  reason=why_not(self.domain, token.name, result.before,
+                                                                                 self.lang))))
                 if self.facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
@@ -727,13 +758,6 @@ class SessionManager:
         words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
         return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
-    def _why_not(self, action: str, state: tuple[bool, ...]) -> str:
-        """Why an action failed, in the session's language: the preconditions it lacked, if it has any."""
-        values = dict(zip(self.domain.condition_names, state, strict=True))
-        missing = [self.domain.condition(p.name).label(self.lang, p.value)
-                   for p in self.domain.action(action).pre if values[p.name] != p.value]
-        return m.IT_NEEDS(self.lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(self.lang)
-
     def _finish_demo(self) -> list[Reply]:
         assert self.open is not None
         started = time.perf_counter()
@@ -786,7 +810,7 @@ class SessionManager:
             return []
         if self.pending is not None or state in self.learning.asked or not self._affordable(state):
             return []
-        return self._ask(Question(state, 1.0))
+        return self._ask(self.learning.question_where_stuck(state) or Question(state, 1.0))
 
     def _affordable(self, state: State) -> bool:
         """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""
@@ -804,7 +828,10 @@ class SessionManager:
 
     def _charged(self) -> set[str]:
         """The situations asked about so far (undone or not): each was paid for once."""
-        return {event.state for event in self.journal.events if isinstance(event, Asked) and event.state}
+        impossible = {event.state for event in self.journal.events
+                      if isinstance(event, Answered) and event.answer == IMPOSSIBLE}
+        return {event.state for event in self.journal.events
+                if isinstance(event, Asked) and event.state and event.state not in impossible}
 
     def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.domain, self.lang)
@@ -826,18 +853,40 @@ class SessionManager:
             self._journal(Answered(state_text(question.state), "skip", text))
             self.observer.on_answer(text, line, "nothing (skipped)")
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
-        if key in DONE_WORDS:
+        if key in IMPOSSIBLE_WORDS:
+            return self._cannot_happen(question)
+        yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
+        if question.kind in MUST_KINDS and is_no(line, self.lang):
+            return [Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]  # the question stays open
+        if key in DONE_WORDS or (yes and question.action is None):
             unmet = unmet_goal(self.domain, question.state, self.lang)
             if unmet:  # the question stays open and is not paid for again
                 return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
                         self._question_reply(question)]
             answer: str | None = None
         else:
-            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
-            if len(tokens) != 1:
+            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"] if not yes else []
+            if not yes and len(tokens) != 1:
                 return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-            answer = tokens[0].name
+            answer = question.action if yes else tokens[0].name
+            assert answer is not None
+            if not self.domain.applicable(answer, question.state):
+                # as for 'done': an answer the domain file shows cannot work there is not learned
+                label = self.domain.action(answer).label(self.lang)
+                reason = why_not(self.domain, answer, question.state, self.lang)
+                return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)),
+                        self._question_reply(question)]
         return self.apply_answer(answer, line)
+
+    def _cannot_happen(self, question: Question) -> list[Reply]:
+        """The asked-about situation cannot happen: journalled, never asked again, and not paid for."""
+        self.pending = None
+        text = question.text(self.domain, self.lang)
+        self._journal(Answered(state_text(question.state), IMPOSSIBLE, text))
+        self.learning.rule_out(question, f"answer to question {self.budget.used}")
+        self.budget.used -= 1
+        self.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
+        return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang))]
 
     def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
         """Learn from the answer to the pending question (None: the task is done there)."""
@@ -848,13 +897,13 @@ class SessionManager:
         source = f"answer to question {self.budget.used}"
         self.pending = None
         try:
-            update = self.learning.learn_answer(question.state, answer, source)
+            update = self.learning.learn_answer(question.state, answer, source, _asked_about(question))
         except LearnError as error:
             return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         change = self.learning.describe(update, self.lang)
         # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
-        self._journal(Answered(state_text(question.state), answer or "done", text))
+        self._journal(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
         self.observer.on_answer(text, said, change)
         self.learning.report("answer", update, self.lang)
         head = self._flush([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
@@ -882,7 +931,7 @@ class SessionManager:
         report = replay(pruned, self.domain, self.demos)
         self.observer.on_replay(report.reproduced, report.total)
         # node counts and the file are for the facilitator; the teacher hears what it means
-        summary = (m.GENERATION if self.facilitator else m.GENERATION_PLAIN)(
+        summary = (m.GENERATION if self.facilitator else _reproduced_text(report.reproduced, report.total))(
             self.lang, generation=self.generation, nodes=size(pruned), unpruned=size(self.learning.tree), path=path,
             reproduced=report.reproduced, total=report.total)
         replies = self._flush([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
@@ -930,14 +979,16 @@ class SessionManager:
                 state = parse_state_text(event.state)
                 if len(state) != len(self.domain.conditions):
                     raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
-                if event.answer not in ("skip", "done") and event.answer not in self.domain.action_names:
+                if event.answer not in ("skip", "done", IMPOSSIBLE) and event.answer not in self.domain.action_names:
                     raise FormatError(m.UNKNOWN_JOURNAL_ACTION(
                         "en", number=self.journal.events.index(event), action=event.answer), self.store.journal_path)
                 self.learning.asked.add(state)
-                if event.answer != "skip":
+                if event.answer == IMPOSSIBLE:
+                    self.learning.rule_out(Question(state, 1.0), f"answer to question {answered}")
+                elif event.answer != "skip":
                     try:
                         self.learning.learn_answer(state, None if event.answer == "done" else event.answer,
-                                                   f"answer to question {answered}")
+                                                   f"answer to question {answered}", event.asked_about)
                     except LearnError:
                         pass  # it was rejected when it was given, too
         if self.learning.has_behaviour:
@@ -1059,10 +1110,10 @@ class SessionManager:
             self.open.add(Step(state, action, number), words)
         if run:
             label = self.domain.action(run).label(self.lang)
-            text = m.RUN_RESTORED(self.lang, action=label, count=len(steps)) if steps else \
+            text = m.RUN_RESTORED(self.lang, action=label, steps=_steps(len(steps), self.lang)) if steps else \
                 m.RUN_RESTORED_NO_STEPS(self.lang, action=label)
         else:
-            text = m.OPEN_RESTORED(self.lang, count=len(steps))
+            text = m.OPEN_RESTORED(self.lang, steps=_steps(len(steps), self.lang))
         self.restored = [Reply(ReplyKind.INFO, text)]
 
     def _tree_reply(self, tree: Node, full: bool = False) -> Reply:
@@ -1100,20 +1151,14 @@ class SessionManager:
         turn, self._turn = self._turn, []
         return turn
 
-    _handlers: dict[Verb, Callable[[SessionManager, str], list[Reply]]] = {}
+    def _handler(self, command: Command) -> Callable[[str], list[Reply]]:
+        handler: Callable[[str], list[Reply]] = getattr(self, command.handler)
+        return handler
 
 
-SessionManager._handlers = {
-    Verb.HELP: SessionManager.cmd_help, Verb.DEMONSTRATE: SessionManager.cmd_demonstrate,
-    Verb.DONE: SessionManager.cmd_done, Verb.CANCEL: SessionManager.cmd_cancel, Verb.UNDO: SessionManager.cmd_undo,
-    Verb.REDO: SessionManager.cmd_redo,
-    Verb.PERTURB: SessionManager.cmd_perturb, Verb.RUN: SessionManager.cmd_run, Verb.STOP: SessionManager.cmd_stop,
-    Verb.SHOW: SessionManager.cmd_show, Verb.STATE: SessionManager.cmd_state, Verb.START: SessionManager.cmd_start,
-    Verb.RESET: SessionManager.cmd_reset, Verb.ASK: SessionManager.cmd_ask, Verb.MODEL: SessionManager.cmd_model,
-    Verb.PLAN: SessionManager.cmd_plan, Verb.SKIP: SessionManager.cmd_skip, Verb.WHY: SessionManager.cmd_why,
-    Verb.SAVE: SessionManager.cmd_save, Verb.QUIT: SessionManager.cmd_quit, Verb.STEPS: SessionManager.cmd_steps,
-    Verb.GUIDE: SessionManager.cmd_guide,
-}
+_UNHANDLED = [command.name for command in COMMANDS if not callable(getattr(SessionManager, command.handler, None))]
+if _UNHANDLED:  # a command declared in teach/session/commands.py needs its cmd_ method here
+    raise TypeError(f"commands without a handler: {', '.join(_UNHANDLED)}")
 
 
 _OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,
@@ -1125,6 +1170,18 @@ _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
     """The text for ``count`` things: "no questions", "1 question", "2 questions"."""
     return none if count == 0 else one if count == 1 else many
+
+
+def _steps(count: int, lang: str) -> str:
+    """How many steps, in words: "1 step", "3 steps"."""
+    return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
+
+
+def _reproduced_text(reproduced: int, total: int) -> m.Text:
+    """How many demonstrations the new tree does as shown, said for one, all or some of them."""
+    if total == 1:
+        return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
+    return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
 
 
 def _spelled(name: str) -> str:
@@ -1152,3 +1209,10 @@ def _number(text: str, lang: str) -> int | None:
     if value < 0:
         raise TeachError(m.NOT_NEGATIVE(lang))
     return value
+
+
+def _asked_about(question: Question) -> str | None:
+    """What a "may I still …?" or "is the task done?" question asked about (None: a plain one)."""
+    if question.kind == "must-goal":
+        return DONE_ABOUT
+    return question.action if question.kind == "must-precondition" else None

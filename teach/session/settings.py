@@ -43,6 +43,10 @@ class Settings:
     """Simulated seconds per wall-clock second during runs (0: as fast as possible)."""
     label_questions: int = 5
     """The cap on labelling questions about guided motion (apart from ``questions``)."""
+    safe: bool = True
+    """The safe learner (the default): it checks every precondition and goal literal it has not
+    ruled out, so it never acts on a guess; it stops and asks where it is unsure. False: the
+    earlier model learner, which generalises by guessing (``--guess``, for comparison only)."""
     facilitator: bool = False
     """Show identifiers too: conditions by name, the symbolic tree (default: plain words)."""
     groot: int | None = None

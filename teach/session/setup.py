@@ -8,12 +8,12 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from teach import messages as m
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
 from teach.lock import session_lock
 from teach.observe.hook import Observer, Observers
 from teach.observe.merge import print_note
-from teach.session import messages as m
 from teach.session.journal import Journal
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
@@ -67,10 +67,26 @@ def dialogue_events(settings: Settings, domain: Domain) -> dict[str, tuple[tuple
     return events
 
 
+def _world_that_fits(settings: Settings, domain: Domain, note: Callable[[str], None]) -> Settings:
+    """A domain the MuJoCo world cannot compute (snacks: 'Requested') is taught in the symbolic
+    world, and the teacher is told; without an action model, or with --viewer, the MuJoCo world
+    itself says what it cannot compute."""
+    if settings.world is not WorldKind.MUJOCO or settings.viewer or not domain.has_model:
+        return settings
+    from teach.sim.world import CONDITIONS
+
+    unknown = [name for name in domain.condition_names if name not in CONDITIONS]
+    if not unknown:
+        return settings
+    note(m.SYMBOLIC_INSTEAD(settings.lang, condition=domain.condition(unknown[0]).label(settings.lang)))
+    return replace(settings, world=WorldKind.SYMBOLIC)
+
+
 def resumed_settings(settings: Settings, journal: Journal) -> Settings:
-    """A resumed session keeps the domain, language, budget, world and seed it was started with."""
+    """A resumed session keeps the domain, language, budget, world, seed and learner it was started with."""
     return replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
-                   questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed)
+                   questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed,
+                   safe=not journal.guess)
 
 
 @contextmanager
@@ -98,6 +114,7 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         journal = store.load_journal()
         settings = resumed_settings(settings, journal)
     domain = domain or session_domain(settings)
+    settings = _world_that_fits(settings, domain, note)
     if fresh and not resume:
         store.clear()
     elif not resume and store.has_journal():

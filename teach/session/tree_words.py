@@ -4,9 +4,10 @@ A tree is read as an ordered list of rules, "the first that fits": each action w
 checks that must hold before it is ticked (a condition in a Sequence must hold, one in a
 Fallback must not), and "I am done" where the root succeeds. Read that way, the backchained
 trees the learners build say what a teacher would say: "When the ball is in the bin, I am
-done. Otherwise: if you cannot see the ball, I find the ball; ...". Checks that earlier
-rules already rule out are left out (the order says them), and an action a Fallback tries
-once more as a last resort after the branch that does it is not said again. A part that is neither
+done. Otherwise: if I cannot see the ball, I find the ball; ...". Checks that earlier
+rules already rule out are left out (the order says them), an action a Fallback tries
+once more as a last resort after the branch that does it is not said again, and neither is
+a rule that repeats an earlier one's step where that one always fits first. A part that is neither
 conditions nor Sequences and Fallbacks of them (a Parallel, an Inverter over actions) is
 named by its actions, with a pointer to ``show full``. Pure: tree, domain and language in,
 lines out.
@@ -14,11 +15,11 @@ lines out.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
 from teach.domain import Domain
-from teach.session import messages as m
 
 
 @dataclass(frozen=True)
@@ -46,6 +47,8 @@ class _Rule:
     actions: tuple[str, ...] = ()
     done_when: _Check | None = None
     """For "done": what holds then (the guard is what earlier parts of the tree add to it)."""
+    then: bool = False
+    """It follows an action of its Sequence: it comes when that one has worked, not as the first that fits."""
 
     @property
     def condition(self) -> tuple[_Check, ...]:
@@ -54,7 +57,7 @@ class _Rule:
 
 def tree_lines(tree: Node, domain: Domain, lang: str) -> list[str]:
     """What the tree does, in sentences of ``lang``, one rule a line."""
-    rules = _deduplicated(_rules(tree, (), at_root=True))
+    rules = _reachable(_deduplicated(_rules(tree, (), at_root=True)))
     lines: list[str] = []
     goal = []
     while rules and rules[0].kind == "done" and not rules[0].guard:
@@ -85,7 +88,7 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     if check is not None:
         return [_Rule(guard, "done", done_when=check)] if at_root else []
     if at_root and isinstance(node, Sequence):
-        reached = [_reached_when(child) for child in node.children]
+        reached = [_check(child) or _reached_when(child) for child in node.children]
         if reached and all(r is not None for r in reached):  # one part after the other: done when each is
             parts = tuple(r for r in reached if r is not None)
             done = _Rule(guard, "done", done_when=parts[0] if len(parts) == 1 else _Check("all", parts=parts))
@@ -93,12 +96,15 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     if isinstance(node, Sequence | Fallback):
         rules: list[_Rule] = []
         inside = guard
+        acted = False  # in a Sequence: an action came before
         for number, child in enumerate(node.children):
             child_check = _check(child)
             if isinstance(node, Fallback) and _last_resort(child, node.children[:number]):
                 continue
             if child_check is None:
-                rules += _rules(child, inside, at_root and isinstance(node, Fallback))
+                found = _rules(child, inside, at_root and isinstance(node, Fallback))
+                rules += [replace(rule, then=True) for rule in found] if acted else found
+                acted = isinstance(node, Sequence) and (acted or any(r.kind != "done" for r in found))
             elif isinstance(node, Sequence):
                 inside += (child_check,)
             elif at_root:  # the task is done when it holds; later rules need not say it does not
@@ -152,6 +158,19 @@ def _last_resort(child: Node, before: tuple[Node, ...]) -> bool:
 def _deduplicated(rules: list[_Rule]) -> list[_Rule]:
     """Each rule once (a subtree the tree repeats says the same)."""
     return list(dict.fromkeys(rules))
+
+
+def _reachable(rules: list[_Rule]) -> list[_Rule]:
+    """The rules less those that say an earlier one again: the same step when checks that include
+    all of the earlier rule's hold, where the earlier rule always fits first (a rule after an
+    action of its Sequence is not the first that fits, so it neither hides nor is hidden)."""
+    kept: list[_Rule] = []
+    for rule in rules:
+        if rule.then or not any(earlier.kind == rule.kind and earlier.actions == rule.actions
+                                and set(earlier.condition) <= set(rule.condition)
+                                for earlier in kept if not earlier.then):
+            kept.append(rule)
+    return kept
 
 
 def _what(rule: _Rule, domain: Domain, lang: str) -> str:

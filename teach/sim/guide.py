@@ -89,6 +89,26 @@ _LIMITS = {"forward": (-MAX_DISTANCE, MAX_DISTANCE, "metres"), "back": (-MAX_DIS
            "wait": (0.0, MAX_WAIT, "seconds"), "hand": (0.0, MAX_WAIT, "seconds")}
 
 
+@dataclass(frozen=True, slots=True)
+class Feedback:
+    """What a person steering the robot needs to know, from the simulation: where the ball and
+    the bin are from the hand (the grasp point between the fingers), how high the lift is, the
+    hand open or closed, and what the last command did."""
+
+    ball_distance: float  # m, in the floor plane
+    ball_bearing: float   # degrees to turn to face it, counter-clockwise (positive: to the left)
+    ball_height: float    # m the ball's centre is above the hand's (negative: below it)
+    bin_distance: float
+    bin_bearing: float
+    lift: float           # m above grasp height
+    hand_open: bool
+    last: GuideCommand | None
+    moved: float          # m the base moved in the last command
+    turned: float         # degrees it turned
+    lifted: float         # m the lift moved
+    gripped: float        # m the fingers closed (negative: opened)
+
+
 def is_guide_line(text: str) -> bool:
     """Whether a script or prompt line is a guiding command (starts with ``guide``/``führen``)."""
     words = text.split()
@@ -149,7 +169,8 @@ class Guide:
         self._dt = CONTROL_STEPS * world.model.opt.timestep
         self.doing = "guide"  # what the recording shows as running: the command being carried out
         self._robot: tuple[int, ...] | None = None  # the robot's bodies, found on the first hand period
-        self.sample((0.0, 0.0))
+        self.last: GuideCommand | None = None  # the command run last, for ``feedback``
+        self._started = self.sample((0.0, 0.0))  # the sample it started from
 
     # --- sampling --------------------------------------------------------------------------
 
@@ -176,8 +197,29 @@ class Guide:
 
     # --- primitives ------------------------------------------------------------------------
 
+    def feedback(self) -> Feedback:
+        """Where things are now, and what the last command (``run``) did."""
+        w = self.world
+        hand, ball, bin_ = ([float(v) for v in p] for p in (w.grasp_point(), w.ball_position(), w.bin_position()))
+        x, y, yaw = w.base_pose()
+
+        def seen(point: list[float]) -> tuple[float, float]:
+            """Distance from the hand, bearing from the robot's centre: turning by it faces the hand to the point."""
+            bearing = math.degrees(_wrap(math.atan2(point[1] - y, point[0] - x) - yaw))
+            return math.hypot(point[0] - hand[0], point[1] - hand[1]), bearing
+
+        (ball_distance, ball_bearing), (bin_distance, bin_bearing) = seen(ball), seen(bin_)
+        start = self._started
+        hand_height = hand[2] + w.lift_height()  # the grasp point is at the lift's bottom: the lift raises the hand
+        return Feedback(ball_distance, ball_bearing, ball[2] - hand_height, bin_distance, bin_bearing,
+                        w.lift_height(), w.finger_closure() < FINGER_CLOSED / 2, self.last,
+                        math.hypot(x - start.base[0], y - start.base[1]),
+                        math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
+                        w.finger_closure() - start.fingers)
+
     def run(self, command: GuideCommand) -> None:
         """Carry out one command to its end."""
+        self.last, self._started = command, self.samples[-1]
         actions: dict[str, Callable[[], None]] = {
             "forward": lambda: self.forward(command.amount), "turn": lambda: self.turn(command.amount),
             "lift": lambda: self.lift(command.amount), "open": self.open, "close": self.close,

@@ -75,8 +75,8 @@ def push_robot(world: World, rng: np.random.Generator) -> None:
 
 
 PERTURBATIONS: dict[str, Perturbation] = {p.name: p for p in (
-    Perturbation("knock_ball", ("knock the ball away", "knock the ball out of the hand", "drop the ball"),
-                 ("den Ball wegstoßen", "den Ball aus der Hand schlagen", "Ball fallen lassen"), knock_ball),
+    Perturbation("knock_ball", ("knock the ball away", "knock the ball out of the hand"),
+                 ("den Ball wegstoßen", "den Ball aus der Hand schlagen"), knock_ball),
     Perturbation("take_ball", ("take the ball away", "hide the ball"),
                  ("den Ball wegnehmen", "den Ball verstecken"), take_ball),
     Perturbation("move_bin", ("move the bin", "move the bin away"),

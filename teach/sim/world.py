@@ -63,6 +63,8 @@ LOST_DISTANCE = 0.2         # a remembered ball farther than this from memory is
 BIN_RADIUS = 0.4            # BinClose: bin centre within this of the grasp point (m)
 BIN_INNER = 0.12            # inner half width of the bin (m)
 BIN_TOP = 0.16              # height of the bin's walls (m)
+VIEWER_DISTANCE = 6.0      # m from the robot: the 4 m room in view
+VIEWER_ELEVATION = -50.0   # degrees: looking down on it
 LIFT_CARRY = 0.26           # lift height for driving and carrying (m above grasp height)
 LIFT_PLACE = 0.075          # lift height that holds the ball inside the bin, the arm just above its walls
 FINGER_RELEASE = 0.025      # finger closure that lets go of the ball without touching the bin's walls
@@ -434,10 +436,19 @@ class World:
             return None
 
     def open_viewer(self) -> Any:
-        """The interactive MuJoCo viewer on this world (needs a display); ``.sync()`` redraws it."""
+        """The interactive MuJoCo viewer on this world (needs a display); ``.sync()`` redraws it.
+        For guiding by hand: no panels, and a camera that follows the robot from above and
+        behind, high and far enough to show the room (ball and bin) from the first frame."""
         import mujoco.viewer
 
-        return mujoco.viewer.launch_passive(self.model, self.data)
+        viewer = mujoco.viewer.launch_passive(self.model, self.data, show_left_ui=False, show_right_ui=False)
+        with viewer.lock():
+            viewer.cam.type = mujoco.mjtCamera.mjCAMERA_TRACKING
+            viewer.cam.trackbodyid = self._ids["base"]
+            viewer.cam.distance, viewer.cam.elevation = VIEWER_DISTANCE, VIEWER_ELEVATION
+            viewer.cam.azimuth = math.degrees(self.base_pose()[2])  # behind the robot, looking its way
+        viewer.sync()
+        return viewer
 
     def close(self) -> None:
         for renderer in (self._renderers or {}).values():

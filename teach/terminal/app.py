@@ -9,6 +9,7 @@ with that letter as the start of the next line ("done").
 
 from __future__ import annotations
 
+import contextlib
 import signal
 import threading
 from collections.abc import Callable
@@ -24,12 +25,13 @@ from prompt_toolkit.layout import FormattedTextControl, Layout, Window
 from prompt_toolkit.output import Output
 from rich.console import Console
 
+from teach import messages as m
 from teach.dialogue.completion import TeachCompleter, command_words
 from teach.dialogue.phrases import is_yes
-from teach.session import messages as m
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import Mode, SessionManager
 from teach.session.replies import Reply, ReplyKind
+from teach.terminal.run_keys import RunKeys, is_terminal
 from teach.terminal.view import prompt, render_reply, render_teacher, toolbar
 
 
@@ -125,13 +127,13 @@ class Terminal:
         """Every line goes through the session; while the robot may run, Ctrl-C sets the
         interrupt flag instead of ending the program."""
         command, rest = self.manager.command(line)
-        if command is not None and command.verb is Verb.GUIDE and not rest.strip() \
+        if command is Verb.GUIDE and not rest.strip() \
                 and self.manager.mode is not Mode.ASKING:
             self.manager.handle(line)
             if self.manager.guiding.active:
                 self._guide_mode()
             return
-        if command is None or command.verb is not Verb.RUN or self.manager.mode is Mode.ASKING \
+        if command is not Verb.RUN or self.manager.mode is Mode.ASKING \
                 or self.manager.runnable is None:  # the session explains why it will not run
             self.manager.handle(line)
             return
@@ -139,30 +141,48 @@ class Terminal:
         self.console.print(f"[dim]{m.ROBOT_RUNNING(self.manager.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
+        keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
+            if is_terminal(self.prompt.input) else None
+
+        def interrupted() -> bool:
+            if keys is not None:
+                keys.poll()
+            return self._interrupt.is_set()
+
         try:
-            self.manager.handle(line, interrupt=self._interrupt.is_set)
+            with keys.reading() if keys is not None else contextlib.nullcontext():
+                self.manager.handle(line, interrupt=interrupted)
         finally:
             if in_main:
                 signal.signal(signal.SIGINT, previous)
+
+    def _typed_while_running(self, line: str) -> None:
+        self.console.print(f"[bold red]{m.WAIT_OR_CTRL_C(self.manager.lang, line=line)}[/bold red]")
 
     def _guide_mode(self) -> None:
         """Keys drive the robot, one ``guide …`` line each, until Esc (or Ctrl-C, Ctrl-D) or a
         typed letter; the state line after each shows what changed."""
         self._keys_guiding = True
+        quiet = self.prompt.input.raw_mode() if is_terminal(self.prompt.input) else contextlib.nullcontext()
         try:
-            while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
-                key = self._guide_key()
-                if key in _LEAVE:
-                    self.manager.handle("guide stop")
-                    return
-                if key.startswith(_TYPED):
-                    self._typed = key[len(_TYPED):]
-                    return
-                line = self.manager.guiding.line_for_key(key)
-                if line is not None:
-                    self.manager.handle(line)
+            with quiet:  # keys pressed while the robot moves are not echoed ("^[[D"), only read after
+                self._steer()
         finally:
             self._keys_guiding = False
+
+    def _steer(self) -> None:
+        """The guide mode's loop: one key, one ``guide …`` line."""
+        while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
+            key = self._guide_key()
+            if key in _LEAVE:
+                self.manager.handle("guide stop")
+                return
+            if key.startswith(_TYPED):
+                self._typed = key[len(_TYPED):]
+                return
+            line = self.manager.guiding.line_for_key(key)
+            if line is not None:
+                self.manager.handle(line)
 
     def _guide_key(self) -> str:
         """One key press of the guide mode, by ``Guide.key``'s name (a letter as ``_TYPED`` + it)."""
@@ -201,5 +221,5 @@ def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
     """What Tab offers after 'start' (conditions) and 'why' (actions and conditions), in the session's language."""
     conditions = [c.label(manager.lang) for c in manager.domain.conditions]
     actions = [a.label(manager.lang) for a in manager.domain.actions]
-    return {name: conditions if command.verb is Verb.START else actions + conditions
-            for command in COMMANDS if command.verb in (Verb.START, Verb.WHY) for name in command.names}
+    return {name: conditions if command is Verb.START else actions + conditions
+            for command in COMMANDS if command in (Verb.START, Verb.WHY) for name in command.names}

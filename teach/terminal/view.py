@@ -9,8 +9,8 @@ from rich.console import RenderableType
 from rich.panel import Panel
 from rich.text import Text
 
+from teach import messages as m
 from teach.domain import Domain
-from teach.session import messages as m
 from teach.session.replies import Reply, ReplyKind
 
 if TYPE_CHECKING:

@@ -56,7 +56,7 @@ class Grammar:
 def domain_grammar(domain: Domain, known: Callable[[str], bool] = lambda word: True) -> Grammar:
     """The English grammar of ``domain``; a text with a word ``known`` refuses (not in the
     recogniser's dictionary) is left out, since it could never be heard."""
-    from teach.session import messages as m
+    from teach import messages as m
     from teach.session.commands import COMMANDS
 
     def usable(texts: Iterable[str]) -> tuple[str, ...]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from teach.session import messages as m
+from teach import messages as m
 from teach.session.replies import Reply, ReplyKind
 
 _MARKS = re.compile(r"[“”„‚‘’'\"«»()\[\]*_`–—•]")

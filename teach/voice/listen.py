@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from teach import messages as m
 from teach.domain import Domain
-from teach.session import messages as m
 from teach.voice.audio import Audio
 from teach.voice.library import VoiceUnavailable
 

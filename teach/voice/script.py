@@ -6,10 +6,10 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
+from teach import messages as m
 from teach.dialogue.script import AUDIO, Script
 from teach.domain import Domain
 from teach.errors import FormatError
-from teach.session import messages as m
 from teach.voice.audio import read_wav
 from teach.voice.library import VoiceUnavailable
 from teach.voice.recognise import Recogniser

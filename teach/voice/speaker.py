@@ -12,9 +12,9 @@ import threading
 from collections.abc import Callable
 from pathlib import Path
 
+from teach import messages as m
 from teach.errors import TeachError
 from teach.fsutil import atomic_write_text
-from teach.session import messages as m
 from teach.voice.audio import Audio, write_wav
 from teach.voice.lines import Line
 from teach.voice.synth import speak, synthesizer

@@ -354,18 +354,13 @@ class _Reader:
 
 
 @dataclass
-class HiddenRunResult(RunResult):
-    """A run, plus the events that happened in it: (robot actions before it, event, state before it)."""
-
-    external: list[tuple[int, str, State]] = field(default_factory=list)
-
-
-@dataclass
 class _RunLog:
-    """What a run has done so far, for the events between its actions."""
+    """What a run has done so far, for the events between its actions: each event with the
+    number of robot actions before it, told at once to whoever listens (the session shows it)."""
 
+    on_event: Callable[[WorldEvent], None] | None = None
     actions: int = 0
-    external: list[tuple[int, str, State]] = field(default_factory=list)
+    events: list[tuple[int, WorldEvent]] = field(default_factory=list)
 
 
 class HiddenStateWorld(SymbolicWorld):
@@ -460,15 +455,16 @@ class HiddenStateWorld(SymbolicWorld):
 
     def run(self, tree: Node, max_actions: int = 20, interrupt: Callable[[], bool] | None = None,
             stop_after: int | None = None, on_action: Callable[[str], None] | None = None,
-            on_event: Callable[[WorldEvent], None] | None = None) -> HiddenRunResult:
-        """``SymbolicWorld.run``; after every action each event may happen (``events_in_runs``),
-        reported in ``external`` (not through ``on_event``)."""
-        log = self._run = _RunLog()
+            on_event: Callable[[WorldEvent], None] | None = None) -> RunResult:
+        """``SymbolicWorld.run``; after every action each event may happen (``events_in_runs``):
+        told through ``on_event`` as it happens and kept in the result's ``events``, so the
+        session shows it and writes it as an external step (-1)."""
+        log = self._run = _RunLog(on_event)
         try:
             plain = super().run(tree, max_actions, interrupt, stop_after, on_action, on_event)
         finally:
             self._run = None
-        return HiddenRunResult(plain.outcome, plain.steps, plain.final_state, external=log.external)
+        return RunResult(plain.outcome, plain.steps, plain.final_state, events=log.events)
 
     def _random_events(self, log: _RunLog) -> None:
         """Each event in file order happens with its probability when its ``pre`` holds."""
@@ -477,8 +473,12 @@ class HiddenStateWorld(SymbolicWorld):
             if draw < event.probability and all(self.domain.holds(lit, self._state) for lit in event.pre):
                 before = self._state
                 self.perturb(event.name)
-                log.external.append((log.actions, event.name, before))
+                happened = WorldEvent(event.name, before, self._state, event.en[0] if event.en else event.name,
+                                      event.de[0] if event.de else event.name)
+                log.events.append((log.actions, happened))
                 self.observer.on_external(event.name)
+                if log.on_event is not None:
+                    log.on_event(happened)
 
     def _change(self, changes: tuple[Change, ...]) -> None:
         for change in changes:

@@ -31,7 +31,7 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
-                  "Schreib, was der Roboter tun soll, z. B. “{examples}”.")
+                  "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
 AND = Text(" and ", " und ")
 OR = Text(" or ", " oder ")
 
@@ -46,14 +46,15 @@ UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängi
 NOTHING_TO_REDO = Text("Nothing to redo: 'redo' brings back what the last 'undo' took, until you do something new.",
                        "Nichts wiederherzustellen: 'wiederherstellen' bringt zurück, was das letzte 'zurück' "
                        "genommen hat, solange du nichts Neues tust.")
+REDONE_ONE_STEP = Text("Back again: step {first} ({steps}).", "Wieder da: Schritt {first} ({steps}).")
 REDONE_STEPS = Text("Back again: steps {first} to {last} ({steps}).",
                     "Wieder da: Schritte {first} bis {last} ({steps}).")
-REDONE_DEMONSTRATION = Text("Back again: demonstration {name}, learned again.",
-                            "Wieder da: Vorführung {name}, wieder gelernt.")
+REDONE_DEMONSTRATION = Text("Back again: your demonstration {name}, learned again.",
+                            "Wieder da: deine Vorführung {name}, wieder gelernt.")
 REDONE_LEARNING = Text("Back again: what the last undo took.", "Wieder da: was das letzte Zurücknehmen genommen hat.")
 REDONE_ANSWER = Text("Back again: your answer to “{question}”.", "Wieder da: deine Antwort auf „{question}“.")
-UNDONE_DEMONSTRATION = Text("Undone: demonstration {name} (set aside, not learned).",
-                            "Rückgängig: Vorführung {name} (beiseitegelegt, nicht gelernt).")
+UNDONE_DEMONSTRATION = Text("Undone: your demonstration {name} (set aside, not learned).",
+                            "Rückgängig: deine Vorführung {name} (beiseitegelegt, nicht gelernt).")
 UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: deine Antwort auf „{question}“.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
@@ -86,7 +87,20 @@ THOUGHT_DONE = Text("I thought I was done, but {unmet}. Show me how to go on, th
                     "Ich dachte, ich bin fertig, aber {unmet}. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
 STUCK = Text("I got stuck ({outcome}). Show me how to go on, then say 'done'.",
              "Ich komme nicht weiter ({outcome}). Zeig mir, wie es weitergeht, dann sag 'fertig'.")
+TRIED_FAILED = Text("I tried to {action}, but it did not work: {reason}.",
+                    "Ich habe „{action}“ versucht, aber es ging nicht: {reason}.")
+TRIED_FAILED_TIMES = Text("I tried to {action} {times} times, but it did not work: {reason}.",
+                          "Ich habe „{action}“ {times}-mal versucht, aber es ging nicht: {reason}.")
+STOPPED_DURING = Text("Stopped (the last thing I began was “{action}”). Show me how to go on from here, then say "
+                      "'done'.",
+                      "Angehalten (zuletzt hatte ich „{action}“ begonnen). Zeig mir, wie es von hier weitergeht, "
+                      "dann sag 'fertig'.")
+STUCK_AFTER_TRYING = Text("I got stuck. Show me how to go on, then say 'done'.",
+                          "Ich komme nicht weiter. Zeig mir, wie es weitergeht, dann sag 'fertig'.")
 NOT_RUNNING = Text("The robot is not running.", "Der Roboter läuft gerade nicht.")
+WAIT_OR_CTRL_C = Text("! I am running: wait until I finish, or press Ctrl-C to stop me (“{line}” is not kept).",
+                      "! Ich laufe gerade: warte, bis ich fertig bin, oder drück Strg-C, um mich anzuhalten "
+                      "(„{line}“ wird nicht aufgehoben).")
 ROBOT_RUNNING = Text("robot running, Ctrl-C interrupts ...", "Roboter läuft, Strg-C hält ihn an ...")
 WHOLE_NUMBER = Text("expected a whole number, not {text!r}", "erwartet eine ganze Zahl, nicht {text!r}")
 NOT_NEGATIVE = Text("the number cannot be negative", "die Zahl darf nicht negativ sein")
@@ -105,6 +119,17 @@ GENERATION_PLAIN = Text("Generation {generation} saved: I can do {reproduced} of
                         "as you showed them.",
                         "Generation {generation} gespeichert: ich kann {reproduced} von deinen {total} Vorführungen so "
                         "nachmachen, wie du sie gezeigt hast.")
+GENERATION_PLAIN_ALL = Text("Generation {generation} saved: I can do all {total} of your demonstrations just as you "
+                            "showed them.",
+                            "Generation {generation} gespeichert: ich kann alle {total} Vorführungen so nachmachen, "
+                            "wie du sie gezeigt hast.")
+GENERATION_PLAIN_THE_ONE = Text("Generation {generation} saved: I can do your demonstration just as you showed it.",
+                                "Generation {generation} gespeichert: ich kann deine Vorführung so nachmachen, wie du "
+                                "sie gezeigt hast.")
+GENERATION_PLAIN_NOT_THE_ONE = Text("Generation {generation} saved: I cannot yet do your demonstration just as you "
+                                    "showed it.",
+                                    "Generation {generation} gespeichert: deine Vorführung kann ich noch nicht so "
+                                    "nachmachen, wie du sie gezeigt hast.")
 LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {steps} gelernt")
 ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
@@ -128,9 +153,10 @@ SOURCE_ANSWER = Text("your answer to question {number}", "deine Antwort auf Frag
 WHY_PRE = Text("I {action} only when {condition}: that held every time you showed it ({sources})",
                "Ich mache „{action}“ nur, wenn gilt: {condition}; das galt jedes Mal, als du es gezeigt hast "
                "({sources})")
-WHY_EFFECT = Text("I {action} to make “{condition}” true: that is what it did when it was shown or named ({sources})",
-                  "Ich mache „{action}“, damit gilt: {condition}; das hat es getan, als es gezeigt oder genannt wurde "
-                  "({sources})")
+WHY_EFFECT = Text("I {action} to make “{condition}” true: doing it made that true when it was shown or named "
+                  "({sources})",
+                  "Ich mache „{action}“, damit gilt: {condition}; das hat es bewirkt, als es gezeigt oder genannt "
+                  "wurde ({sources})")
 WHY_LAST_RESORT = Text("if nothing else works, I still try to {action} to make “{condition}” true",
                        "wenn nichts anderes geht, versuche ich trotzdem „{action}“, damit gilt: {condition}")
 WHY_EXCEPTION = Text("in one situation you showed me something else, so there I {action} ({sources})",
@@ -153,6 +179,8 @@ ONE_ACTION = Text("Please answer with one action, 'done' or 'skip'.",
                   "Bitte antworte mit einer Handlung, 'fertig' oder 'weiter'.")
 CONTRADICTS = Text("That contradicts what you showed me: {why}", "Das widerspricht dem Gezeigten: {why}")
 THANKS = Text("Thank you. {change}", "Danke. {change}")
+NO_TO_WHAT = Text("No question is open. If my last step was wrong, say 'undo' (or 'that was wrong').",
+                  "Es ist keine Frage offen. War mein letzter Schritt falsch, sag 'zurück' (oder 'das war falsch').")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")
@@ -189,44 +217,34 @@ MODE_IDLE = Text("idle", "bereit")
 MODE_DEMONSTRATING = Text("demonstrating", "Vorführung")
 MODE_ASKING = Text("asking", "Frage offen")
 
-# --- the command table's help ------------------------------------------------------------------
-HELP_HELP = Text("show this help", "diese Hilfe zeigen")
-HELP_DEMONSTRATE = Text("start a demonstration", "eine Vorführung beginnen")
-HELP_DONE = Text("the task is finished: learn this demonstration", "die Aufgabe ist erledigt: diese Vorführung lernen")
-HELP_CANCEL = Text("discard the open demonstration", "die Vorführung verwerfen")
-HELP_PERTURB = Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)")
-HELP_RUN = Text("let the robot do the task (N: stop after N actions)", "den Roboter die Aufgabe machen lassen")
-HELP_STOP = Text("interrupt the robot", "den Roboter anhalten")
-HELP_SHOW = Text("show the learned tree", "den gelernten Baum zeigen")
-HELP_STATE = Text("show the current situation", "die aktuelle Lage zeigen")
-HELP_START = Text("put the world in a situation (named conditions true)", "die Welt in eine Lage bringen")
-HELP_RESET = Text("new random start", "neuer zufälliger Start")
-HELP_ASK = Text("let the robot ask a question", "den Roboter fragen lassen")
-HELP_MODEL = Text("load action definitions (pre/ram) and plan with them",
-                  "Handlungsbeschreibungen laden und damit planen")
-HELP_PLAN = Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben")
-HELP_SKIP = Text("leave a question unanswered", "eine Frage offen lassen")
-HELP_WHY = Text("why a node is in the tree", "warum ein Knoten im Baum ist")
-HELP_SAVE = Text("save everything now", "alles jetzt speichern")
-HELP_QUIT = Text("save and leave", "speichern und beenden")
-
 # --- situation questions (teach/dialogue/questions.py) -----------------------------------------
+MUST_ACTION_QUESTION = Text("Every time I did “{action}” so far, {held}. If {situation}, may I still do it? "
+                            "(yes, or tell me what to do there)",
+                            "Bisher galt jedes Mal, wenn ich „{action}“ getan habe: {held}. Angenommen, {situation}. "
+                            "Darf ich es dann trotzdem tun? (ja, oder sag mir, was ich dort tun soll)")
+MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situation}, is the task done? "
+                          "(yes, or tell me what to do there)",
+                          "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "
+                          "Ist die Aufgabe dann erledigt? (ja, oder sag mir, was ich dort tun soll)")
+WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
+CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
+                     "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
 
 # --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
 QUOTED = Text("“{text}”", "„{text}“")
-ASK_TIMING = Text("When you {act}: must {cond} already hold before you start, or does it only hold afterwards? "
+ASK_TIMING = Text("When I {act}: must {cond} already hold before I start, or does it only hold afterwards? "
                   "(before / after / both / neither)",
                   "Bei {act}: muss {cond} schon vorher gelten, oder gilt es erst danach? "
                   "(vorher / nachher / beides / keins)")
-ASK_EFFECTS = Text("What is different after you {act}? (what is true then, or “nothing”)",
+ASK_EFFECTS = Text("What is different after I {act}? (what is true then, or “nothing”)",
                    "Was ist anders nach {act}? (was dann gilt, oder „nichts“)")
-ASK_ACHIEVER = Text("What do you do so that {cond}? (an action, or “nothing”)",
-                    "Was tust du, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
-ASK_ORDER = Text("What do you do first: {act} or {other}? (one of them, or “either”)",
-                 "Was machst du zuerst: {act} oder {other}? (eins davon, oder „egal“)")
-ASK_NEVER = Text("Can you {act} while {opposite}? (yes / no)", "Kannst du {act}, wenn {opposite}? (ja / nein)")
+ASK_ACHIEVER = Text("What should I do so that {cond}? (an action, or “nothing”)",
+                    "Was soll ich tun, damit gilt: {cond}? (eine Handlung, oder „nichts“)")
+ASK_ORDER = Text("What should I do first: {act} or {other}? (one of them, or “either”)",
+                 "Was soll ich zuerst tun: {act} oder {other}? (eins davon, oder „egal“)")
+ASK_NEVER = Text("Can I {act} while {opposite}? (yes / no)", "Kann ich {act}, wenn {opposite}? (ja / nein)")
 SO_MAKES_TRUE_NOT_BEFORE = Text("So {act} makes {cond} true; it need not hold before.",
                                 "Also macht {act} {cond} wahr; es muss vorher nicht gelten.")
 SO_UNRELATED = Text("So {cond} has nothing to do with {act}.", "Also hat {cond} nichts mit {act} zu tun.")
@@ -257,11 +275,6 @@ WORD_EITHER = Text("either", "egal")
 
 # --- the careless teacher (issue 11) ----------------------------------------------------------------
 SAY_IT_ANOTHER_WAY = Text("Say it another way, please.", "Sag es bitte anders.")
-HELP_UNDO_TO_STEP = Text("undo the last step (N: steps N to the end), demonstration or answer",
-                         "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen")
-HELP_REDO = Text("take back the last undo (steps, a demonstration or an answer)",
-                 "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)")
-HELP_STEPS = Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen")
 OPEN_STEPS = Text("The steps so far:", "Die Schritte bisher:")
 NO_OPEN_STEPS = Text("No demonstration is open: there are no steps yet.",
                      "Keine Vorführung ist offen: es gibt noch keine Schritte.")
@@ -278,27 +291,6 @@ NOTHING_TO_CANCEL = Text("No demonstration is open: there is nothing to cancel."
                          "Keine Vorführung ist offen: es gibt nichts abzubrechen.")
 SESSION_ID = Text("Session {session} (continue it later with: teach session --resume {session}).",
                   "Sitzung {session} (später weitermachen mit: teach session --resume {session}).")
-USAGE_HELP = Text("help", "hilfe")
-USAGE_DEMONSTRATE = Text("demonstrate [steps]", "zeigen [Schritte]")
-USAGE_DONE = Text("done", "fertig")
-USAGE_CANCEL = Text("cancel", "abbrechen")
-USAGE_UNDO = Text("undo [N]", "zurück [N]")
-USAGE_REDO = Text("redo", "wiederherstellen")
-USAGE_STEPS = Text("steps", "schritte")
-USAGE_PERTURB = Text("perturb EVENT", "stören EREIGNIS")
-USAGE_RUN = Text("run [N]", "los [N]")
-USAGE_STOP = Text("stop / Ctrl-C", "halt / Strg-C")
-USAGE_SHOW = Text("show [full]", "zeige [ganz]")
-USAGE_STATE = Text("state [full]", "zustand [ganz]")
-USAGE_START = Text("start COND ...", "start BEDINGUNG ...")
-USAGE_RESET = Text("reset [SEED]", "neu [ZAHL]")
-USAGE_ASK = Text("ask", "frag")
-USAGE_MODEL = Text("model FILE", "modell DATEI")
-USAGE_PLAN = Text("plan", "planen")
-USAGE_SKIP = Text("skip", "weiter")
-USAGE_WHY = Text("why NAME", "warum NAME")
-USAGE_SAVE = Text("save", "speichern")
-USAGE_QUIT = Text("quit / Ctrl-D", "beenden / Strg-D")
 IT_NEEDS = Text("first this must be true: {conditions}", "dafür muss erst gelten: {conditions}")
 IT_DID_NOT_WORK = Text("it did not work out this time", "es hat diesmal nicht geklappt")
 OUTCOME_SUCCESS = Text("it said it was done", "es hieß, ich sei fertig")
@@ -316,14 +308,17 @@ QUESTIONS_ASKED = Text("{count} questions asked", "{count} Fragen gestellt")
 TOOLBAR_PLAIN = Text(" {mode} │ questions left: {left} │ generation {generation} │ Ctrl-D: quit",
                      " {mode} │ Fragen übrig: {left} │ Generation {generation} │ Strg-D: Ende")
 
-OPEN_ON_QUIT = Text("You have shown me {count} step(s) I have not learned yet: say 'done' to learn them, 'cancel' to "
-                    "drop them, or quit again to leave without them.",
-                    "Du hast mir {count} Schritt(e) gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
-                    "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal, um ohne sie zu gehen.")
+OPEN_ON_QUIT = Text("You have shown me {steps} I have not learned yet: say 'done' to learn them, 'cancel' to "
+                    "drop them, or quit again: they stay open, and --resume brings them back.",
+                    "Du hast mir {steps} gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
+                    "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal: sie bleiben offen, und "
+                    "--resume bringt sie zurück.")
+STEP_COUNT = Text("{count} step", "{count} Schritt")
+STEPS_COUNT = Text("{count} steps", "{count} Schritte")
 
-OPEN_RESTORED = Text("The demonstration you had started is still open ({count} step(s)): 'steps' lists them, "
+OPEN_RESTORED = Text("The demonstration you had started is still open ({steps}): 'steps' lists them, "
                      "'done' learns it, 'cancel' drops it.",
-                     "Die Vorführung, die du angefangen hattest, ist noch offen ({count} Schritt(e)): 'schritte' "
+                     "Die Vorführung, die du angefangen hattest, ist noch offen ({steps}): 'schritte' "
                      "zeigt sie, 'fertig' lernt sie, 'abbrechen' verwirft sie.")
 
 # --- durability (issue 14)
@@ -338,6 +333,10 @@ STDIN_IS_A_FILE = Text("standard input is a file, not a terminal: replay it with
                        "die Standardeingabe ist eine Datei, kein Terminal: spiele sie mit `teach replay DATEI` ab")
 UNKNOWN_JOURNAL_ACTION = Text("events[{number}]: answer: {action!r} is not an action of the domain",
                               "events[{number}]: answer: {action!r} ist keine Aktion der Domäne")
+SYMBOLIC_INSTEAD = Text("the MuJoCo world cannot tell whether “{condition}”: this session uses the symbolic world "
+                        "(--world symbolic)",
+                        "die MuJoCo-Welt kann nicht erkennen, ob „{condition}“: diese Sitzung nutzt die symbolische "
+                        "Welt (--world symbolic)")
 # --- guiding the robot in a session (issue 12, the guide helper)
 GUIDING_NEEDS_MUJOCO = Text("Guiding moves the robot's body: it needs the MuJoCo world (start the session with "
                             "--world mujoco).",
@@ -373,12 +372,36 @@ NEW_ACTION_TAKEN = Text("There is already an action called “{action}”: say i
 GUIDE_MODE_ON = Text("Guide mode: ↑/↓ move, ←/→ turn, PgUp/PgDn lift, space opens or closes the hand; Esc ends it.",
                      "Führmodus: ↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste öffnet oder schließt die "
                      "Hand; Esc beendet ihn.")
+GUIDE_FEEDBACK = Text("ball {ball}, {ball_height} · bin {bin} · lift {lift} · hand {hand} · last: {last}",
+                      "Ball {ball}, {ball_height} · Eimer {bin} · Hub {lift} · Hand {hand} · zuletzt: {last}")
+FEEDBACK_CM = Text("{cm} cm", "{cm} cm")
+FEEDBACK_M = Text("{whole}.{tenth} m", "{whole},{tenth} m")
+FEEDBACK_AHEAD = Text("{distance} ahead", "{distance} geradeaus")
+FEEDBACK_LEFT = Text("{distance}, {degrees}° to my left", "{distance}, {degrees}° links von mir")
+FEEDBACK_RIGHT = Text("{distance}, {degrees}° to my right", "{distance}, {degrees}° rechts von mir")
+FEEDBACK_BEHIND = Text("{distance} behind me", "{distance} hinter mir")
+FEEDBACK_AT_HAND_HEIGHT = Text("at hand height", "auf Handhöhe")
+FEEDBACK_ABOVE = Text("{distance} above my hand", "{distance} über meiner Hand")
+FEEDBACK_BELOW = Text("{distance} below my hand", "{distance} unter meiner Hand")
+FEEDBACK_OPEN = Text("open", "offen")
+FEEDBACK_CLOSED = Text("closed", "zu")
+FEEDBACK_NOTHING_YET = Text("nothing yet", "noch nichts")
+FEEDBACK_MOVED = Text("{key} moved me {distance}", "{key} hat mich {distance} bewegt")
+FEEDBACK_TURNED_LEFT = Text("{key} turned me {degrees}° left", "{key} hat mich {degrees}° nach links gedreht")
+FEEDBACK_TURNED_RIGHT = Text("{key} turned me {degrees}° right", "{key} hat mich {degrees}° nach rechts gedreht")
+FEEDBACK_LIFTED = Text("{key} moved the lift {distance} up", "{key} hat den Hub {distance} gehoben")
+FEEDBACK_LOWERED = Text("{key} moved the lift {distance} down", "{key} hat den Hub {distance} gesenkt")
+FEEDBACK_OPENED = Text("{key} opened my hand", "{key} hat meine Hand geöffnet")
+FEEDBACK_CLOSED_HAND = Text("{key} closed my hand", "{key} hat meine Hand geschlossen")
+FEEDBACK_BLOCKED = Text("{key} did nothing (something is in the way, or it was there already)",
+                        "{key} hat nichts bewirkt (etwas ist im Weg, oder es war schon so)")
+FEEDBACK_WAITED = Text("{key}: I waited", "{key}: ich habe gewartet")
+KEY_PAGE_UP = Text("PgUp", "Bild↑")
+KEY_PAGE_DOWN = Text("PgDn", "Bild↓")
+KEY_SPACE = Text("space", "Leertaste")
+KEY_WAIT = Text("wait", "warten")
 GUIDE_MODE_OFF = Text("Guide mode ended.", "Führmodus beendet.")
 TOOLBAR_LABELS = Text(" │ labelling questions left: {left}", " │ Benennfragen übrig: {left}")
-USAGE_GUIDE = Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
-                   "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]")
-HELP_GUIDE = Text("move the robot yourself (MuJoCo world); alone: steer it with the keys",
-                  "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken")
 # --- slips during a skill (issue 11: the world's events)
 HALTED_KEPT = Text("✓ {action} (stopped halfway: recorded up to there)",
                    "✓ {action} (mittendrin angehalten: bis dahin aufgezeichnet)")
@@ -424,10 +447,10 @@ SITUATION_RESTORED_ANEW = Text("I set up the last situation again (the simulatio
 SITUATION_NOT_RESTORED = Text("I could not set up the last situation again ({situation}); we go on from here:",
                               "Ich konnte die letzte Situation nicht wieder aufbauen ({situation}); wir machen von "
                               "hier aus weiter:")
-RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {count} step(s) I had finished "
+RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {steps} I had finished "
                     "are the start of a correction ('steps' lists them, 'done' learns it, 'cancel' drops it); the "
                     "world is set up as it was before {action}.",
-                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {count} Schritt(e), die ich "
+                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {steps}, die ich "
                     "fertig hatte, sind der Anfang einer Korrektur ('schritte' zeigt sie, 'fertig' lernt sie, "
                     "'abbrechen' verwirft sie); die Welt ist wieder so wie vor {action}.")
 RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} had just begun): the world is set up "
@@ -437,9 +460,9 @@ RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} ha
 # --- guiding by dragging in the MuJoCo viewer (issue 12, viewer)
 HAND_NEEDS_VIEWER = Text("'guide hand' follows your drag in the MuJoCo viewer: start the session with --viewer.",
                          "'führen hand' folgt deinem Ziehen im MuJoCo-Viewer: starte die Sitzung mit --viewer.")
-HAND_FOLLOWING = Text("I follow your hand in the viewer: double-click the robot, then Ctrl + right-drag moves me and "
+HAND_FOLLOWING = Text("I follow the mouse in the viewer: double-click the robot, then Ctrl + right-drag moves me and "
                       "Ctrl + left-drag turns me; drag the ball or the bin the same way. Let go when you are done.",
-                      "Ich folge deiner Hand im Viewer: doppelklicke auf den Roboter, dann bewegt mich Strg + "
+                      "Ich folge der Maus im Viewer: doppelklicke auf den Roboter, dann bewegt mich Strg + "
                       "Rechtsziehen und Strg + Linksziehen dreht mich; Ball und Eimer ziehst du genauso. Lass los, "
                       "wenn du fertig bist.")
 HAND_THE_BALL = Text("the ball", "den Ball")

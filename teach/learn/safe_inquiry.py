@@ -1,0 +1,255 @@
+"""The next question for the safe ``teach.learn.learner.Learner`` (``safe=True``): about what it does not know.
+
+A pure function of the learner (nothing is copied or trial-updated). The learner is safe by
+construction: it checks every precondition and goal literal it has not ruled out (see
+``teach.learn.action_model``), so what it does not know makes it stop, never act on a guess.
+A question is worth asking by how much its answer *settles*: how many of those unsure
+literals one "yes" rules out. In order:
+
+1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it; then
+   a situation where the domain's declared goal does not hold but the tree says "done" (only
+   an answer can have taught that);
+2. **hypotheses**, most literals settled first (ties: the goal, then the action shown most
+   often). For an action: a state where it was shown, with every unsure literal the data
+   gives no reason for made false at once ("If …, may I still grasp the ball?"); for the
+   goal: a goal state with every unsure goal literal made false ("… is the task done?").
+   A yes rules all of them out at once. A no (or "that cannot happen") splits the group:
+   the next question about that action tests half of it, so a needed literal is found in
+   log2(n) questions (group testing) and then kept for good. Literals the data gives a
+   reason for (the step before made them hold; the action undoes them) are asked about only
+   when no other group is left: they are usually needed, so that answer would change nothing;
+3. **unmet goal**: a situation, nearest the labelled ones first, where the domain's declared
+   goal does not hold and the tree would do nothing;
+4. **gaps**: a state next to a labelled one where the tree does nothing.
+
+These kinds are chosen by what their answer settles, not tuned to one generator: measured on
+standard planning domains and independent random domains in ``bench/bench_safety.py``.
+A question is never about a state asked before, labelled already (but for conflicts), or
+said to be impossible (``Learner.rule_out``). Every search is bounded by ``MAX_PROBED``.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Iterable
+
+from teach.domain import State
+from teach.learn.action_model import Lit, literal_masks, literals_of
+from teach.learn.inquiry import SituationQuestion, flipped, tree_does, unmet_goal_situations
+from teach.learn.learner import Learner
+
+KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
+MAX_PROBED = 4096
+"""The most situations searched for one question (every one of a domain of 12 conditions)."""
+MAX_UNMET = 64
+"""The most unmet-goal situations collected per question (nearest the labelled ones first)."""
+
+
+
+def next_safe_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
+    """The most decisive open question, or None when nothing is left to ask."""
+    skip = set(asked) | {learner.state_of(mask) for mask in learner.impossible}
+    labelled = learner.situations
+    for question in _candidates(learner, skip):
+        if question.state in skip:
+            continue
+        if question.kind != "conflict" and question.state in labelled:
+            continue
+        return question
+    return None
+
+
+def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestion]:
+    names = learner.names
+
+    def does(state: State) -> str:
+        return tree_does(learner, state)
+
+    for conflict in learner.conflicts:
+        yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
+    unmet = list(itertools.islice(unmet_goal_situations(learner, does, flipped), MAX_UNMET))
+    yield from (question for question in unmet if question.tree_does == "done")  # an answer taught a wrong "done"
+    yield from _hypotheses(learner, does, skip, reasoned=False)
+    yield from (question for question in unmet if question.tree_does != "done")
+    yield from _hypotheses(learner, does, skip, reasoned=True)
+    probed = 0
+    for state in learner.situations:
+        for index in range(len(names)):
+            probe = flipped(state, index)
+            probed += 1
+            if probed > MAX_PROBED:
+                return
+            if does(probe) == "nothing":
+                yield SituationQuestion(probe, "gap", tree_does="nothing")
+
+
+def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State],
+                reasoned: bool) -> Iterable[SituationQuestion]:
+    """Group questions about unsure literals, the most settled by one yes first (module docstring).
+    ``reasoned``: the literals the data gives a reason for (asked last), else the others."""
+    names = learner.names
+    width = len(names)
+    groups: list[tuple[int, int, int, str | None, list[Lit]]] = []
+    goal = learner.goal
+    if goal.known and not reasoned:
+        groups.append((0, 0, 0, None, goal.unsure()))
+    for name, knowledge in learner.model.actions.items():
+        if not knowledge.demonstrated:
+            continue
+        pos, neg = knowledge.unsure
+        have_pos, have_neg = knowledge.assumed
+        for index, value in goal.cover:  # "only while the task is not done yet": a reason too
+            if value:
+                have_neg |= 1 << index
+            else:
+                have_pos |= 1 << index
+        if reasoned:
+            literals = literals_of(pos & have_pos, neg & have_neg, width)
+        else:
+            literals = literals_of(pos & ~have_pos, neg & ~have_neg, width)
+        groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
+    bases = _bases(learner)
+    small = 1 << width <= MAX_PROBED
+    probes = list(range(1 << width)) if small else predicted(learner)
+    done_true, done_false = literal_masks(goal.required()) if goal.known else (0, 0)
+    stuck = [mask for mask in probes
+             if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
+    labelled = learner.labelled_masks()
+    plausible = [] if small else [state for state in (learner.state_of(mask) for mask in probes
+                                                      if mask not in labelled) if state not in skip]
+    found: list[tuple[tuple[int, int, int, int, int], SituationQuestion]] = []
+    for rank, evidence, order, action, literals in groups:
+        question = None
+        for group in learner.untested(action, literals):
+            question = _plausible_question(learner, does, skip, plausible, action, group) if plausible else None
+            question = question or _group_question(learner, does, skip, bases.get(action, ()), action, group)
+            if question is not None:
+                literals = [(learner.names.index(name), value) for name, value in question.settles]
+                break
+        if question is None:
+            continue
+        unblocked = _unblocked(learner, action, literals, stuck)
+        found.append(((-unblocked, -len(literals), rank, evidence, order), question))
+    found.sort(key=lambda item: item[0])
+    for _key, question in found:
+        yield question
+
+
+def _plausible_question(learner: Learner, does: Callable[[State], str], skip: set[State], plausible: list[State],
+                        action: str | None, literals: list[Lit]) -> SituationQuestion | None:
+    """The question about as many of ``literals`` as one predicted state can settle: one where
+    every other required literal holds and the most of ``literals`` do not."""
+    names = learner.names
+    if action is None:
+        required = learner.goal.required()
+    else:
+        required = literals_of(*learner.model[action].required, len(names))
+    group = set(literals)
+    best: tuple[int, State, list[Lit]] | None = None
+    for state in plausible:
+        false = [(i, v) for i, v in required if state[i] != v]
+        if false and all(lit in group for lit in false) and (best is None or len(false) > best[0]):
+            best = (len(false), state, false)
+    if best is None:
+        return None
+    kind = "must-goal" if action is None else "must-precondition"
+    settles = tuple((names[index], value) for index, value in best[2])
+    return SituationQuestion(best[1], kind, action=action, condition=settles[0][0], tree_does=does(best[1]),
+                             value=settles[0][1], settles=settles)
+
+
+def _group_question(learner: Learner, does: Callable[[State], str], skip: set[State], bases: Iterable[State],
+                    action: str | None, literals: list[Lit]) -> SituationQuestion | None:
+    """The question about ``literals`` from the first base state where flipping them all gives a
+    state not labelled, asked or impossible."""
+    names = learner.names
+    flips = {index for index, _value in literals}
+    for base in bases:
+        probe = tuple(not v if i in flips else v for i, v in enumerate(base))
+        if probe in learner.situations or probe in skip:
+            continue
+        kind = "must-goal" if action is None else "must-precondition"
+        settles = tuple((names[index], value) for index, value in literals)
+        return SituationQuestion(probe, kind, action=action, condition=settles[0][0], tree_does=does(probe),
+                                 value=settles[0][1], settles=settles)
+    return None
+
+
+def predicted(learner: Learner) -> list[int]:
+    """The states a question's worth is counted on in a domain too large to count every state
+    of, as bitmasks: the states the world can be in: the labelled ones and, breadth-first, what each demonstrated
+    action's learned effects make of them where all its required preconditions hold (at most
+    ``MAX_PROBED``); in STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
+    A question about one of these is not about a state that cannot happen, as one made by
+    changing conditions at random often is (a ferry at two places)."""
+    actions = []
+    for knowledge in learner.model.actions.values():
+        made_true, made_false = knowledge.effects
+        if knowledge.demonstrated and made_true | made_false:
+            actions.append((knowledge.required, made_true, made_false))
+    frontier = list(learner.labelled_masks())
+    seen = dict.fromkeys(frontier)
+    while frontier and len(seen) < MAX_PROBED:
+        following = []
+        for mask in frontier:
+            for (need, forbid), made_true, made_false in actions:
+                if mask & need != need or mask & forbid:
+                    continue
+                after = (mask | made_true) & ~made_false
+                if after not in seen:
+                    seen[after] = None
+                    following.append(after)
+                    if len(seen) >= MAX_PROBED:
+                        return list(seen)
+        frontier = following
+    return list(seen)
+
+
+def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck: list[int]) -> int:
+    """How many probed states where the tree does not say done would a yes let ``action`` run in
+    (``action`` None: let the tree say done in): those whose false required literals are all
+    among ``literals``."""
+    if action is None:
+        required = learner.goal.required()
+    else:
+        required = literals_of(*learner.model[action].required, len(learner.names))
+    group = set(literals)
+    others_true, others_false = literal_masks([lit for lit in required if lit not in group])
+    inside_true, inside_false = literal_masks([lit for lit in required if lit in group])
+    return sum(1 for mask in stuck
+               if mask & others_true == others_true and not mask & others_false
+               and (mask & inside_true != inside_true or mask & inside_false))
+
+
+def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
+    """Where the safe tree stopped (FAILURE) in ``state``: the action it was nearest to running, and
+    the unsure literals that kept it from running there ("Every time I put the ball in the bin,
+    the ball was in my hand. … may I still do it?"). None if only confirmed literals block every
+    action (then only a demonstration helps: "show me what to do here")."""
+    mask = learner.state_mask(state)
+    best: tuple[int, int, str, list[Lit]] | None = None
+    for name, knowledge in learner.model.actions.items():
+        if not knowledge.demonstrated:
+            continue
+        pos, neg = knowledge.required
+        false = [(i, v) for i, v in literals_of(pos, neg, len(learner.names)) if bool(mask >> i & 1) != v]
+        sure_pos, sure_neg = pos & ~knowledge.unsure[0], neg & ~knowledge.unsure[1]
+        if not false or any((sure_pos if v else sure_neg) >> i & 1 for i, v in false):
+            continue
+        key = (len(false), knowledge.order)
+        if best is None or key < best[:2]:
+            best = (*key, name, false)
+    if best is None:
+        return None
+    settles = tuple((learner.names[i], v) for i, v in best[3])
+    return SituationQuestion(state, "must-precondition", action=best[2], condition=settles[0][0], tree_does="nothing",
+                             value=settles[0][1], settles=settles)
+
+
+def _bases(learner: Learner) -> dict[str | None, list[State]]:
+    """For each action (None: the goal), the labelled states where it is what to do, latest first."""
+    bases: dict[str | None, list[State]] = {}
+    for state, allowed in learner.situations.items():
+        for answer in allowed:
+            bases.setdefault(answer, []).insert(0, state)
+    return bases

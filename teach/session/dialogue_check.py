@@ -1,0 +1,45 @@
+"""Whether a dialogue file is a dialogue: every input line a command, something the robot can
+do or the world can undergo, or an answer word, read as the session reads it (its command words,
+its guide lines, its answers). It lives beside the session, since the session's words decide."""
+
+from __future__ import annotations
+
+from teach import messages as m
+from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, normalize
+from teach.dialogue.script import Script
+from teach.errors import FormatError, TeachError
+from teach.session.commands import COMMAND_WORDS, DONE_WORDS, SKIP_WORDS, Verb, parse_command
+from teach.session.guiding import STOP_WORDS, is_new_action_answer
+
+
+def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
+    """Refuse a file that is not a dialogue (XML, a README, a CSV): every input line must be a
+    command, something the robot can do or the world can undergo, or an answer word; the
+    first line that is none of these is named with its number."""
+    answers = DONE_WORDS | SKIP_WORDS | {normalize(word(language)) for word in m.ANSWER_WORDS
+                                         for language in ("en", "de")}
+    topic: str | None = None  # "it" names what the line before named, as in the session
+    for number, line in script.lines:
+        command, rest = parse_command(command_hint(line, lang, COMMAND_WORDS) or line)  # "ok done", as the session
+        if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
+            from teach.sim.guide import parse_guide_line
+
+            parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
+        if command is not None or is_new_action_answer(line) or normalize(line) in answers \
+                or is_yes(line, lang) or is_no(line, lang):
+            continue
+        found, topic = _names_actions_or_events(line, phrases, lang, topic)
+        if not found:
+            shown = repr(line) if len(line) <= 40 else repr(line[:37]) + "..."
+            raise FormatError(f"{shown} is neither a command nor something the robot can do or the world can undergo "
+                              "(is this a dialogue? --lenient types such lines anyway)", script.path, number)
+
+
+def _names_actions_or_events(line: str, phrases: PhraseBook, lang: str, topic: str | None) -> tuple[bool, str | None]:
+    for perturb in (False, True):
+        try:
+            tokens = phrases.parse(line, lang, perturb=perturb, topic=topic)
+        except TeachError:
+            continue
+        return True, phrases.topic(tokens) or topic
+    return False, topic

@@ -1,0 +1,69 @@
+"""What a run did besides its finished steps, in words: each action the tree tried and that
+failed, and why (what it needed and lacked), and the action a Ctrl-C stopped. The session
+watches a run through the world's ticker (``TryWatch``) and hears of every action it begins."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+from teach import messages as m
+from teach.bt.nodes import Action, Node, Status, walk
+from teach.bt.tick import TickResult
+from teach.domain import Domain, State
+from teach.world.protocol import Outcome, RunResult, Ticker
+
+
+@dataclass
+class TryWatch:
+    """A ticker that ticks like ``ticker`` and notes every action of ``tree`` a tick saw fail,
+    with the world's state then (``state``)."""
+
+    ticker: Ticker
+    tree: Node
+    state: Callable[[], State]
+    failed: list[tuple[str, State]] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self._actions = {node.uid: node.name for node in walk(self.tree) if isinstance(node, Action)}
+
+    def __call__(self, tree: Node, conditions: Callable[[str], bool] | Mapping[str, bool],
+                 status: Callable[[str], Status]) -> TickResult:
+        result = self.ticker(tree, conditions, status)
+        for uid, seen in result.trace:
+            if seen is Status.FAILURE and uid in self._actions:
+                self.failed.append((self._actions[uid], self.state()))
+        return result
+
+
+def failed_tries(watch: TryWatch, started: list[tuple[State, str]], result: RunResult) -> list[tuple[str, State]]:
+    """Every action that failed in the run, in order: those a tick saw fail, and the last one
+    begun when the world refused it (a symbolic world ends the run there)."""
+    failed = list(watch.failed)
+    if result.outcome is Outcome.FAILURE and len(started) > len(result.steps) \
+            and not any(action == started[-1][1] for action, _ in failed):
+        failed.append((started[-1][1], started[-1][0]))
+    return failed
+
+
+def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: str) -> list[str]:
+    """ "I tried to grasp the ball (2 times), but it did not work: first this must be true: …",
+    one line per action and reason, in the order they first failed."""
+    counted: dict[tuple[str, str], int] = {}
+    for action, state in failed:
+        key = (action, why_not(domain, action, state, lang))
+        counted[key] = counted.get(key, 0) + 1
+    lines = []
+    for (action, reason), times in counted.items():
+        label = domain.action(action).label(lang)
+        text = m.TRIED_FAILED if times == 1 else m.TRIED_FAILED_TIMES
+        lines.append(text(lang, action=label, reason=reason, times=times))
+    return lines
+
+
+def why_not(domain: Domain, action: str, state: State, lang: str) -> str:
+    """Why an action failed, in words: the preconditions it lacked, if it has any."""
+    values = dict(zip(domain.condition_names, state, strict=True))
+    missing = [domain.condition(p.name).label(lang, p.value)
+               for p in domain.action(action).pre if values[p.name] != p.value]
+    return m.IT_NEEDS(lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(lang)

@@ -1,0 +1,88 @@
+"""Guiding with feedback (issue 21, item 1): a line says where the ball and the bin are from the
+robot's hand, the lift, the hand and what the last key did, in words a person can steer by; a
+grasp guided from that line alone works, and its ✓ comes as soon as the world settles."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from conftest import BALL_DOMAIN
+
+from teach.domain import load_domain
+from teach.session.feedback import feedback_line
+from teach.session.machine import SessionManager
+from teach.session.settings import Settings
+from teach.sim.guide import Feedback, GuideCommand
+
+
+def feedback(**changed: object) -> Feedback:
+    values: dict[str, object] = dict(ball_distance=0.34, ball_bearing=20.0, ball_height=-0.05, bin_distance=1.2,
+                                     bin_bearing=-3.0, lift=0.26, hand_open=True, last=GuideCommand("forward", 0.1),
+                                     moved=0.1, turned=0.0, lifted=0.0, gripped=0.0)
+    values.update(changed)
+    return Feedback(**values)  # type: ignore[arg-type]
+
+
+def test_the_feedback_line_in_english_and_german():
+    assert feedback_line(feedback(), "en") == ("ball 34 cm, 20° to my left, 5 cm below my hand · bin 1.2 m ahead · "
+                                               "lift 26 cm · hand open · last: ↑ moved me 10 cm")
+    assert feedback_line(feedback(), "de") == ("Ball 34 cm, 20° links von mir, 5 cm unter meiner Hand · Eimer 1,2 m "
+                                               "geradeaus · Hub 26 cm · Hand offen · zuletzt: ↑ hat mich 10 cm bewegt")
+
+
+@pytest.mark.parametrize(("changed", "last"), [
+    (dict(last=GuideCommand("forward", 0.1), moved=0.0), "↑ did nothing (something is in the way, or it was there "
+                                                          "already)"),
+    (dict(last=GuideCommand("turn", -15), turned=-15.0), "→ turned me 15° right"),
+    (dict(last=GuideCommand("lift", 0.21), lift=0.21, lifted=-0.05), "PgDn moved the lift 5 cm down"),
+    (dict(last=GuideCommand("lift", 0.3), lift=0.3, lifted=0.0), "PgUp did nothing (something is in the way, or it "
+                                                                 "was there already)"),
+    (dict(last=GuideCommand("close"), hand_open=False, gripped=0.05), "space closed my hand"),
+    (dict(last=None), "nothing yet"),
+])
+def test_the_last_key_says_what_it_did_or_that_it_did_nothing(changed, last):
+    assert feedback_line(feedback(**changed), "en").endswith("last: " + last)
+
+
+def test_behind_ahead_and_at_hand_height():
+    line = feedback_line(feedback(ball_bearing=170.0, ball_height=0.01, bin_bearing=-40.0, bin_distance=0.5), "en")
+    assert line.startswith("ball 34 cm behind me, at hand height · bin 50 cm, 40° to my right")
+
+
+_BALL = re.compile(r"ball (\d+(?:\.\d)?) (cm|m)(?:, (\d+)° to my (left|right)| ahead| behind me)")
+
+
+def test_a_grasp_guided_by_the_feedback_alone(tmp_path: Path) -> None:
+    """A person who reads only the feedback line: turn until the ball is ahead, drive up to it,
+    lower the lift, close the hand. The grasp is recognised at the key that closed the hand."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    domain = load_domain(BALL_DOMAIN)
+    settings = Settings("pilot", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, domain, MujocoWorld(domain, seed=0))
+    said = manager.handle("guide")
+    for _ in range(60):
+        line = said[-1].text
+        ball = _BALL.search(line)
+        assert ball is not None, line
+        distance = float(ball.group(1)) / (1 if ball.group(2) == "m" else 100)
+        lift = int(re.search(r"lift (\d+) cm", line).group(1))  # type: ignore[union-attr]
+        if "behind me" in ball.group(0):
+            said = manager.handle("guide turn 15")
+        elif ball.group(3):
+            step = min(15, int(ball.group(3)))
+            said = manager.handle(f"guide turn {step if ball.group(4) == 'left' else -step}")
+        elif distance > 0.06:
+            said = manager.handle(f"guide forward {min(0.1, distance - 0.02):.2f}")
+        elif lift > 0:
+            said = manager.handle(f"guide lift {max(0, lift - 5) / 100:.2f}")
+        else:
+            said = manager.handle("guide close")
+            break
+    texts = [r.text for r in said]
+    assert "✓ You moved me so that now the ball is in my hand: that was “grasp the ball”." in texts
+    assert texts[-1].endswith("hand closed · last: space closed my hand")
+    assert manager.open is not None and [s.action for s in manager.open.steps] == [1, 2, 3]
+    manager.close()

@@ -1,0 +1,95 @@
+"""A session with the safe learner (``--safe``): its questions ask whether it may still act (or is
+done) where something it always saw does not hold; a yes answers them, "that cannot happen"
+costs nothing and survives a resume."""
+
+from __future__ import annotations
+
+from teach.session.machine import SessionManager
+from teach.session.replies import ReplyKind
+from teach.session.settings import Settings, WorldKind
+from teach.world.symbolic import SymbolicWorld
+
+SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
+
+
+def safe_session(ball, tmp_path, questions=5):
+    settings = Settings("t", questions=questions, world=WorldKind.SYMBOLIC, base=tmp_path, record=False, safe=True)
+    return SessionManager(settings, ball, SymbolicWorld(ball))
+
+
+def two_demonstrations(session):
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("start BinClose")
+    session.handle("find the ball, go to the ball, grasp the ball, put the ball in the bin")
+    return session.handle("done")
+
+
+def question_text(replies):
+    return next(r.text for r in replies if r.kind is ReplyKind.QUESTION)
+
+
+def test_the_first_question_asks_whether_the_task_is_done_without_what_always_held(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    text = question_text(two_demonstrations(session))
+    assert text.startswith("Every time the task was done so far,") and "is the task done?" in text
+    replies = session.handle("yes")
+    assert any(r.text.startswith("Thank you") for r in replies)
+    assert session.learning.learner.goal.required() == [(4, True)]  # only the ball in the bin is left
+
+
+def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    session.handle("yes")
+    left = session.budget.left
+    pending = session.pending
+    assert pending is not None
+    replies = session.handle("that cannot happen")
+    assert "cost no question" in replies[0].text and session.budget.left == left + 1  # refunded
+    assert pending.state in session.learning.asked
+    session.handle("quit")
+    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False, safe=True), ball, SymbolicWorld(ball))
+    assert resumed.budget.left == left + 1
+    assert resumed.learning.learner.state_mask(pending.state) in resumed.learning.learner.impossible
+
+
+def test_no_asks_what_to_do_instead_and_keeps_the_question_open(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    replies = session.handle("no")
+    assert replies[0].kind is ReplyKind.QUESTION and "instead" in replies[0].text
+    assert session.pending is not None
+
+
+def test_a_run_that_gets_stuck_asks_about_what_it_was_unsure_of_there(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    session.handle("skip")
+    session.handle("start BallGrasped")
+    replies = session.handle("run")
+    assert any(r.text.startswith("I got stuck") for r in replies)
+    text = question_text(replies)
+    assert text.startswith("Every time I did “") and "may I still do it?" in text
+    asked = text.split("“")[1].split("”")[0]
+    replies = session.handle("yes")
+    assert any(r.text.startswith("Thank you") for r in replies)
+    while session.pending is not None:
+        session.handle("skip")
+    session.handle("start BallGrasped")
+    assert session.handle("run")[0].text == f"→ {asked}"
+
+
+def test_a_session_started_guessing_resumes_guessing(ball, tmp_path):
+    settings = Settings("g", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path, record=False, safe=False)
+    session = SessionManager(settings, ball, SymbolicWorld(ball))
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("quit")
+    from teach.session.setup import resumed_settings
+
+    again = resumed_settings(Settings("g", world=WorldKind.SYMBOLIC, base=tmp_path, record=False),
+                             session.store.load_journal())
+    assert again.safe is False
+    assert SessionManager.resume(again, ball, SymbolicWorld(ball)).learning.learner.safe is False

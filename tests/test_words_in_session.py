@@ -1,0 +1,122 @@
+"""The phrases a new teacher used (issue 21), in English and German, do in a session what
+they mean: undo words undo, done words finish, unclear words are not guessed into a step,
+'why' takes what the prompt takes, and 'no' with nothing asked says how to undo."""
+
+from __future__ import annotations
+
+import pytest
+from test_session import teach_two_demonstrations
+
+from teach.demos import read_demo_set
+from teach.session.machine import SessionManager
+from teach.session.replies import ReplyKind
+from teach.session.settings import Settings
+from teach.world.symbolic import SymbolicWorld
+
+WHOLE = {"en": "look for the ball, go to the ball, grab it, go to the bin, drop the ball",
+         "de": "Ball suchen, Geh mal hin zum Ball, nimm ihn, zum Eimer, leg ihn rein"}
+
+
+def session(ball, tmp_path, lang: str, questions: int = 0) -> SessionManager:
+    settings = Settings("words", lang=lang, questions=questions, base=tmp_path, world="symbolic", record=False)
+    return SessionManager(settings, ball, SymbolicWorld(ball))
+
+
+def said(manager: SessionManager, line: str) -> str:
+    return "\n".join(r.text for r in manager.handle(line))
+
+
+def open_actions(manager: SessionManager) -> list[int]:
+    return [step.action for step in manager.open.steps] if manager.open is not None else []
+
+
+@pytest.mark.parametrize(("lang", "find", "approach", "wrong", "take_back"), [
+    ("en", "look for the ball", "go to teh ball", "no, that was wrong", "oops, take that back"),
+    ("en", "search for the ball", "approach the ball", "that was wrong", "take that back"),
+    ("de", "Ball suchen", "Geh mal hin zum Ball", "nein, das war falsch", "falsch"),
+    ("de", "such den Ball", "zum Ball gehen", "das war falsch", "nimm das zurück"),
+])
+def test_undo_words_take_back_the_last_step(ball, tmp_path, lang, find, approach, wrong, take_back):
+    manager = session(ball, tmp_path, lang)
+    said(manager, find)
+    said(manager, approach)
+    assert open_actions(manager) == [1, 2]
+    said(manager, wrong)
+    assert open_actions(manager) == [1]
+    said(manager, take_back)
+    assert open_actions(manager) == []
+
+
+@pytest.mark.parametrize(("lang", "done"), [("en", "that's it"), ("en", "finished"), ("en", "I'm finished"),
+                                            ("en", "all done"), ("de", "das war's"), ("de", "erledigt"),
+                                            ("de", "ich bin fertig")])
+def test_done_words_finish_the_demonstration(ball, tmp_path, lang, done):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    assert open_actions(manager) == [1, 2, 3, 4, 5]
+    reply = said(manager, done)
+    assert "mean" not in reply and "Meintest" not in reply
+    _, [demo] = read_demo_set(tmp_path / "demos" / "words")
+    assert [step.action for step in demo.steps] == [1, 2, 3, 4, 5, 0]
+
+
+@pytest.mark.parametrize(("lang", "done"), [("en", "finished"), ("en", "that's it"), ("de", "das war's")])
+def test_a_done_word_before_the_task_is_done_is_refused_never_read_as_an_action(ball, tmp_path, lang, done):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    replies = manager.handle(done)
+    assert [r.kind for r in replies] == [ReplyKind.ERROR] and manager.suggestion is None
+    assert open_actions(manager) == [1]  # "finished" once offered "find the ball": Enter would record it
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "go get it"), ("de", "hingehen"), ("de", "Hingehen!")])
+def test_unclear_words_are_not_guessed_into_a_step(ball, tmp_path, lang, line):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    reply = said(manager, line)
+    assert manager.suggestion is None and "mean" not in reply and "Meintest" not in reply
+    assert said(manager, "") == "" and open_actions(manager) == [1]  # Enter records nothing
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "drop the ball"), ("de", "Ball fallen lassen"),
+                                            ("de", "rein damit"), ("de", "leg ihn rein")])
+def test_putting_words_put_the_ball_in_and_are_no_event(ball, tmp_path, lang, line):
+    manager = session(ball, tmp_path, lang)
+    said(manager, ", ".join(WHOLE[lang].split(", ")[:4]))
+    said(manager, line)
+    assert open_actions(manager) == [1, 2, 3, 4, 5]
+
+
+@pytest.mark.parametrize(("lang", "question"), [("en", "why grab"), ("en", "why grab it"), ("en", "why grasp teh ball"),
+                                                ("en", "why drop the ball"), ("de", "warum greifen"),
+                                                ("de", "warum nimm ihn"), ("de", "warum Ball fallen lassen")])
+def test_why_takes_what_the_prompt_takes(ball, tmp_path, lang, question):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "done")
+    replies = manager.handle(question)
+    assert [r.kind for r in replies] == [ReplyKind.INFO] and replies[0].text.startswith("- ")
+
+
+@pytest.mark.parametrize(("lang", "no", "hint"), [("en", "no", "'undo'"), ("en", "nope", "'undo'"),
+                                                  ("de", "nein", "'zurück'")])
+def test_no_with_nothing_asked_says_how_to_undo(ball, tmp_path, lang, no, hint):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    assert hint in said(manager, no) and open_actions(manager) == [1]
+
+
+def test_no_still_answers_a_did_you_mean(ball, tmp_path):
+    manager = session(ball, tmp_path, "en")
+    said(manager, "finding")
+    assert manager.suggestion is not None
+    said(manager, "no")
+    assert manager.suggestion is None and open_actions(manager) == []
+
+
+def test_wrong_to_an_open_question_is_no_answer_and_no_undo(ball, tmp_path):
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    assert manager.pending is not None  # two demonstrations: a question is open
+    reply = said(manager, "wrong")
+    assert manager.pending is not None and len(manager.demos) == 2 and "undo" not in reply.lower()
