@@ -56,7 +56,8 @@ def blueprint() -> rrb.Blueprint:
                                   rrb.TimeSeriesView(name="State over time", origin="state"),
                                   rrb.TextDocumentView(name="Tree XML", origin="tree/xml"),
                                   rrb.TextDocumentView(name="Demonstration", origin="demos/table"),
-                                  rrb.TextDocumentView(name="Domain", origin="domain"))),
+                                  rrb.TextDocumentView(name="Domain", origin="domain")),
+                         row_shares=[1, 2]),  # the questions, each in full, need the room
             column_shares=list(COLUMN_SHARES)),
         rrb.TimePanel(timeline="tick", state="collapsed", play_state="following"),
         collapse_panels=True,
