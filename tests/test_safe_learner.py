@@ -186,6 +186,17 @@ def test_a_situation_that_cannot_happen_is_never_asked_again() -> None:
         learner.rule_out(later.state, "q")
 
 
+def test_every_question_is_of_a_known_kind_and_new() -> None:
+    from teach.learn.safe_inquiry import KINDS
+
+    domain, demos = ball("delta2")
+    learner = learn_online(domain, demos[:2], safe=True)
+    questions = _all(learner)
+    assert questions and all(q.kind in KINDS for q in questions)
+    assert len({q.state for q in questions}) == len(questions)
+    assert not any(q.state in learner.situations for q in questions if q.kind != "conflict")
+
+
 def _all(learner: Learner, asked: list[State] | None = None) -> list[SituationQuestion]:
     """Every question the learner would ask in turn if each were skipped."""
     skipped = list(asked or [])

@@ -9,15 +9,19 @@ literals one "yes" rules out. In order:
 1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it; then
    a situation where the domain's declared goal does not hold but the tree says "done" (only
    an answer can have taught that);
-2. **hypotheses**, most literals settled first (ties: the goal, then the action shown most
-   often). For an action: a state where it was shown, with every unsure literal the data
-   gives no reason for made false at once ("If …, may I still grasp the ball?"); for the
-   goal: a goal state with every unsure goal literal made false ("… is the task done?").
-   A yes rules all of them out at once. A no (or "that cannot happen") splits the group:
-   the next question about that action tests half of it, so a needed literal is found in
-   log2(n) questions (group testing) and then kept for good. Literals the data gives a
-   reason for (the step before made them hold; the action undoes them) are asked about only
-   when no other group is left: they are usually needed, so that answer would change nothing;
+2. **hypotheses**, first those whose "yes" would let the robot act (or finish) in the most
+   situations it could meet (every state of a small domain; in a large one the states the
+   learned effects lead to, ``predicted``), then the most literals settled (ties: the goal,
+   then the action shown most often). For an action: a situation where every literal it
+   needs holds but a group of its unsure ones does not — in a large domain a predicted state
+   (so not an impossible one), else a state where it was shown with the group made false
+   ("If …, may I still grasp the ball?"); for the goal: a goal state with its unsure literals
+   made false ("… is the task done?"). A yes rules all of them out at once. A no (or "that
+   cannot happen") splits the group: the next question about that action tests half of it,
+   so a needed literal is found in log2(n) questions (group testing) and then kept for good.
+   Literals the data gives a reason for (the step before made them hold; the action undoes
+   them) are asked about only when no other group is left: they are usually needed, so that
+   answer would change nothing;
 3. **unmet goal**: a situation, nearest the labelled ones first, where the domain's declared
    goal does not hold and the tree would do nothing;
 4. **gaps**: a state next to a labelled one where the tree does nothing.
@@ -39,11 +43,11 @@ from teach.learn.inquiry import SituationQuestion, flipped, tree_does, unmet_goa
 from teach.learn.learner import Learner
 
 KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
+"""Every kind of question this selector asks."""
 MAX_PROBED = 4096
 """The most situations searched for one question (every one of a domain of 12 conditions)."""
 MAX_UNMET = 64
 """The most unmet-goal situations collected per question (nearest the labelled ones first)."""
-
 
 
 def next_safe_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
