@@ -173,6 +173,7 @@ WHY_ORDER = Text("it does the steps in another order than before.",
 ANSWER_FIRST = Text("Please answer my question first (an action, 'done' or 'skip').",
                     "Bitte beantworte zuerst meine Frage (eine Handlung, 'fertig' oder 'weiter').")
 DONE_WORD = Text("done", "fertig")
+YES_WORD = Text("yes", "ja")
 SKIP_WORD = Text("skip", "weiter")
 KEEP_CAREFUL = Text("All right, I keep being careful there.", "In Ordnung, da bleibe ich vorsichtig.")
 ONE_ACTION = Text("Please answer with one action, 'done' or 'skip'.",
@@ -226,6 +227,9 @@ MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situ
                           "(yes, or tell me what to do there)",
                           "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "
                           "Ist die Aufgabe dann erledigt? (ja, oder sag mir, was ich dort tun soll)")
+RUN_AGAIN = Text("I try again from here (what I did in the last run is not kept as a demonstration).",
+                 "Ich versuche es von hier aus noch einmal (was ich im letzten Lauf getan habe, wird keine "
+                 "Vorführung).")
 WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
 CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")

@@ -93,3 +93,25 @@ def test_a_session_started_guessing_resumes_guessing(ball, tmp_path):
                              session.store.load_journal())
     assert again.safe is False
     assert SessionManager.resume(again, ball, SymbolicWorld(ball)).learning.learner.safe is False
+
+
+def test_after_a_yes_that_unblocks_it_run_tries_again_from_there(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    while session.pending is not None:
+        session.handle("skip")
+    session.handle("start BinClose")
+    replies = session.handle("run")
+    assert "(yes / find the ball" in question_text(replies)  # a yes answers it
+    session.handle("yes")  # may I still find the ball with the bin close by? yes
+    while session.pending is not None:
+        session.handle("skip")
+    replies = session.handle("run")  # it finds the ball, then stops again: may I still go to the ball?
+    said = [r.text for r in replies]
+    assert "→ find the ball" in said and "go to the ball" in question_text(replies)
+    session.handle("yes")
+    while session.pending is not None:
+        session.handle("skip")
+    again = [r.text for r in session.handle("run")]  # only its own step is open: it tries again
+    assert again[0].startswith("I try again from here") and "→ go to the ball" in again

@@ -228,8 +228,9 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
 def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
     """Where the safe tree stopped (FAILURE) in ``state``: the action it was nearest to running, and
     the unsure literals that kept it from running there ("Every time I put the ball in the bin,
-    the ball was in my hand. … may I still do it?"). None if only confirmed literals block every
-    action (then only a demonstration helps: "show me what to do here")."""
+    the ball was in my hand. … may I still do it?"). An action whose effect already holds there is
+    not asked about ("may I look for the ball I can see?"). None if only confirmed literals block
+    every action (then only a demonstration helps: "show me what to do here")."""
     mask = learner.state_mask(state)
     best: tuple[int, int, str, list[Lit]] | None = None
     for name, knowledge in learner.model.actions.items():
@@ -238,6 +239,9 @@ def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
         pos, neg = knowledge.required
         false = [(i, v) for i, v in literals_of(pos, neg, len(learner.names)) if bool(mask >> i & 1) != v]
         sure_pos, sure_neg = pos & ~knowledge.unsure[0], neg & ~knowledge.unsure[1]
+        made_true, made_false = knowledge.effects
+        sure_pos |= made_false  # "only while its effect does not hold yet": never worth asking about here
+        sure_neg |= made_true
         if not false or any((sure_pos if v else sure_neg) >> i & 1 for i, v in false):
             continue
         key = (len(false), knowledge.order)

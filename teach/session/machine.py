@@ -103,6 +103,8 @@ class _OpenDemo:
 
     steps: list[Step] = field(default_factory=list)
     words: list[str] = field(default_factory=list)  # each step as the teacher saw it, for 'steps' and 'undo'
+    robot_steps: int = 0
+    """How many of the steps a run did: while the teacher added none, 'run' tries again instead."""
 
     def add(self, step: Step, words: str) -> None:
         self.steps.append(step)
@@ -181,8 +183,8 @@ class SessionManager:
     def runnable(self) -> Node | None:
         """The tree 'run' would start now (the unpruned one: pruning assumes actions have only the
         effects seen so far), or None when a run would be refused."""
-        if self.open is not None and self.open.steps:
-            return None
+        if self.open is not None and len(self.open.steps) > self.open.robot_steps:
+            return None  # the teacher is showing something: finish or cancel it first
         return self.learning.tree if self.learning.has_behaviour else self.planned
 
     @property
@@ -442,7 +444,10 @@ class SessionManager:
 
     def cmd_run(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
-            return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
+            if len(self.open.steps) > self.open.robot_steps:
+                return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
+            # only the last run's own steps are open (an answer may have unblocked it): run again from here
+            self._flush([Reply(ReplyKind.INFO, m.RUN_AGAIN(self.lang))])
         tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
@@ -482,6 +487,7 @@ class SessionManager:
                 self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
                               m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
             events_after(len(result.steps))
+            self.open.robot_steps = len(self.open.steps)
         self._note_open_demonstration("run")  # how the run ended is on disk before the teacher hears of it
         self.store.save_journal(self.journal)
         if not result.steps and finished:
@@ -836,7 +842,8 @@ class SessionManager:
     def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.domain, self.lang)
         self.observer.on_question(text, self.budget.left)
-        options = " / ".join([a.label(self.lang) for a in self.domain.actions] +
+        yes = [m.YES_WORD(self.lang)] if question.kind in MUST_KINDS else []
+        options = " / ".join(yes + [a.label(self.lang) for a in self.domain.actions] +
                              [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
         return Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")
 
