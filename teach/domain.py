@@ -133,10 +133,6 @@ class Domain:
     def holds(self, literal: Literal, state: State) -> bool:
         return state[self.index(literal.name)] == literal.value
 
-    def applicable(self, action: str, state: State) -> bool:
-        """Whether the action's declared preconditions (``pre``) hold in ``state`` (True without any)."""
-        return all(self.holds(literal, state) for literal in self.action(action).pre)
-
     def state(self, true_conditions: list[str] | tuple[str, ...] | set[str] = ()) -> State:
         """A state in which exactly the named conditions are true."""
         for name in true_conditions:

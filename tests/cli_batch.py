@@ -21,6 +21,8 @@ import signal
 import sys
 import time
 import traceback
+from collections.abc import Callable
+from typing import NoReturn
 
 PRELOADED = ("rich.console", "rich.table", "rerun", "rerun.chunk")
 """Libraries some commands import only when they need them (reading a recording: rerun's reader,
@@ -39,8 +41,7 @@ def preload() -> None:
 
 def _child(job: dict) -> None:
     """Run one job; never returns."""
-    code = 1
-    try:
+    def prepare() -> None:
         os.chdir(job["cwd"])
         for fd, name, flags in ((0, os.devnull, os.O_RDONLY), (1, job["stdout"], os.O_WRONLY | os.O_CREAT),
                                 (2, job["stderr"], os.O_WRONLY | os.O_CREAT)):
@@ -48,9 +49,20 @@ def _child(job: dict) -> None:
             os.dup2(opened, fd)
             os.close(opened)
         signal.alarm(int(job["timeout"]))
+
+    run_in_child(prepare, job["argv"])
+
+
+def run_in_child(prepare: Callable[[], None], argv: list[str]) -> NoReturn:
+    """In a forked child: ``prepare`` its files and limits, run ``teach.cli.main(argv)``, and end
+    the process with its exit status (argparse's usage errors as theirs; anything the command line
+    should never let through shown as a traceback, status 1), output flushed."""
+    code = 1
+    try:
+        prepare()
         from teach.cli import main
 
-        code = main(job["argv"])
+        code = main(argv)
     except SystemExit as done:  # argparse's usage errors
         code = done.code if isinstance(done.code, int) else (0 if done.code is None else 1)
     except BaseException:  # what the command line should never let through: shown as a traceback

@@ -26,6 +26,8 @@ import threading
 from pathlib import Path
 from typing import IO
 
+from cli_batch import run_in_child
+
 ROOT = Path(__file__).resolve().parent.parent
 PRELOADED = ("teach.cli", "teach.commands.replay", "teach.commands.session", "teach.session.setup",
              "teach.session.machine", "teach.terminal.scripted", "teach.terminal.app", "teach.dialogue.oracle",
@@ -37,8 +39,7 @@ ENVIRONMENT = {"PYTHONUNBUFFERED": "1", "COLUMNS": "200"}
 
 def _child(job: dict) -> None:
     """Run one job; never returns."""
-    code = 1
-    try:
+    def prepare() -> None:
         stdin = os.open(os.devnull, os.O_RDONLY)
         out = os.open(job["out"], os.O_WRONLY)
         err = os.open(job.get("err") or os.devnull, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
@@ -50,22 +51,8 @@ def _child(job: dict) -> None:
                                       line_buffering=True, write_through=True)
         sys.stderr = io.TextIOWrapper(open(2, "wb", buffering=0, closefd=False), encoding="utf-8",  # noqa: SIM115
                                       line_buffering=True, write_through=True)
-        from teach.cli import main
 
-        code = main(job["argv"])
-    except SystemExit as done:
-        code = done.code if isinstance(done.code, int) else (0 if done.code is None else 1)
-    except BaseException:
-        import traceback
-
-        traceback.print_exc()
-        code = 1
-    finally:
-        try:
-            sys.stdout.flush()
-            sys.stderr.flush()
-        finally:
-            os._exit(code)
+    run_in_child(prepare, job["argv"])
 
 
 def serve() -> int:

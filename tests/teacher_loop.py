@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from teach.dialogue.oracle import SKIP, PlanningOracle
 from teach.domain import Domain, State
 from teach.session.machine import SessionManager
+from teach.symbolic import missing_preconditions
 
 
 @dataclass
@@ -26,10 +27,6 @@ class Corrections:
     runs: int = 0
 
 
-def applicable(model: Domain, action: str, state: State) -> bool:
-    return all(state[model.index(lit.name)] == lit.value for lit in model.action(action).pre)
-
-
 def goal_holds(model: Domain, state: State) -> bool:
     return all(state[model.index(lit.name)] == lit.value for lit in model.goal)
 
@@ -39,7 +36,7 @@ def honest_answer(session: SessionManager, model: Domain, teacher: PlanningOracl
     question = session.pending
     assert question is not None
     if question.kind == "must-precondition" and question.action is not None \
-            and applicable(model, question.action, question.state):
+            and not missing_preconditions(model, question.state, question.action):
         return "yes"
     if question.kind == "must-goal" and goal_holds(model, question.state):
         return "yes"

@@ -9,6 +9,7 @@ import itertools
 from pathlib import Path
 
 import pytest
+from teacher_loop import goal_holds
 
 from teach.bt.nodes import Status
 from teach.bt.tick import compile_tree
@@ -18,6 +19,7 @@ from teach.learn.action_model import literals_of
 from teach.learn.inquiry import SituationQuestion, next_question
 from teach.learn.learner import Learner, learn_online
 from teach.replay import count_reproduced
+from teach.symbolic import apply_action, missing_preconditions
 
 BALL = Path(__file__).resolve().parent.parent / "demos" / "ball"
 STATES = [tuple(bits) for bits in itertools.product((False, True), repeat=5)]
@@ -29,21 +31,7 @@ def ball(folder: str = "delta4") -> tuple[Domain, list[Demonstration]]:
 
 
 def applicable(domain: Domain, action: str, state: State) -> bool:
-    names = domain.condition_names
-    return all(state[names.index(lit.name)] == lit.value for lit in domain.action(action).pre)
-
-
-def goal_holds(domain: Domain, state: State) -> bool:
-    names = domain.condition_names
-    return all(state[names.index(lit.name)] == lit.value for lit in domain.goal)
-
-
-def apply(domain: Domain, action: str, state: State) -> State:
-    names = domain.condition_names
-    after = list(state)
-    for lit in domain.action(action).ram:
-        after[names.index(lit.name)] = lit.value
-    return tuple(after)
+    return not missing_preconditions(domain, state, action)
 
 
 def outcome(domain: Domain, learner: Learner, start: State, limit: int = 20) -> str:
@@ -59,7 +47,7 @@ def outcome(domain: Domain, learner: Learner, start: State, limit: int = 20) -> 
         assert action is not None
         if not applicable(domain, action, state):
             return "unsafe"
-        state = apply(domain, action, state)
+        state = apply_action(domain, state, action)
         if state in seen:
             return "loop"
         seen.add(state)
@@ -73,8 +61,7 @@ def answer_from_truth(domain: Domain, learner: Learner, question: SituationQuest
         return learner.settle(question, not applicable(domain, question.action, question.state), "q").tree_changed
     if question.kind == "must-goal":
         return learner.settle(question, not goal_holds(domain, question.state), "q").tree_changed
-    tick = compile_tree(learner.tree, domain.condition_names)  # a situation: the first step that works
-    status, action = tick(question.state)
+    # a situation: the first step that works
     answer = None if goal_holds(domain, question.state) else next(
         (a for a in domain.action_names if applicable(domain, a, question.state)), None)
     return learner.teach_step(question.state, answer, "q").tree_changed

@@ -52,12 +52,7 @@ def _draw_task(rng: random.Random, n: int, m: int, name: str) -> Task | None:
 
 
 def _operator(rng: random.Random, n: int, name: str) -> Operator:
-    pre_true = pre_false = 0
-    for index in rng.sample(range(n), rng.randint(1, 3)):
-        if rng.random() < 0.5:
-            pre_true |= 1 << index
-        else:
-            pre_false |= 1 << index
+    pre_true, pre_false = _literals(rng, n)
     add = _pick(rng, [i for i in range(n) if not pre_true >> i & 1], rng.randint(1, 2))
     delete = _pick(rng, [i for i in range(n) if not pre_false >> i & 1 and not add >> i & 1], rng.randint(0, 1))
     return Operator(name, pre_true, pre_false, add, delete)
@@ -68,10 +63,15 @@ def _pick(rng: random.Random, indices: list[int], count: int) -> int:
 
 
 def _goal(rng: random.Random, n: int) -> tuple[int, int]:
-    goal_true = goal_false = 0
+    return _literals(rng, n)
+
+
+def _literals(rng: random.Random, n: int) -> tuple[int, int]:
+    """1 to 3 distinct conditions, each required true or false with equal chance (true, false masks)."""
+    true = false = 0
     for index in rng.sample(range(n), rng.randint(1, 3)):
         if rng.random() < 0.5:
-            goal_true |= 1 << index
+            true |= 1 << index
         else:
-            goal_false |= 1 << index
-    return goal_true, goal_false
+            false |= 1 << index
+    return true, false

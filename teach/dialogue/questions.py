@@ -86,6 +86,10 @@ class QuestionBudget:
         self.used += 1
 
 
+MUST_KINDS = ("must-precondition", "must-goal")
+"""Questions a yes answers: may I still do it here? is the task done here?"""
+
+
 @dataclass(frozen=True)
 class Question:
     """A situation the robot asks about, with what it expects the answer could be."""
@@ -96,7 +100,7 @@ class Question:
     shown: tuple[str, ...] = ()
     """For a conflict: the answers demonstrated here (action names, "" for "done")."""
     kind: str = ""
-    """"must-precondition" (may I still do ``about`` here?), "must-goal" (is the task done here?),
+    """"must-precondition" (may I still do ``action`` here?), "must-goal" (is the task done here?),
     or a plain situation question."""
     action: str | None = None
     """The action a must-precondition question asks about; a yes is the answer "do it here"."""
@@ -105,7 +109,7 @@ class Question:
 
     def text(self, domain: Domain, lang: str = "en") -> str:
         situation = describe_situation(domain, self.state, lang)
-        if self.kind in ("must-precondition", "must-goal"):
+        if self.kind in MUST_KINDS:
             held = join_words([domain.condition(name).label(lang, value) for name, value in self.settles], lang)
             if self.kind == "must-goal":
                 return m.MUST_GOAL_QUESTION(lang, held=held, situation=situation)

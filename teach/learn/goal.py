@@ -70,6 +70,10 @@ class GoalLearner:
         """Does the cover hold in this state (False while no goal is known)?"""
         return self.known and all(bool(mask >> i & 1) == v for i, v in self.cover)
 
+    def required_holds(self, mask: int) -> bool:
+        """Does every required goal literal hold in this state (False while no goal is known)?"""
+        return self.known and all(bool(mask >> i & 1) == v for i, v in self.required())
+
     def rule_out(self, literal: Lit, source: str) -> None:
         """The teacher said ``literal`` need not hold for the task to be done."""
         self.ruled_out.setdefault(literal, source)

@@ -38,63 +38,32 @@ state is never proposed twice (``asked``).
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
 
 from teach.bt.nodes import Status
 from teach.domain import State
 from teach.learn.action_model import literals_of
 from teach.learn.learner import Learner
+from teach.learn.safe_inquiry import next_safe_question
+from teach.learn.situations import (
+    SituationQuestion,
+    first_open,
+    flipped,
+    not_to_ask,
+    tree_does,
+    unmet_goal_situations,
+)
 
 KINDS = ("conflict", "goal-bound", "possible-precondition", "assumed-precondition", "unknown-achiever", "gap", "goal",
          "unmet-goal")
-MAX_PROBED = 4096
-"""The most situations searched for an unmet goal (every one of a domain of 12 conditions)."""
-
-
-@dataclass(frozen=True)
-class SituationQuestion:
-    """A state to ask "what should I do here?" about, and what the answer settles."""
-
-    state: State
-    kind: str
-    action: str | None = None
-    condition: str | None = None
-    tree_does: str = ""
-    """What the robot would do there now: an action name, "done", or "nothing". The session
-    words the question ("If <state>, what should I do?") in the teacher's language."""
-    value: bool = True
-    settles: tuple[tuple[str, bool], ...] = ()
-    """For the safe learner's "must-" kinds: the unsure literals (condition, value) false in
-    ``state`` (``teach.learn.safe_inquiry``); ``value`` is the first one's."""
 
 
 def next_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
     """The most decisive open situation, or None when nothing is left to ask (the safe learner's
     questions come from ``teach.learn.safe_inquiry``)."""
     if learner.safe:
-        from teach.learn.safe_inquiry import next_safe_question
-
         return next_safe_question(learner, asked)
-    skip = set(asked) | {learner.state_of(mask) for mask in learner.impossible}
-    labelled = learner.situations
-    for question in _candidates(learner, first=not skip):
-        if question.state in skip:
-            continue
-        if question.kind != "conflict" and question.state in labelled:
-            continue
-        return question
-    return None
-
-
-def tree_does(learner: Learner, state: State) -> str:
-    """What the learner's tree does in ``state``: an action name, "done", or "nothing"."""
-    result = learner.answer_in(state)
-    return "done" if result is None else "nothing" if result is False else str(result)
-
-
-def flipped(state: State, index: int) -> State:
-    """``state`` with condition ``index`` the other way."""
-    return tuple(not v if i == index else v for i, v in enumerate(state))
+    skip = not_to_ask(learner, asked)
+    return first_open(learner, _candidates(learner, first=not skip), skip)
 
 
 def _candidates(learner: Learner, first: bool) -> Iterable[SituationQuestion]:
@@ -191,33 +160,3 @@ def _goal_bound(learner: Learner, does: Callable[[State], str],
             there = action if status is Status.RUNNING else "done" if status is Status.SUCCESS else "nothing"
             if there != now:
                 yield SituationQuestion(probe, "goal-bound", tree_does=now)
-
-
-def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
-                flipped: Callable[[State, int], State]) -> Iterable[SituationQuestion]:
-    """Situations where the declared goal does not hold and the tree says "done" or does nothing,
-    searched outwards from the labelled ones (one condition changed, then two, ...), so the
-    first found are those a teacher most likely meets. Without a declared goal, only "nothing"."""
-    position = {name: index for index, name in enumerate(learner.names)}
-    goal = [(position[literal.name], literal.value) for literal in learner.domain.goal]
-
-    def unmet(state: State) -> bool:
-        return any(state[index] != value for index, value in goal)
-
-    frontier = list(learner.situations)
-    seen = set(frontier)
-    while frontier and len(seen) < MAX_PROBED:
-        reached: list[State] = []
-        for state in frontier:
-            for index in range(len(learner.names)):
-                probe = flipped(state, index)
-                if probe in seen:
-                    continue
-                if len(seen) >= MAX_PROBED:  # bounded inside a ring too: the cost is fixed at any size
-                    return
-                seen.add(probe)
-                reached.append(probe)
-                now = does(probe)
-                if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
-                    yield SituationQuestion(probe, "unmet-goal", tree_does=now)
-        frontier = reached

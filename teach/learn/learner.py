@@ -33,6 +33,7 @@ goal holds; where nothing applies it returns FAILURE.
 
 from __future__ import annotations
 
+from collections.abc import KeysView
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -155,7 +156,8 @@ class Learner:
         self._tree: Node | None = None
         self._root_uid = 0
         self.impossible: dict[int, str] = {}
-        self._refused: dict[str | None, list[tuple[frozenset[Lit], str, bool]]] = {}
+        self._refused: dict[str | None, list[tuple[frozenset[Lit], str]]] = {}
+        """Groups of literals the teacher said no to, per action (None: the goal), with the source."""
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -289,18 +291,16 @@ class Learner:
         for good; yes rules every literal false there out (the action can run there, the task is
         done there)."""
         mask = self._checked_mask(hypothesis.state, source)
-        literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
         action = hypothesis.action
         if not needed and action is None:
             return self.teach_step(hypothesis.state, None, source)
-        if not needed:
+        if needed:
+            self._refuse(action, frozenset((self.names.index(name), value) for name, value in hypothesis.settles),
+                         source)
+        else:
             assert action is not None
             self.model.applied(action, mask, source)
-        elif len(literals) == 1:
-            self._keep(action, next(iter(literals)), source)
-        else:
-            self._refused.setdefault(action, []).append((literals, source, True))
-        self._infer_needed()
+            self._infer_needed()  # what is left of a group refused before may be one literal now
         return self._finish(source, [], [])
 
     def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
@@ -310,38 +310,33 @@ class Learner:
         if answer == asked_about:
             return self.teach_step(state, answer, source)
         mask = self._checked_mask(state, source)
-        if asked_about is None:
-            required = self.goal.required()
-        else:
-            required = literals_of(*self.model[asked_about].required, self._n)
-        false = frozenset(lit for lit in required if bool(mask >> lit[0] & 1) != lit[1])
-        if len(false) == 1:
-            self._keep(asked_about, next(iter(false)), source)
-        elif false and not false & self._confirmed(asked_about):
-            self._refused.setdefault(asked_about, []).append((false, source, True))
-        self._infer_needed()
+        false = frozenset(lit for lit in self.required_of(asked_about) if bool(mask >> lit[0] & 1) != lit[1])
+        self._refuse(asked_about, false, source)
         return self.teach_step(state, answer, source)
 
-    def rule_out(self, state: State, source: str, hypothesis: Hypothesis | None = None) -> None:
+    def rule_out(self, state: State, source: str) -> None:
         """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
-        and changes no tree); a group question about it is asked again in halves."""
+        and changes no tree; a group question about it is then asked in halves)."""
         self.impossible[self._checked_mask(state, source)] = source
-        if hypothesis is not None and len(hypothesis.settles) > 1:
-            literals = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
-            self._refused.setdefault(hypothesis.action, []).append((literals, source, False))
 
     def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
         """The groups of unsure literals worth asking about next, best first: all of them and then
         each half, or, where a group inside them was refused (or was impossible), each half of
         what is left of that group (a yes to all of it is known not to come)."""
         current = list(literals)
-        for group, _source, _needed in reversed(self._refused.get(action, [])):
+        for group, _source in reversed(self._refused.get(action, [])):
             left = [lit for lit in current if lit in group]
             if len(left) >= 2:
                 half = len(left) // 2
                 return [left[:half], left[half:]]
         half = len(current) // 2
         return [current, current[:half], current[half:]] if half else [current] if current else []
+
+    def required_of(self, action: str | None) -> list[Lit]:
+        """What the safe tree checks before ``action`` (None: before it says "done")."""
+        if action is None:
+            return self.goal.required()
+        return literals_of(*self.model[action].required, self._n)
 
     def _unsure(self, action: str | None) -> set[Lit]:
         if action is None:
@@ -354,17 +349,26 @@ class Learner:
         else:
             self.model.confirm(action, literal, source)
 
+    def _refuse(self, action: str | None, false: frozenset[Lit], source: str) -> None:
+        """The teacher said no to ``action`` (None: "done") where the literals ``false`` do not hold:
+        one of them is needed; a single one is kept for good, a group is remembered to be split."""
+        if len(false) == 1:
+            self._keep(action, next(iter(false)), source)
+        elif false and not false & self._confirmed(action):
+            self._refused.setdefault(action, []).append((false, source))
+        self._infer_needed()
+
     def _infer_needed(self) -> None:
         """A refused group with one unsure literal left: that one is needed."""
         for action, groups in self._refused.items():
             unsure = self._unsure(action)
             kept = []
-            for group, source, needed in groups:
+            for group, source in groups:
                 left = group & unsure
-                if len(left) == 1 and needed and len(group) > 1 and not group & self._confirmed(action):
+                if len(left) == 1 and not group & self._confirmed(action):
                     self._keep(action, next(iter(left)), source)
                 elif len(left) > 1:
-                    kept.append((group, source, needed))
+                    kept.append((group, source))
             groups[:] = kept
 
     def _confirmed(self, action: str | None) -> frozenset[Lit]:
@@ -377,9 +381,9 @@ class Learner:
         """The bitmask (bit i = condition i) of a state."""
         return self._mask(state)
 
-    def labelled_masks(self) -> Seq[int]:
+    def labelled_masks(self) -> KeysView[int]:
         """The labelled states as bitmasks (bit i = condition i), in the order they were labelled."""
-        return self._situations.keys()  # type: ignore[return-value]
+        return self._situations.keys()
 
     def state_of(self, mask: int) -> State:
         """The state a bitmask (bit i = condition i) stands for."""
@@ -406,9 +410,7 @@ class Learner:
         """Does the learned goal hold in ``state`` (never before a goal state was shown)? The safe
         learner's goal is every literal not ruled out."""
         mask = self._mask(state)
-        if self.safe:
-            return self.goal.known and all(bool(mask >> i & 1) == v for i, v in self.goal.required())
-        return self.goal.holds(mask)
+        return self.goal.required_holds(mask) if self.safe else self.goal.holds(mask)
 
     def answer_in(self, state: State) -> Answer | bool:
         """What the tree does in ``state``: an action, None for SUCCESS, False for FAILURE."""
@@ -509,8 +511,8 @@ class Learner:
 
     def _current_view(self) -> PlanView:
         rank = self._rank
-        cover = set(self.goal.cover) | set(self.goal.confirmed)
-        if self.safe:
+        if self.safe:  # the cover and confirmed literals first: they are what the teacher was after
+            cover = set(self.goal.cover) | set(self.goal.confirmed)
             goal = tuple(sorted(self.goal.required(), key=lambda lit: (lit not in cover, rank(lit))))
         else:
             goal = tuple(sorted(self.goal.cover, key=rank))

@@ -39,28 +39,27 @@ from collections.abc import Callable, Iterable
 
 from teach.domain import State
 from teach.learn.action_model import Lit, literal_masks, literals_of
-from teach.learn.inquiry import SituationQuestion, flipped, tree_does, unmet_goal_situations
 from teach.learn.learner import Learner
+from teach.learn.situations import (
+    MAX_PROBED,
+    SituationQuestion,
+    first_open,
+    flipped,
+    not_to_ask,
+    tree_does,
+    unmet_goal_situations,
+)
 
 KINDS = ("conflict", "must-goal", "must-precondition", "unmet-goal", "gap")
 """Every kind of question this selector asks."""
-MAX_PROBED = 4096
-"""The most situations searched for one question (every one of a domain of 12 conditions)."""
 MAX_UNMET = 64
 """The most unmet-goal situations collected per question (nearest the labelled ones first)."""
 
 
 def next_safe_question(learner: Learner, asked: Iterable[State] = ()) -> SituationQuestion | None:
     """The most decisive open question, or None when nothing is left to ask."""
-    skip = set(asked) | {learner.state_of(mask) for mask in learner.impossible}
-    labelled = learner.situations
-    for question in _candidates(learner, skip):
-        if question.state in skip:
-            continue
-        if question.kind != "conflict" and question.state in labelled:
-            continue
-        return question
-    return None
+    skip = not_to_ask(learner, asked)
+    return first_open(learner, _candidates(learner, skip), skip)
 
 
 def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestion]:
@@ -125,7 +124,7 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
     for rank, evidence, order, action, literals in groups:
         question = None
         for group in learner.untested(action, literals):
-            question = _plausible_question(learner, does, skip, plausible, action, group) if plausible else None
+            question = _plausible_question(learner, does, plausible, action, group) if plausible else None
             question = question or _group_question(learner, does, skip, bases.get(action, ()), action, group)
             if question is not None:
                 literals = [(learner.names.index(name), value) for name, value in question.settles]
@@ -139,15 +138,11 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
         yield question
 
 
-def _plausible_question(learner: Learner, does: Callable[[State], str], skip: set[State], plausible: list[State],
+def _plausible_question(learner: Learner, does: Callable[[State], str], plausible: list[State],
                         action: str | None, literals: list[Lit]) -> SituationQuestion | None:
     """The question about as many of ``literals`` as one predicted state can settle: one where
     every other required literal holds and the most of ``literals`` do not."""
-    names = learner.names
-    if action is None:
-        required = learner.goal.required()
-    else:
-        required = literals_of(*learner.model[action].required, len(names))
+    required = learner.required_of(action)
     group = set(literals)
     best: tuple[int, State, list[Lit]] | None = None
     for state in plausible:
@@ -156,34 +151,35 @@ def _plausible_question(learner: Learner, does: Callable[[State], str], skip: se
             best = (len(false), state, false)
     if best is None:
         return None
-    kind = "must-goal" if action is None else "must-precondition"
-    settles = tuple((names[index], value) for index, value in best[2])
-    return SituationQuestion(best[1], kind, action=action, condition=settles[0][0], tree_does=does(best[1]),
-                             value=settles[0][1], settles=settles)
+    return may_i(learner, best[1], action, best[2], does(best[1]))
+
+
+def may_i(learner: Learner, state: State, action: str | None, literals: list[Lit], does: str) -> SituationQuestion:
+    """"May I still do ``action`` in ``state``?" (``action`` None: "is the task done there?"), about
+    ``literals``, the unsure ones that do not hold there; ``does``: what the tree does there now."""
+    settles = tuple((learner.names[index], value) for index, value in literals)
+    return SituationQuestion(state, "must-goal" if action is None else "must-precondition", action=action,
+                             condition=settles[0][0], tree_does=does, value=settles[0][1], settles=settles)
 
 
 def _group_question(learner: Learner, does: Callable[[State], str], skip: set[State], bases: Iterable[State],
                     action: str | None, literals: list[Lit]) -> SituationQuestion | None:
     """The question about ``literals`` from the first base state where flipping them all gives a
     state not labelled, asked or impossible."""
-    names = learner.names
     flips = {index for index, _value in literals}
     for base in bases:
         probe = tuple(not v if i in flips else v for i, v in enumerate(base))
         if probe in learner.situations or probe in skip:
             continue
-        kind = "must-goal" if action is None else "must-precondition"
-        settles = tuple((names[index], value) for index, value in literals)
-        return SituationQuestion(probe, kind, action=action, condition=settles[0][0], tree_does=does(probe),
-                                 value=settles[0][1], settles=settles)
+        return may_i(learner, probe, action, literals, does(probe))
     return None
 
 
 def predicted(learner: Learner) -> list[int]:
-    """The states a question's worth is counted on in a domain too large to count every state
-    of, as bitmasks: the states the world can be in: the labelled ones and, breadth-first, what each demonstrated
-    action's learned effects make of them where all its required preconditions hold (at most
-    ``MAX_PROBED``); in STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
+    """The states a question's worth is counted on in a domain too large to count them all, as
+    bitmasks: the labelled ones and, breadth-first, what each demonstrated action's learned
+    effects make of them where all its required preconditions hold (at most ``MAX_PROBED``); in
+    STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
     A question about one of these is not about a state that cannot happen, as one made by
     changing conditions at random often is (a ferry at two places)."""
     actions = []
@@ -213,10 +209,7 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
     """How many probed states where the tree does not say done would a yes let ``action`` run in
     (``action`` None: let the tree say done in): those whose false required literals are all
     among ``literals``."""
-    if action is None:
-        required = learner.goal.required()
-    else:
-        required = literals_of(*learner.model[action].required, len(learner.names))
+    required = learner.required_of(action)
     group = set(literals)
     others_true, others_false = literal_masks([lit for lit in required if lit not in group])
     inside_true, inside_false = literal_masks([lit for lit in required if lit in group])
@@ -249,9 +242,7 @@ def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
             best = (*key, name, false)
     if best is None:
         return None
-    settles = tuple((learner.names[i], v) for i, v in best[3])
-    return SituationQuestion(state, "must-precondition", action=best[2], condition=settles[0][0], tree_does="nothing",
-                             value=settles[0][1], settles=settles)
+    return may_i(learner, state, best[2], best[3], "nothing")
 
 
 def _bases(learner: Learner) -> dict[str | None, list[State]]:

@@ -18,6 +18,7 @@ from teach.dialogue.questions import Answer, Question
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.learn.inquiry import next_question
 from teach.learn.learner import Learner, Update
+from teach.learn.safe_inquiry import unsure_here
 from teach.observe.hook import Observer
 from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
@@ -110,18 +111,16 @@ class Learning:
 
     def question_where_stuck(self, state: State) -> Question | None:
         """The safe learner, stopped in ``state``: what it was unsure of there, as a question."""
-        from teach.learn.safe_inquiry import unsure_here
-
         question = unsure_here(self.learner, state) if self.learner.safe else None
         if question is None:
             return None
         return Question(state, 1.0, expected=(("nothing", 1.0),), kind=question.kind, action=question.action,
                         settles=question.settles)
 
-    def rule_out(self, question: Question, source: str) -> None:
+    def rule_out(self, state: State, source: str) -> None:
         """The teacher said the asked-about situation cannot happen: it is never asked again."""
-        self.learner.rule_out(question.state, source)
-        self.asked.add(question.state)
+        self.learner.rule_out(state, source)
+        self.asked.add(state)
 
     def _actions(self) -> set[str]:
         return {node.name for node in walk(self.learner.tree) if isinstance(node, Action)}

@@ -34,7 +34,7 @@ from teach.dialogue.phrases import (
     is_yes,
     normalize,
 )
-from teach.dialogue.questions import Question, QuestionBudget, describe_situation
+from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget, describe_situation
 from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
@@ -75,6 +75,7 @@ from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_no
 from teach.session.settings import Settings, WorldKind
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
+from teach.symbolic import missing_preconditions
 from teach.world.protocol import ActResult, Outcome, TeachingWorld, WorldEvent
 
 if TYPE_CHECKING:
@@ -82,8 +83,6 @@ if TYPE_CHECKING:
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
-MUST_KINDS = ("must-precondition", "must-goal")
-"""Questions a yes answers: may I still do it here? is the task done here?"""
 IMPOSSIBLE = "impossible"
 """The journalled answer "that situation cannot happen"."""
 
@@ -872,12 +871,15 @@ class SessionManager:
                         self._question_reply(question)]
             answer: str | None = None
         else:
-            tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"] if not yes else []
-            if not yes and len(tokens) != 1:
-                return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-            answer = question.action if yes else tokens[0].name
+            if yes:
+                answer = question.action
+            else:
+                tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
+                if len(tokens) != 1:
+                    return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
+                answer = tokens[0].name
             assert answer is not None
-            if not self.domain.applicable(answer, question.state):
+            if missing_preconditions(self.domain, question.state, answer):
                 # as for 'done': an answer the domain file shows cannot work there is not learned
                 label = self.domain.action(answer).label(self.lang)
                 reason = why_not(self.domain, answer, question.state, self.lang)
@@ -890,7 +892,7 @@ class SessionManager:
         self.pending = None
         text = question.text(self.domain, self.lang)
         self._journal(Answered(state_text(question.state), IMPOSSIBLE, text))
-        self.learning.rule_out(question, f"answer to question {self.budget.used}")
+        self.learning.rule_out(question.state, f"answer to question {self.budget.used}")
         self.budget.used -= 1
         self.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
         return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang))]
@@ -991,7 +993,7 @@ class SessionManager:
                         "en", number=self.journal.events.index(event), action=event.answer), self.store.journal_path)
                 self.learning.asked.add(state)
                 if event.answer == IMPOSSIBLE:
-                    self.learning.rule_out(Question(state, 1.0), f"answer to question {answered}")
+                    self.learning.rule_out(state, f"answer to question {answered}")
                 elif event.answer != "skip":
                     try:
                         self.learning.learn_answer(state, None if event.answer == "done" else event.answer,

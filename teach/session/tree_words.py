@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 
 from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
+from teach.dialogue.questions import join_words
 from teach.domain import Domain
 
 
@@ -72,7 +73,7 @@ def tree_lines(tree: Node, domain: Domain, lang: str) -> list[str]:
     for number, rule in enumerate(rules):
         what = _what(rule, domain, lang)
         if rule.condition:
-            condition = _listed(list(dict.fromkeys(_check_words(c, domain, lang) for c in rule.condition)), lang)
+            condition = join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in rule.condition)), lang)
             text = m.WORDS_IF(lang, condition=condition, what=what)
         else:
             text = (m.WORDS_OTHERWISE if number else m.WORDS_FIRST)(lang, what=what)
@@ -182,11 +183,6 @@ def _what(rule: _Rule, domain: Domain, lang: str) -> str:
     if not labels:
         return m.WORDS_NOTHING_SIMPLE(lang)
     return m.WORDS_SOME_OF(lang, actions=m.OR(lang).join(m.WORDS_QUOTED(lang, action=a) for a in labels))
-
-
-def _listed(items: list[str], lang: str) -> str:
-    """"a, b and c"."""
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
 
 
 def _action_label(name: str, domain: Domain, lang: str) -> str:
