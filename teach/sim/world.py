@@ -2,8 +2,12 @@
 
 The robot is a mobile base (planar joints x, y, yaw under velocity actuators), a lift with an
 arm, and a two-finger gripper whose grasp point lies ``GRASP_OFFSET`` ahead of the base centre.
-A camera on the mast looks ahead, pitched 5 degrees down (vertical field of view 36 degrees,
-horizontal about 47 degrees), so the floor closer than about 1.2 m is a blind spot.
+A camera on the mast ("eye", what perception uses) looks ahead, pitched 5 degrees down (vertical
+field of view 36 degrees, horizontal about 47 degrees), so the floor closer than about 1.2 m is a
+blind spot. The camera a recording shows as the robot's own ("shoulder", on a post at the chassis's
+left edge, pitched 38 degrees down, 70 degrees wide) sees what the eye sees ahead and also the
+gripper, the ball in it and the bin under it: people reviewing a run see the task, while perception
+(and so every recorded demonstration) stays as it was.
 
 Conditions and their thresholds (distances horizontal unless said otherwise):
 
@@ -103,7 +107,8 @@ class World:
         self._tan_view = (tan_v * 4 / 3, tan_v)  # the 4:3 image of camera_image's default size
         # None: no offscreen rendering here (``cameras`` False: nothing records the images)
         self._renderers: dict[tuple[int, int], Any] | None = {} if cameras else None
-        self._cameras = {"robot": self._cam, "overview": m.camera("overview").id}
+        self._cameras = {"robot": m.camera("shoulder").id, "overview": m.camera("overview").id}
+        """The images a recording shows: the robot's (its shoulder camera, not the eye) and the room's."""
         self._time_before_reset = 0.0
         self._memory: np.ndarray | None = None
         self.rng = np.random.default_rng(seed)
@@ -421,8 +426,9 @@ class World:
         return shapes
 
     def camera_image(self, width: int = 320, height: int = 240, camera: str = "robot") -> np.ndarray | None:
-        """A camera's view (height x width x 3, uint8): the robot's own ("robot") or the room's fixed
-        "overview"; None without offscreen rendering. One renderer per image size, kept."""
+        """A camera's view (height x width x 3, uint8): the robot's own ("robot", its shoulder camera
+        looking at the task) or the room's fixed "overview"; None without offscreen rendering. One
+        renderer per image size, kept."""
         if self._renderers is None:
             return None
         try:
