@@ -1,4 +1,4 @@
-"""Trees ticked by BehaviorTree.CPP itself, with a Groot2Publisher, so Groot2 can watch a run live.
+"""Trees ticked by BehaviorTree.CPP itself, served to Groot2, so Groot2 can watch a run live.
 
 ``GrootTicker`` has the signature of ``teach.bt.tick.tick`` (tree, conditions, action), so a
 world ticks through it instead: our XML of the tree is loaded by a ``BehaviorTreeFactory``
@@ -6,17 +6,17 @@ whose conditions read the tick's conditions and whose actions call the world's `
 (``StatefulActionNode``: start and continue both ask the world, as our executor's skills know
 whether an action is fresh). BehaviorTree.CPP's status is the tick's status; the trace the
 observers see is our tick of the same tree with every leaf answering as it answered
-BehaviorTree.CPP, so no skill is ticked twice. One ``Groot2Publisher`` serves the tree being
-run on ``port`` (a new tree replaces it, on the same port). It is a ticker, not an observer:
-whoever knows where runs begin and end calls ``halt`` there (the session's composition root
-does), so no run inherits another's running nodes.
+BehaviorTree.CPP, so no skill is ticked twice. It is a ticker, not an observer: whoever knows
+where runs begin and end calls ``halt`` there (the session's composition root does), so no run
+inherits another's running nodes.
 
-Groot2 tells trees apart by the tree id in each reply header: BehaviorTree.CPP 4.8.2 as
-``behaviortreepy`` 0.1.4 bundles it answers the same id from every publisher (its UUID comes
-from a ``std::mt19937`` seeded by a ``std::random_device`` that gives the same seed in that
-build), so Groot2 may keep an old tree after a swap until it is reconnected.
+Groot2 is served by our ``Groot2Server`` on ``port`` (and ``port`` + 1), not by
+BehaviorTree.CPP's ``Groot2Publisher``: the bundled publisher answers one tree id for every tree
+in every process, so Groot2 could keep showing an old tree after a swap; the server gives each
+tree a new id and stays bound across swaps (see ``teach.bt.groot_server``).
 
-This is the only module that imports ``behaviortreepy`` at run time.
+This is the only module that imports ``behaviortreepy`` at run time (``teach.bt.zeromq`` loads
+the libzmq it ships).
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ import socket
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from teach.bt.groot_server import Groot2Server
 from teach.bt.nodes import Action, Condition, Node, Status, walk
 from teach.bt.tick import TickResult, always_running, tick
 from teach.bt.xml import tree_to_xml
@@ -35,7 +36,7 @@ DEFAULT_PORT = 1667
 
 
 class GrootTicker:
-    """Tick through BehaviorTree.CPP with a Groot2 publisher on ``port`` (and ``port`` + 1)."""
+    """Tick through BehaviorTree.CPP, serving Groot2 on ``port`` (and ``port`` + 1)."""
 
     def __init__(self, port: int = DEFAULT_PORT):
         try:
@@ -51,7 +52,7 @@ class GrootTicker:
         self.port = port
         self._tree: Node | None = None
         self._live: Any = None
-        self._publisher: Any = None
+        self._server: Groot2Server | None = None
         self._conditions: Callable[[str], bool] = lambda _name: False
         self._action: Callable[[str], Status] = always_running
         self._answers: dict[str, Status] = {}
@@ -65,6 +66,8 @@ class GrootTicker:
         status = _STATUS[live.tick_exactly_once().name]
         answers = dict(self._answers)
         ours = tick(root, self._conditions, lambda name: answers.get(name, Status.RUNNING))
+        if self._server is not None:
+            self._server.tick(ours)
         return TickResult(status, ours.action if status is Status.RUNNING else None, ours.trace)
 
     def _load(self, root: Node) -> Any:
@@ -79,11 +82,13 @@ class GrootTicker:
         for name in sorted({n.name for n in nodes if isinstance(n, Action)}):
             factory.register_simple_stateful_action(name, self._act(name), self._act(name), _halted)
         self._live = factory.create_tree_from_text(tree_to_xml(root))
-        try:
-            self._publisher = bt.Groot2Publisher(self._live, self.port)
-        except Exception as exc:  # ZeroMQ's bind error, which behaviortreepy does not export
-            self._live = None
-            raise TeachError(f"--groot cannot publish on port {self.port}: {exc}") from None
+        if self._server is None:
+            try:
+                self._server = Groot2Server(self.port)
+            except OSError as exc:
+                self._live = None
+                raise TeachError(f"--groot cannot publish on port {self.port}: {exc}") from None
+        self._server.show(root)
         self._tree = root
         return self._live
 
@@ -103,19 +108,24 @@ class GrootTicker:
         """``Tree::haltTree``: everything back to IDLE (a run begins or ended)."""
         if self._live is not None:
             self._live.halt_tree()
+        if self._server is not None:
+            self._server.halt()
 
     def _stop(self) -> None:
-        self._publisher = None  # first the publisher (it unbinds the port), then its tree
         self._live = None
         self._tree = None
 
     def close(self) -> None:
+        """Stop serving Groot2: both ports are free again."""
         self._stop()
+        if self._server is not None:
+            self._server.close()
+            self._server = None
 
 
 def _check_free(port: int) -> None:
     """Refuse a port in use now, before the session starts, rather than at its first run.
-    (Groot2Publisher binds ``port`` for its server and ``port`` + 1 for its publisher.)"""
+    (Groot2 asks on ``port``; ``port`` + 1 is the publisher's, as BehaviorTree.CPP binds them.)"""
     for number in (port, port + 1):
         with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
             try:
