@@ -15,7 +15,7 @@ from teach.cli import main
 from teach.observe.moments import Moments
 from teach.observe.pictures import Picture, pictures, wrong_at
 from teach.observe.reader import RecordingContents, read_recording
-from teach.observe.tree_view import IDLE_COLOUR, STATUS_COLOURS
+from teach.observe.tree_view import IDLE_COLOUR, READABLE, STATUS_COLOURS, layout, panel_scale
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -58,6 +58,21 @@ def test_the_run_view_shows_exactly_the_tick_under_the_cursor(quickstart: Record
         assert len(running) == (1 if tick.action else 0)
         checked += 1
     assert checked == len(quickstart.ticks)
+
+
+def test_the_large_tree_that_ran_is_drawn_readable_at_every_tick(quickstart: RecordingContents) -> None:
+    """The safe learner's run tree (309 nodes) would be drawn at a sixth of its size: each tick's
+    drawing is the nodes it reached, the rest folded into labelled nodes, readable at 1600x900,
+    and every node of the tree is drawn or counted in a fold exactly once."""
+    for tick, at in zip(quickstart.ticks, quickstart.tick_graphs, strict=True):
+        graph = quickstart.graphs[at]
+        kids: list[list[int]] = [[] for _ in graph.labels]
+        for parent, child in graph.edges:
+            kids[parent].append(child)
+        assert panel_scale(layout(kids, list(graph.labels)), list(graph.labels)) >= READABLE
+        folds = [int(label.split()[1]) for label in graph.labels if label.startswith("… ")]
+        assert len(graph.labels) - len(folds) + sum(folds) == 309 and folds
+        assert not set(tick.nodes) & {i for i, label in enumerate(graph.labels) if label.startswith("… ")}
 
 
 def test_each_demonstration_step_and_line_is_a_moment(quickstart: RecordingContents) -> None:

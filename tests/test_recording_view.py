@@ -129,6 +129,24 @@ def test_the_graph_is_coloured_and_labelled_at_each_step(recorded: Path, ball: D
     assert _rgb(ticks[2]["GraphNodes:colors"][found]) == STATUS_COLOURS[Status.SUCCESS]
 
 
+def test_a_folded_view_draws_what_a_tick_reached_and_counts_the_rest(ball: Domain) -> None:
+    """Runs of siblings the tick did not reach become one node labelled with their size (in the
+    session's language); a lone leaf stays itself; only drawn nodes are indexed."""
+    grasp = Sequence((Condition("BallClose"), Action("GraspBall")))
+    tree = Fallback((Condition("BallPlaced"), Sequence((Condition("BallFound"), Action("ApproachBall"))),
+                     grasp, Sequence((Condition("BinClose"), Action("PlaceBall"))), Action("FindBall")))
+    root, placed, approach = tree, tree.children[0], tree.children[1]
+    reached = {root.uid, placed.uid, approach.uid, *(n.uid for n in approach.children)}
+    view = TreeView.of(tree, phrases(ball, "de"), reached=reached, lang="de")
+    assert view.labels[-1] == "… 7 Knoten" and len(view.labels) == 6
+    assert view.edges == [("0", "1"), ("0", "2"), ("0", "5"), ("2", "3"), ("2", "4")]
+    assert set(view.index) == reached and view.index[approach.children[1].uid] in view.actions
+    lone = TreeView.of(tree, reached={root.uid, placed.uid, approach.uid, grasp.uid, *(n.uid for n in grasp.children),
+                                      tree.children[3].uid, *(n.uid for n in tree.children[3].children)})
+    assert lone.labels[-1] == "FindBall" and "… 2 nodes" in lone.labels  # approach's two children folded
+    assert TreeView.of(tree).labels == TreeView.of(tree, reached={n.uid for n in walk(tree)}).labels
+
+
 def test_labels_are_the_sessions_language(tmp_path: Path, ball: Domain) -> None:
     path = tmp_path / "de.rrd"
     _session(path, ball, lang="de")

@@ -44,7 +44,7 @@ from teach.observe.markdown import demonstration_document, domain_document, stat
 from teach.observe.merge import keep_earlier, merge_into_place, print_note, put_back
 from teach.observe.moments import Moments, Opened
 from teach.observe.panels import Panels
-from teach.observe.tree_view import IDLE_COLOUR, TreeView, phrases
+from teach.observe.tree_view import IDLE_COLOUR, READABLE, TreeView, phrases
 
 if TYPE_CHECKING:
     from teach.bt.tick import TickResult
@@ -104,7 +104,9 @@ class RerunLogger(Observer):
         self._last_state: tuple | None = None
         self._stamped = -1  # the clock version rerun was last told
         self._view: TreeView | None = None  # the current generation (the teaching view)
-        self._run_view: TreeView | None = None  # the tree that runs (the run view, coloured by its ticks)
+        self._run_view: TreeView | None = None  # the tree that runs as drawn (the run view, coloured by its ticks)
+        self._whole: TreeView | None = None  # the whole tree that runs, drawn whole if it reads at that size
+        self._folded: dict[frozenset[int], TreeView] = {}  # its drawings folded to what a tick reached
         self._coloured = False  # the run view shows a tick's colours: cleared when the next moment is no tick
         self._generation = -1
         self._last_scene: float | None = None
@@ -235,23 +237,28 @@ class RerunLogger(Observer):
                                 positions=view.positions, colors=[IDLE_COLOUR] * len(view.labels)),
                   rr.GraphEdges(view.edges, graph_type="directed"))
 
-    def _running(self, tree: Node) -> TreeView:
-        """The run view of ``tree``, its graph logged when the tree that runs changed shape."""
-        view = self._run_view
-        if view is None or view.tree is not tree:
-            if view is None or view.tree != tree:
-                view = TreeView.of(tree, self._phrases)
-                self._log_graph("tree/graph", view)
-            else:  # same shape, other uids: the graph stands, the index changes
-                view = TreeView.of(tree, self._phrases)
-            self._run_view = view
+    def _running(self, tree: Node, reached: frozenset[int]) -> TreeView:
+        """The run view of a tick of ``tree`` that reached the uids ``reached``: the whole tree if it
+        reads at the size the panel draws it, else only what the tick reached, the rest folded. Its
+        graph is logged when the drawing changed (the same drawing with other uids only re-indexes)."""
+        if self._whole is None or self._whole.tree is not tree:
+            self._whole = TreeView.of(tree, self._phrases, lang=self._lang)
+            self._folded = {}
+        view = self._whole
+        if view.scale < READABLE:
+            view = self._folded.get(reached) or self._folded.setdefault(
+                reached, TreeView.of(tree, self._phrases, reached=reached, lang=self._lang))
+        shown = self._run_view
+        if shown is None or (shown.labels, shown.edges) != (view.labels, view.edges):
+            self._log_graph("tree/graph", view)
+        self._run_view = view
         return view
 
     def on_tick(self, tree: Node, result: TickResult) -> None:
         """Each tick is a moment of its own: the run view coloured by it, cleared at the next moment
         that is no tick."""
         self._moment(self._moments.tick())
-        view = self._running(tree)
+        view = self._running(tree, frozenset(uid for uid, _ in result.trace))
         self._coloured = True
         statuses = result.statuses()
         trace = [(view.index[uid], status.name) for uid, status in result.trace if uid in view.index]
@@ -408,7 +415,7 @@ class RerunLogger(Observer):
     def on_run_start(self, tree: Node) -> None:
         self._moments.run_starts()
         self._run_started = (self._clock[1], self._moments.now)
-        self._running(tree)
+        self._running(tree, frozenset({tree.uid}))  # before its first tick a large tree is its root
         number = sum(self._runs.values()) + 1
         self._log("study/runs", rr.TextLog(f"run {number} starts (generation {self._generation})", level="run"),
                   plain_values(run=number))
