@@ -40,7 +40,7 @@ recordings/quickstart.rrd:
 screenshots: $(SHOTLIB)/.installed recordings/quickstart.rrd
 	command -v chromium >/dev/null || apt-get install -y chromium
 	PYTHONPATH=$(SHOTLIB) $(BIN)/python tools/screenshots.py recordings/quickstart.rrd
-	command -v Xvfb >/dev/null && command -v import >/dev/null || apt-get install -y xvfb imagemagick xdotool
+	command -v Xvfb >/dev/null && command -v import >/dev/null || apt-get install -y xvfb imagemagick
 	$(BIN)/python tools/viewer_screenshot.py
 
 clean:

@@ -73,11 +73,9 @@ def child(out: Path) -> None:
 
     def shoot() -> None:
         if not taken and world.world.sim_time - start >= SHOT_AT:
-            taken.append(True)
-            if shutil.which("xdotool"):  # Tab and Shift+Tab fold the viewer's side panels away
-                subprocess.run(["xdotool", "mousemove", "300", "250", "key", "Tab", "shift+Tab"], check=False)
-                time.sleep(1.0)  # the viewer's render thread redraws at its own pace
-                viewer.sync()
+            taken.append(True)  # (the viewer opens without its side panels: Tab would show them)
+            time.sleep(1.0)  # the viewer's render thread redraws at its own pace
+            viewer.sync()
             subprocess.run(["import", "-window", "root", "-crop", CROP, "-colors", "128", str(out)], check=True)
 
     world.after_each_frame(mouse.frame)
