@@ -82,13 +82,14 @@ class GrootTicker:
         for name in sorted({n.name for n in nodes if isinstance(n, Action)}):
             factory.register_simple_stateful_action(name, self._act(name), self._act(name), _halted)
         self._live = factory.create_tree_from_text(tree_to_xml(root))
-        if self._server is None:
+        if self._server is not None:
+            self._server.show(root)
+        else:
             try:
-                self._server = Groot2Server(self.port)
+                self._server = Groot2Server(self.port, root)
             except OSError as exc:
                 self._live = None
                 raise TeachError(f"--groot cannot publish on port {self.port}: {exc}") from None
-        self._server.show(root)
         self._tree = root
         return self._live
 

@@ -48,9 +48,9 @@ EMPTY_MAP = b"\x80"
 
 
 class Groot2Server:
-    """Serve one tree at a time to Groot2 on ``port`` until ``close``; ``show`` swaps the tree."""
+    """Serve ``root`` to Groot2 on ``port`` until ``close``; ``show`` swaps the tree."""
 
-    def __init__(self, port: int):
+    def __init__(self, port: int, root: Node):
         self._context = Context()
         self._server, self._publisher = self._context.socket(REP), self._context.socket(PUB)
         try:
@@ -60,13 +60,9 @@ class Groot2Server:
             self._close_sockets()
             raise
         self._lock = threading.Lock()
-        self.tree_id = b""
-        self._xml = b""
-        self._live: BtcppTree | None = None
-        self._status: dict[int, int] = {}
-        self._codes = bytearray()
         self._recording: float | None = None
         self._transitions: list[bytes] = []
+        self.show(root)
         self._active = True
         self._thread = threading.Thread(target=self._serve, name=f"groot2-{port}", daemon=True)
         self._thread.start()
@@ -78,27 +74,24 @@ class Groot2Server:
             self.tree_id = uuid.uuid4().bytes
             self._xml = xml
             self._live = BtcppTree(root)
-            self._status = {uid: BtStatus.IDLE for uid in range(1, len(list(walk(root))) + 1)}
-            self._codes = bytearray()
-            for uid in self._status:
-                self._codes += struct.pack("<HB", uid, BtStatus.IDLE)
+            nodes = sum(1 for _ in walk(root))
+            self._codes = bytearray(b"".join(struct.pack("<HB", uid, BtStatus.IDLE) for uid in range(1, nodes + 1)))
 
     def tick(self, result: TickResult) -> None:
         """The shown tree was ticked as ``result`` says: its nodes' statuses move as BehaviorTree.CPP's."""
-        if self._live is not None:
-            self._apply(self._live.replay(result).changes)
+        self._apply(self._live.replay(result).changes)
 
     def halt(self) -> None:
         """The run ended or begins: every node back to IDLE."""
-        if self._live is not None:
-            self._apply(self._live.halt())
+        self._apply(self._live.halt())
 
     def _apply(self, changes: tuple[Change, ...]) -> None:
+        """Each node's status byte: its status, or for one reset to IDLE 10 + the status it had."""
         with self._lock:
             for uid, status in changes:
-                code = 10 + self._status[uid] if status is BtStatus.IDLE else int(status)
-                self._status[uid] = status
-                self._codes[3 * (uid - 1) + 2] = code
+                at = 3 * (uid - 1) + 2
+                before = self._codes[at] if self._codes[at] < 10 else BtStatus.IDLE
+                self._codes[at] = 10 + before if status is BtStatus.IDLE else int(status)
                 if self._recording is not None:
                     elapsed = int((time.monotonic() - self._recording) * 1e6)
                     self._transitions.append(elapsed.to_bytes(6, "little") + struct.pack("<HB", uid, status))
