@@ -36,6 +36,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("lock", "bt"),
     ("domain",),
     ("demos", "symbolic", "generations"),
+    ("open_demonstration",),
     ("replay",),
     ("learn",),
     ("evaluate",),

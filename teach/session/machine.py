@@ -14,14 +14,13 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from teach import messages as m
 from teach.bt.nodes import Node, size
-from teach.demos import Demonstration, Step
+from teach.demos import Demonstration
 from teach.dialogue.phrases import (
     LineTooLong,
     PhraseBook,
@@ -35,9 +34,10 @@ from teach.dialogue.phrases import (
     normalize,
 )
 from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget, describe_situation
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
+from teach.domain import Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
+from teach.open_demonstration import OpenDemonstration
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
@@ -70,23 +70,23 @@ from teach.session.journal import (
     state_text,
 )
 from teach.session.learning import DONE_ABOUT, Learning
+from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
 from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_not
 from teach.session.settings import Settings, WorldKind
+from teach.session.showing import Showing
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
+from teach.session.turn import Turn
+from teach.session.vocabulary import Vocabulary
 from teach.symbolic import missing_preconditions
-from teach.world.protocol import ActResult, Outcome, TeachingWorld, WorldEvent
+from teach.world.protocol import Outcome, TeachingWorld, WorldEvent
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion, ModelRepair
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
-IMPOSSIBLE = "impossible"
-"""The journalled answer "that situation cannot happen"."""
-
-
 class Mode(StrEnum):
     IDLE = "idle"
     """Waiting for a command or actions."""
@@ -96,60 +96,28 @@ class Mode(StrEnum):
     """A question waits for its answer."""
 
 
-@dataclass
-class _OpenDemo:
-    """The demonstration being shown (or a run's steps, to be continued as a correction)."""
-
-    steps: list[Step] = field(default_factory=list)
-    words: list[str] = field(default_factory=list)  # each step as the teacher saw it, for 'steps' and 'undo'
-    robot_steps: int = 0
-    """How many of the steps a run did: while the teacher added none, 'run' tries again instead."""
-
-    def add(self, step: Step, words: str) -> None:
-        self.steps.append(step)
-        self.words.append(words)
-
-    def take_back(self, first: int) -> Step:
-        """Remove steps ``first``.. (numbered from 1); the first removed, whose state was before them all."""
-        removed = self.steps[first - 1]
-        del self.steps[first - 1:], self.words[first - 1:]
-        return removed
-
-
-@dataclass(frozen=True)
-class _StepsTakenBack:
-    """What 'undo N' took from the open demonstration, so 'redo' can put it back while nothing
-    happened since: the open demonstration still ends where they began and the world is as the
-    undo left it."""
-
-    first: int
-    steps: tuple[Step, ...]
-    words: tuple[str, ...]
-    world_after: State
-    """The world when the undo was said (after the steps): a redo puts it back there."""
-    arranged: State
-    """The world the undo left (before the steps)."""
-
-
 class SessionManager:
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
     def __init__(self, settings: Settings, domain: Domain, world: TeachingWorld, observer: Observer | None = None,
                  journal: Journal | None = None):
         self.settings = settings
-        self.domain = domain
         self.world = world
         self.observer = observer or Observer()
         self.lang = settings.lang
-        self.store = SessionStore(settings.base, settings.session, settings.record)
-        self.phrases = PhraseBook(domain, world.events)
+        self.vocabulary = Vocabulary(domain, world.events)
+        journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang, settings.questions,
+                                     settings.world, settings.seed, guess=not settings.safe)
+        self.record = SessionRecord(journal, SessionStore(settings.base, settings.session, settings.record),
+                                    self.observer, world.state)
+        self.turn = Turn(self.observer, lambda: self.budget.left)
+        self.showing = Showing(self.record, self.turn, world, self.vocabulary, self.lang)
         self.learning = Learning(domain, self.store, self.observer, settings.safe)
         self.budget = QuestionBudget(settings.questions)
         self.pending: Question | None = None
         self.model_repair: ModelRepair | None = None
         self.pending_model: ModelQuestion | None = None
         self.planned: Node | None = None
-        self.open: _OpenDemo | None = None
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
@@ -157,20 +125,52 @@ class SessionManager:
         self._quit_warned_at = -2
         """The step at which quitting with an open demonstration was warned about."""
         self.step = 0
-        self.live: Callable[[Reply], None] | None = None  # a driver that shows replies as they are produced
-        self._turn: list[Reply] = []
         self._interrupt: Callable[[], bool] | None = None
         self._turn_questions = 0
-        self.journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang,
-                                          settings.questions, settings.world, settings.seed, guess=not settings.safe)
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
-        self._start_situation = state_text(world.state())
         self.store.prepare(domain)
         self.observer.on_domain(domain)
-        self.guiding = Guiding(self, settings.label_questions)
-        self._taken_back: _StepsTakenBack | None = None  # what 'redo' can put back into the open demonstration
+        self.guiding = Guiding(self.showing, self.record, self.turn, settings.label_questions, self._adopt)
 
     # --- what drivers and tests read --------------------------------------------------------
+
+    @property
+    def domain(self) -> Domain:
+        return self.vocabulary.domain
+
+    @property
+    def phrases(self) -> PhraseBook:
+        return self.vocabulary.phrases
+
+    @property
+    def journal(self) -> Journal:
+        return self.record.journal
+
+    @property
+    def store(self) -> SessionStore:
+        return self.record.store
+
+    @store.setter
+    def store(self, store: SessionStore) -> None:  # a benchmark measures another store
+        self.record.store = store
+
+    @property
+    def open(self) -> OpenDemonstration | None:
+        """The demonstration being shown (or a run's steps, to be continued as a correction)."""
+        return self.record.open
+
+    @open.setter
+    def open(self, opened: OpenDemonstration | None) -> None:
+        self.record.open = opened
+
+    @property
+    def live(self) -> Callable[[Reply], None] | None:
+        """A driver that shows replies as they are produced."""
+        return self.turn.live
+
+    @live.setter
+    def live(self, live: Callable[[Reply], None] | None) -> None:
+        self.turn.live = live
 
     @property
     def mode(self) -> Mode:
@@ -217,8 +217,8 @@ class SessionManager:
         replies += self.restored
         self.restored = []
         replies.append(self._state_reply())
-        self._turn = []
-        return self._end_turn(replies)
+        self.turn.begin()
+        return self.turn.close(replies)
 
     def handle(self, line: str, interrupt: Callable[[], bool] | None = None) -> list[Reply]:
         """One teacher line in, every reply to it out, in order. Never raises for bad input.
@@ -226,14 +226,14 @@ class SessionManager:
         line = line.strip()
         if not line and self.suggestion is None:
             return []
-        self._turn = []
+        self.turn.begin()
         self._interrupt = interrupt
         self._tick_clock()
         try:
             check_length(line, self.lang)
         except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
             self.suggestion = None
-            return self._end_turn([Reply(ReplyKind.ERROR, too_long.message)])
+            return self.turn.close([Reply(ReplyKind.ERROR, too_long.message)])
         self.observer.on_dialogue("teacher", line, self.budget.left)
         suggestion, self.suggestion = self.suggestion, None
         asking = self.mode is Mode.ASKING
@@ -249,10 +249,10 @@ class SessionManager:
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
             self._interrupt = None
-        turn = self._end_turn(replies)
+        turn = self.turn.close(replies)
         self.observer.checkpoint()
-        self._note_open_demonstration()
-        self.store.save_journal(self.journal)  # the step clock too, so a resume goes on from it
+        self.record.note_open()
+        self.record.save()  # the step clock too, so a resume goes on from it
         return turn
 
     def command(self, line: str) -> tuple[Command | None, str]:
@@ -263,7 +263,7 @@ class SessionManager:
             return None, line
 
     def close(self) -> None:
-        self.store.save_journal(self.journal)
+        self.record.save()
         self.world.close()
         self.observer.close()
 
@@ -330,10 +330,7 @@ class SessionManager:
         return None
 
     def cmd_demonstrate(self, rest: str) -> list[Reply]:
-        replies = []
-        if self.open is None:
-            self.open = _OpenDemo()
-            replies.append(Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang)))
+        replies = self.showing.begin()
         if rest.strip():
             replies += self._teach_actions(rest)
         return replies
@@ -345,32 +342,31 @@ class SessionManager:
         unmet = unmet_goal(self.domain, state, self.lang)
         if unmet:
             return [Reply(ReplyKind.ERROR, m.NOT_FINISHED(self.lang, unmet=unmet))]
-        self.open.steps.append(Step(state, GOAL_ACTION, len(self.open.steps) + 1))
-        return self._finish_demo()
+        return self._finish_demo(state)
 
     def cmd_cancel(self, rest: str) -> list[Reply]:
         if self.open is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
-        self.open = None
+        self.showing.close()
         self.topic = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
         if self.mode is Mode.ASKING:  # the answer is what is open, and there is none to take back yet
             return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
-        if self.open is not None and self.open.steps:
-            return self._undo_steps(rest)
+        if self.showing.has_steps:
+            return [Reply(ReplyKind.INFO, self.showing.take_back(_step_number(rest, self.lang))), self._state_reply()]
         if rest.strip():
             return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
-        self._journal(Undone())
+        self.record.add(Undone())
         self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
         taken_back = redoable(self.journal.events)[-1]  # what this undo took (a skipped question never counts)
         text = self._learning_text(taken_back, m.UNDONE_DEMONSTRATION, m.UNDONE_ANSWER, m.UNDONE_LEARNING)
-        return self._flush([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
+        return self.turn.say([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def _learning_text(self, event: Event, demo: m.Text, answer: m.Text, other: m.Text) -> str:
         """What an undo or redo moved, in words: the demonstration's name or the question answered."""
@@ -381,58 +377,25 @@ class SessionManager:
             return answer(self.lang, question=event.question)
         return other(self.lang)
 
-    def _undo_steps(self, rest: str) -> list[Reply]:
-        """Take back steps N.. of the open demonstration (the last one without N): the world goes
-        back to the state before step N."""
-        assert self.open is not None
-        count = len(self.open.steps)
-        first = _step_number(rest, self.lang)
-        if first is None:
-            first = count
-        if not 1 <= first <= count:
-            raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
-        steps, words, world_after = tuple(self.open.steps[first - 1:]), tuple(self.open.words[first - 1:]), \
-            self.world.state()
-        self.world.arrange(self.open.take_back(first).state)
-        self._taken_back = _StepsTakenBack(first, steps, words, world_after, self.world.state())
-        undone = "; ".join(words)
-        if not self.open.steps:
-            self.open = None
-        text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
-        return [Reply(ReplyKind.INFO, text(self.lang, first=first, last=count, steps=undone)), self._state_reply()]
-
     def cmd_redo(self, rest: str) -> list[Reply]:
         """Bring back what the last undo took: steps of the open demonstration, else the last
         demonstration or answer, as long as nothing new happened after the undo."""
         if self.mode is Mode.ASKING:
             return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
-        taken, self._taken_back = self._taken_back, None
-        open_steps = len(self.open.steps) if self.open is not None else 0
-        if taken is not None and open_steps == taken.first - 1 and self.world.state() == taken.arranged:
-            if self.open is None:
-                self.open = _OpenDemo()
-            for step, words in zip(taken.steps, taken.words, strict=True):
-                self.open.add(step, words)
-            self.world.arrange(taken.world_after)
-            self._save_open()
-            last = len(self.open.steps)
-            text = (m.REDONE_ONE_STEP if last == taken.first else m.REDONE_STEPS)(
-                self.lang, first=taken.first, last=last, steps="; ".join(taken.words))
-            return [Reply(ReplyKind.INFO, text), self._state_reply()]
+        put_back = self.showing.put_back()
+        if put_back is not None:
+            return [Reply(ReplyKind.INFO, put_back), self._state_reply()]
         back = redoable(self.journal.events)
-        if not back or open_steps:
+        if not back or self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_REDO(self.lang))]
-        self._journal(Redone())
+        self.record.add(Redone())
         self.store.bring_back_redone(self.journal)
         self._rebuild_from_journal()
         text = self._learning_text(back[-1], m.REDONE_DEMONSTRATION, m.REDONE_ANSWER, m.REDONE_LEARNING)
-        return self._flush([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
+        return self.turn.say([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def cmd_steps(self, rest: str) -> list[Reply]:
-        if self.open is None or not self.open.steps:
-            return [Reply(ReplyKind.INFO, m.NO_OPEN_STEPS(self.lang))]
-        lines = [f"  {number}. {words}" for number, words in enumerate(self.open.words, 1)]
-        return [Reply(ReplyKind.INFO, m.OPEN_STEPS(self.lang) + "\n" + "\n".join(lines))]
+        return self.showing.listing()
 
     def cmd_perturb(self, rest: str) -> list[Reply]:
         tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
@@ -446,22 +409,22 @@ class SessionManager:
             if len(self.open.steps) > self.open.robot_steps:
                 return [Reply(ReplyKind.ERROR, m.FINISH_BEFORE_RUN(self.lang))]
             # only the last run's own steps are open (an answer may have unblocked it): run again from here
-            self._flush([Reply(ReplyKind.INFO, m.RUN_AGAIN(self.lang))])
+            self.turn.say([Reply(ReplyKind.INFO, m.RUN_AGAIN(self.lang))])
         tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         stop_after = _number(rest, self.lang)
-        self.open = None
+        self.showing.close()
         started: list[tuple[State, str]] = []
 
         def announce(action: str) -> None:
             started.append((self.world.state(), action))
-            self._note_run(started)  # on disk before the teacher sees it: a kill mid-run keeps the steps done
-            self._flush([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
+            self.showing.save_run(started)  # on disk before the teacher sees it: a kill mid-run keeps the steps done
+            self.turn.say([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
                 self.lang)))])
 
         def heard(event: WorldEvent) -> None:
-            self._flush([self._event_reply(event)])
+            self.turn.say([self.showing.event_reply(event)])
 
         self.observer.on_run_start(tree)
         ticker = self.world.ticker
@@ -474,21 +437,10 @@ class SessionManager:
         self.observer.on_run_end(result.outcome.value, len(result.steps))
         unmet = unmet_goal(self.domain, self.world.state(), self.lang)
         finished = result.outcome is Outcome.SUCCESS and not unmet
-        if not finished:  # what the robot did so far and what the teacher shows next become one correction,
-            self.open = _OpenDemo()  # and the world's events in the run (a slip) are external steps (-1) in it
-
-            def events_after(count: int) -> None:
-                for event in (event for after, event in result.events if after == count):
-                    self._add_event(event)
-
-            for number, (state, action) in enumerate(result.steps):
-                events_after(number)
-                self.open.add(Step(state, self.domain.action(action).id, len(self.open.steps) + 1),
-                              m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang)))
-            events_after(len(result.steps))
-            self.open.robot_steps = len(self.open.steps)
-        self._note_open_demonstration("run")  # how the run ended is on disk before the teacher hears of it
-        self.store.save_journal(self.journal)
+        if not finished:  # what the robot did so far and what the teacher shows next become one correction
+            self.showing.from_run(result)
+        self.record.note_open("run")  # how the run ended is on disk before the teacher hears of it
+        self.record.save()
         if not result.steps and finished:
             return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
         done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
@@ -528,12 +480,12 @@ class SessionManager:
         return [self._state_reply(full=normalize(rest) in _FULL_WORDS)]
 
     def cmd_start(self, rest: str) -> list[Reply]:
-        if self.open is not None and self.open.steps:
+        if self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
         names = self._condition_names(rest)
         self.world.arrange(self.domain.state(names))
         self.topic = self.phrases.topic_in(rest)  # "start ball found", then "go to it"
-        self._journal(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
+        self.record.add(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
         return [self._state_reply()]
 
     def _condition_names(self, text: str) -> list[str]:
@@ -579,12 +531,12 @@ class SessionManager:
         return text.strip()
 
     def cmd_reset(self, rest: str) -> list[Reply]:
-        if self.open is not None and self.open.steps:
+        if self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
-        self.open = None
+        self.showing.close()
         seed = _number(rest, self.lang)
         self.world.reset(seed)
-        self._journal(Situated(state_text(self.world.state()), "reset", seed))  # on disk before the teacher sees it
+        self.record.add(Situated(state_text(self.world.state()), "reset", seed))  # on disk before the teacher sees it
         return [self._state_reply()]
 
     def cmd_ask(self, rest: str) -> list[Reply]:
@@ -606,7 +558,7 @@ class SessionManager:
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
 
     def cmd_save(self, rest: str) -> list[Reply]:
-        self.store.save_journal(self.journal)
+        self.record.save()
         self.observer.checkpoint()
         where = ", ".join(map(str, self.store.places()))
         return [Reply(ReplyKind.INFO, m.SAVED(self.lang, places=where))]
@@ -634,7 +586,7 @@ class SessionManager:
             raise TeachError(m.MODEL_MISMATCH(self.lang, domain=self.domain.path), path)
         self.model_repair = ModelRepair(model, self.budget, lang=self.lang)
         self.pending_model = None
-        self._journal(ModelLoaded(str(path.resolve())))
+        self.record.add(ModelLoaded(str(path.resolve())))
         return self._show_plan(ask=True)
 
     def cmd_plan(self, rest: str) -> list[Reply]:
@@ -663,7 +615,7 @@ class SessionManager:
         if question is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_ASK(self.lang))]
         self.pending_model = question
-        self._journal(Asked(model_question=question.to_json()))
+        self.record.add(Asked(model_question=question.to_json()))
         text = self.model_repair.text(question, self.lang)
         self.observer.on_question(text, self.budget.left)
         return [Reply(ReplyKind.QUESTION, text)]
@@ -675,12 +627,12 @@ class SessionManager:
         if normalize(line) in SKIP_WORDS:
             self.pending_model = None
             self.observer.on_answer(text, line, "nothing (skipped)")
-            self._journal(ModelAnswered(question.to_json(), "skip"))
+            self.record.add(ModelAnswered(question.to_json(), "skip"))
             return [Reply(ReplyKind.INFO, m.ASK_ANOTHER(self.lang))]
         change = self.model_repair.apply(question, line)  # UnknownPhrase keeps the question open
         self.pending_model = None
         self.observer.on_answer(text, line, change)
-        self._journal(ModelAnswered(question.to_json(), line))
+        self.record.add(ModelAnswered(question.to_json(), line))
         return [Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))] + self._show_plan(ask=True)
 
     # --- demonstrations ---------------------------------------------------------------------
@@ -695,12 +647,10 @@ class SessionManager:
         for index, token in enumerate(tokens):
             if token.kind == "event":
                 result = self.world.perturb(token.name)
-                demo = self._open_for_step()
-                demo.add(Step(result.before, EXTERNAL_ACTION, len(demo.steps) + 1),
-                         m.EVENT_STEP(self.lang, event=token.text))
+                self.showing.external(result.before, token.text)
                 self.observer.on_external(token.name)
-                self._save_open()
-                replies += self._flush([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
+                self.record.save_open()
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 continue
             result = self.world.act(token.name)
             label = self.domain.action(token.name).label(self.lang)
@@ -712,50 +662,16 @@ class SessionManager:
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
-                replies += self._flush(self._halted(token.name, result) + self._not_done(tokens[index + 1:]))
+                replies += self.turn.say(self.showing.halted(token.name, result) + self._not_done(tokens[index + 1:]))
                 break
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
-                replies += self._flush([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
-            demo = self._open_for_step()
-            demo.add(Step(result.before, self.domain.action(token.name).id, len(demo.steps) + 1), label)
-            self._save_open()
-            replies += self._flush([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
+            self.showing.step(result.before, token.name, label)
+            replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         replies.append(self._state_reply())
         return replies
-
-    def _open_for_step(self) -> _OpenDemo:
-        """The open demonstration, opened when its first step has happened (a failed first step opens none)."""
-        if self.open is None:
-            self.open = _OpenDemo()
-            self._flush([Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))])
-        return self.open
-
-    def _halted(self, action: str, result: ActResult) -> list[Reply]:
-        """An action the world's events halted: its own part kept as a step if it changed
-        anything (else dropped: said which), then each event as an external step (-1)."""
-        label = self.domain.action(action).label(self.lang)
-        if result.action_after != result.before:
-            demo = self._open_for_step()
-            demo.add(Step(result.before, self.domain.action(action).id, len(demo.steps) + 1),
-                     m.HALTED_STEP(self.lang, action=label))
-        kept = m.HALTED_KEPT if result.action_after != result.before else m.HALTED_DROPPED
-        replies = [Reply(ReplyKind.INFO, kept(self.lang, action=label))]
-        for event in result.events:
-            self._add_event(event)
-            replies.append(self._event_reply(event))
-        self._save_open()  # on disk before the teacher sees the event
-        return replies
-
-    def _add_event(self, event: WorldEvent) -> None:
-        """An event of the world as an external step (-1) of the open demonstration."""
-        demo = self._open_for_step()
-        demo.add(Step(event.before, EXTERNAL_ACTION, len(demo.steps) + 1),
-                 m.EVENT_STEP(self.lang, event=m.Text(event.en, event.de)(self.lang)))
-
-    def _event_reply(self, event: WorldEvent) -> Reply:
-        return Reply(ReplyKind.INFO, m.EVENT(self.lang, event=m.Text(event.en, event.de)(self.lang)))
 
     def _not_done(self, tokens: list[Token]) -> list[Reply]:
         if not tokens:
@@ -763,20 +679,20 @@ class SessionManager:
         words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
         return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
-    def _finish_demo(self) -> list[Reply]:
+    def _finish_demo(self, goal: State) -> list[Reply]:
+        """The open demonstration ends in ``goal`` (where the goal holds): learned and written."""
         assert self.open is not None
         started = time.perf_counter()
         path = self.store.next_demo_path()
-        demo = Demonstration(path.stem, tuple(self.open.steps), path)
+        demo = self.open.finish(path.stem, goal, path)
         source = path.name
         try:
             update = self.learning.learn_demonstration(demo, source)
-        except LearnError as error:
-            self.open.steps.pop()  # the goal line: the demonstration stays open to be mended
+        except LearnError as error:  # the demonstration stays open to be mended
             return [Reply(ReplyKind.ERROR, m.CANNOT_LEARN(self.lang, why=why_refused(error, self.lang))),
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         self.store.write_demonstration(path, demo)
-        self.open = None
+        self.showing.close()
         self.topic = None  # "it" in the next demonstration is whatever it names first
         self.observer.on_demonstration(demo.name, demo, self.domain)
         self.learning.report("specialize", update, self.lang)
@@ -784,7 +700,7 @@ class SessionManager:
 
     def import_demonstrations(self, demos: list[Demonstration]) -> list[Reply]:
         """Learn demonstrations recorded elsewhere (one generation for all of them)."""
-        self._turn = []
+        self.turn.begin()
         started = time.perf_counter()
         events: list[Event] = []
         for demo in demos:
@@ -794,7 +710,7 @@ class SessionManager:
             self.store.write_demonstration(path, demo)
             events.append(DemoLearned(path.name, source))
             self.observer.on_demonstration(demo.name, demo, self.domain)
-        return self._end_turn(self._after_learning(ask=False, started=started, events=events))
+        return self.turn.close(self._after_learning(ask=False, started=started, events=events))
 
     # --- questions --------------------------------------------------------------------------
 
@@ -819,24 +735,17 @@ class SessionManager:
 
     def _affordable(self, state: State) -> bool:
         """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""
-        return self.budget.left > 0 or state_text(state) in self._charged()
+        return self.budget.left > 0 or state_text(state) in self.record.charged()
 
     def _ask(self, question: Question) -> list[Reply]:
         """Ask ``question``: paid for once per situation, even if an undo made it open again."""
-        if state_text(question.state) not in self._charged():
+        if state_text(question.state) not in self.record.charged():
             self.budget.spend()
         self._turn_questions += 1
         self.pending = question
         self.learning.asked.add(question.state)
-        self._journal(Asked(state=state_text(question.state)))
+        self.record.add(Asked(state=state_text(question.state)))
         return [self._question_reply(question)]
-
-    def _charged(self) -> set[str]:
-        """The situations asked about so far (undone or not): each was paid for once."""
-        impossible = {event.state for event in self.journal.events
-                      if isinstance(event, Answered) and event.answer == IMPOSSIBLE}
-        return {event.state for event in self.journal.events
-                if isinstance(event, Asked) and event.state and event.state not in impossible}
 
     def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.domain, self.lang)
@@ -856,7 +765,7 @@ class SessionManager:
         if key in SKIP_WORDS:
             self.pending = None
             text = question.text(self.domain, self.lang)
-            self._journal(Answered(state_text(question.state), "skip", text))
+            self.record.add(Answered(state_text(question.state), "skip", text))
             self.observer.on_answer(text, line, "nothing (skipped)")
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
         if key in IMPOSSIBLE_WORDS:
@@ -891,7 +800,7 @@ class SessionManager:
         """The asked-about situation cannot happen: journalled, never asked again, and not paid for."""
         self.pending = None
         text = question.text(self.domain, self.lang)
-        self._journal(Answered(state_text(question.state), IMPOSSIBLE, text))
+        self.record.add(Answered(state_text(question.state), IMPOSSIBLE, text))
         self.learning.rule_out(question.state, f"answer to question {self.budget.used}")
         self.budget.used -= 1
         self.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
@@ -912,10 +821,10 @@ class SessionManager:
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
         change = self.learning.describe(update, self.lang)
         # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
-        self._journal(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
+        self.record.add(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
         self.observer.on_answer(text, said, change)
         self.learning.report("answer", update, self.lang)
-        head = self._flush([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
+        head = self.turn.say([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
         return head + self._after_learning(ask=True, started=started)
 
     def _no_question_text(self) -> str:
@@ -932,9 +841,9 @@ class SessionManager:
         from teach.replay import replay
 
         if events:
-            self._journal(*events)
+            self.record.add(*events)
         if not self.learning.has_behaviour:  # only goal states so far: there is no behaviour to show yet
-            return self._flush([Reply(ReplyKind.INFO, m.GOAL_ONLY(self.lang))])
+            return self.turn.say([Reply(ReplyKind.INFO, m.GOAL_ONLY(self.lang))])
         pruned = self.learning.prune()
         path = self.learning.save_generation(pruned, "learned from demonstrations and answers")
         report = replay(pruned, self.domain, self.demos)
@@ -943,19 +852,17 @@ class SessionManager:
         summary = (m.GENERATION if self.facilitator else _reproduced_text(report.reproduced, report.total))(
             self.lang, generation=self.generation, nodes=size(pruned), unpruned=size(self.learning.tree), path=path,
             reproduced=report.reproduced, total=report.total)
-        replies = self._flush([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
+        replies = self.turn.say([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
         if ask:
             replies += self._maybe_ask()
         return replies
 
     # --- the journal: undo and resume -------------------------------------------------------
 
-    def _journal(self, *events: Event) -> None:
-        self.journal.events.extend(events)
-        for event in events:  # the observers' session channel, in the journal's order
-            self.observer.on_session_event(event)
-        self._note_open_demonstration()  # a finished demonstration is never also journalled as open
-        self.store.save_journal(self.journal)
+    def _adopt(self, domain: Domain) -> None:
+        """Guiding taught a new action: learn everything again in the grown domain."""
+        self.learning.domain = domain
+        self._rebuild_from_journal()
 
     def _rebuild_from_journal(self) -> None:
         """Re-learn everything in the journal (after an undo or on resume), deterministically."""
@@ -971,8 +878,8 @@ class SessionManager:
         self.learning.restart()
         self.model_repair, self.pending_model, self.planned = None, None, None
         # every question asked stays paid for, even when what it was about is undone
-        asked = [e for e in self.journal.events if isinstance(e, Asked)]
-        self.budget = QuestionBudget(self.settings.questions, len(self._charged()) + sum(not e.state for e in asked))
+        asked = sum(not e.state for e in self.journal.events if isinstance(e, Asked))  # action definitions' questions
+        self.budget = QuestionBudget(self.settings.questions, len(self.record.charged()) + asked)
         answered = 0
         for event in effective_events(self.journal.events):
             if isinstance(event, DemoLearned):
@@ -1027,62 +934,16 @@ class SessionManager:
 
     # --- helpers ---------------------------------------------------------------------------
 
-    def _note_open_demonstration(self, how: str = "after") -> None:
-        """Put the open demonstration's steps in the journal: every "✓" the teacher saw is on disk
-        before the next prompt, and a resume (after a kill or a quit) shows them again. With none
-        open, the world's situation is journalled when it changed (a demonstration finished or
-        cancelled, an undo), so a resume sets it up again."""
-        steps = self.open.steps if self.open is not None else []
-        words = self.open.words if self.open is not None else []
-        self.journal.open_steps = [[state_text(step.state), step.action, words[i] if i < len(words) else ""]
-                                   for i, step in enumerate(steps)]
-        self.journal.open_state = state_text(self.world.state()) if steps else ""
-        self.journal.open_run = ""
-        if not steps and state_text(self.world.state()) != self._last_situation():
-            self.journal.events.append(situated := Situated(state_text(self.world.state()), how))
-            self.observer.on_session_event(situated)
-
-    def _save_open(self) -> None:
-        """The open demonstration on disk now: a "✓" shown while a line still runs (a live
-        driver shows each step at once) survives a kill during the line's next step."""
-        self._note_open_demonstration()
-        self.store.save_journal(self.journal)
-
-    def _note_run(self, started: list[tuple[State, str]]) -> None:
-        """Journal a run as it goes: the actions the robot finished (each ends as the next begins)
-        as the open steps, and the world before the action it has just begun, so a resume after a
-        kill mid-run reopens them as the corrective demonstration a stopped run would give."""
-        self.journal.open_steps = [
-            [state_text(state), self.domain.action(action).id,
-             m.ROBOT_DID_STEP(self.lang, action=self.domain.action(action).label(self.lang))]
-            for state, action in started[:-1]]
-        self.journal.open_state, self.journal.open_run = state_text(started[-1][0]), started[-1][1]
-        self.store.save_journal(self.journal)
-
-    def _last_situation(self) -> str:
-        """The world's situation as last journalled (its seeded start when none was)."""
-        for event in reversed(self.journal.events):
-            if isinstance(event, Situated):
-                return event.state
-        return self._start_situation
-
-    def _journalled_state(self, text: str, what: str) -> State:
-        state = parse_state_text(text)
-        if len(state) != len(self.domain.conditions):
-            raise FormatError(f"{what}: has {len(state)} values, not {len(self.domain.conditions)}",
-                              self.store.journal_path)
-        return state
-
     def _restore_situation(self) -> None:
         """Set the world up as the journal last saw it with no demonstration open, and say so. A
         'reset N' is made again exactly; otherwise the conditions are arranged, which in MuJoCo
         places the objects anew (the teacher is told)."""
-        last = next((e for e in reversed(self.journal.events) if isinstance(e, Situated)), None)
+        last = self.record.last_situated()
         if last is None:
             if self.demos:  # a journal from before situations were journalled
                 self.world.arrange(self.demos[-1].steps[-1].state)
             return
-        state = self._journalled_state(last.state, f"events[{self.journal.events.index(last)}]: state")
+        state = self.record.state(last.state, f"events[{self.journal.events.index(last)}]: state", self.domain)
         exact = self.settings.world is not WorldKind.MUJOCO
         try:
             if last.seed is not None:
@@ -1101,22 +962,15 @@ class SessionManager:
         """Reopen the demonstration that was open when the session ended; a run the session ended
         in becomes the correction its finished steps begin, the world set up before the action it
         had begun."""
-        run = self.journal.open_run
-        if not self.journal.open_steps and not run:
+        journalled = self.record.journalled_open(self.domain)
+        if journalled is None:
             return
-        if run and run not in self.domain.action_names:
-            raise FormatError(f"open_run: {run[:40]!r} is not an action of the domain", self.store.journal_path)
-        steps = [(self._journalled_state(str(state), f"open_steps[{number}]"), int(action), str(words))
-                 for number, (state, action, words) in enumerate(self.journal.open_steps)]
-        where = self._journalled_state(self.journal.open_state, "open_state")
+        steps, where, run = journalled
         try:
             self.world.arrange(where)
         except TeachError:  # the world cannot be put back there: the last situation stays
             return
-        self.open = _OpenDemo() if steps else None
-        for number, (state, action, words) in enumerate(steps, 1):
-            assert self.open is not None
-            self.open.add(Step(state, action, number), words)
+        self.open = OpenDemonstration.from_steps(steps) if steps else None
         if run:
             label = self.domain.action(run).label(self.lang)
             text = m.RUN_RESTORED(self.lang, action=label, steps=_steps(len(steps), self.lang)) if steps else \
@@ -1140,25 +994,6 @@ class SessionManager:
         self.step += 1
         self.journal.step = self.step
         self.observer.set_time(self.step)
-
-    def _flush(self, replies: list[Reply]) -> list[Reply]:
-        """The one way a reply leaves the session: told to the observer, added to the line's
-        replies and shown by a live driver at once (the tree appears before a question is
-        chosen). Returns nothing left to hand back."""
-        for reply in replies:
-            if reply.spoken:  # questions go to on_question
-                self.observer.on_dialogue("robot", reply.text, self.budget.left)
-        self._turn.extend(replies)
-        if self.live is not None:
-            for reply in replies:
-                self.live(reply)
-        return []
-
-    def _end_turn(self, replies: list[Reply]) -> list[Reply]:
-        """Send the last replies and hand back all of this turn's, in the order they were sent."""
-        self._flush(replies)
-        turn, self._turn = self._turn, []
-        return turn
 
     def _handler(self, command: Command) -> Callable[[str], list[Reply]]:
         handler: Callable[[str], list[Reply]] = getattr(self, command.handler)
