@@ -14,7 +14,6 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable
-from enum import StrEnum
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -70,6 +69,7 @@ from teach.session.journal import (
     state_text,
 )
 from teach.session.learning import DONE_ABOUT, Learning
+from teach.session.published import Mode, SessionView
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
 from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_not
@@ -87,15 +87,6 @@ if TYPE_CHECKING:
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
-class Mode(StrEnum):
-    IDLE = "idle"
-    """Waiting for a command or actions."""
-    DEMONSTRATING = "demonstrating"
-    """A demonstration is open."""
-    ASKING = "asking"
-    """A question waits for its answer."""
-
-
 class SessionManager:
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
@@ -177,6 +168,20 @@ class SessionManager:
         if self.pending is not None or self.pending_model is not None or self.guiding.pending is not None:
             return Mode.ASKING
         return Mode.DEMONSTRATING if self.open is not None else Mode.IDLE
+
+    def view(self) -> SessionView:
+        """The session as its drivers see it now."""
+        return SessionView(
+            mode=self.mode, lang=self.lang, domain=self.domain, phrases=tuple(self.phrases.phrases(self.lang)),
+            questions_left=self.budget.left,
+            generation=self.generation, can_run=self.runnable is not None, guiding=self.guiding.active,
+            guided=self.guiding.used, labels_left=self.guiding.budget.left, facilitator=self.facilitator,
+            holds=tuple(n for n, v in zip(self.domain.condition_names, self.world.state(), strict=True) if v),
+            finished=self.finished, run_dir=self.store.run_dir)
+
+    def key_line(self, key: str) -> str | None:
+        """The ``guide …`` line a key of the terminal's guide mode stands for (None: no such key now)."""
+        return self.guiding.line_for_key(key)
 
     @property
     def runnable(self) -> Node | None:
