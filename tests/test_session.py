@@ -322,7 +322,7 @@ def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys)
     assert answered and all(q["literal"] == "" for q in answered)
     resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
                                              record=False), ball, SymbolicWorld(ball))
-    assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again
+    assert resumed.definitions.repair is not None and resumed.definitions.repair.asked  # the answers were applied again
 
 
 # --- the careless teacher (issue 11) ---------------------------------------------------------------

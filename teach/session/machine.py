@@ -37,6 +37,7 @@ from teach.domain import Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
+from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
@@ -50,6 +51,7 @@ from teach.session.commands import (
     Verb,
     parse_command,
 )
+from teach.session.definitions import Definitions
 from teach.session.describe import unmet_goal, why_refused
 from teach.session.guiding import Guiding
 from teach.session.journal import (
@@ -83,7 +85,7 @@ from teach.symbolic import missing_preconditions
 from teach.world.protocol import Outcome, TeachingWorld, WorldEvent
 
 if TYPE_CHECKING:
-    from teach.dialogue.model_repair import ModelQuestion, ModelRepair
+    from teach.dialogue.model_repair import ModelQuestion
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
@@ -106,9 +108,7 @@ class SessionManager:
         self.learning = Learning(domain, self.store, self.observer, settings.safe)
         self.budget = QuestionBudget(settings.questions)
         self.pending: Question | None = None
-        self.model_repair: ModelRepair | None = None
-        self.pending_model: ModelQuestion | None = None
-        self.planned: Node | None = None
+        self.definitions = Definitions(self.record, self.learning, lambda: self.budget, self.lang, self._tree_reply)
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
@@ -190,6 +190,16 @@ class SessionManager:
         if self.open is not None and len(self.open.steps) > self.open.robot_steps:
             return None  # the teacher is showing something: finish or cancel it first
         return self.learning.tree if self.learning.has_behaviour else self.planned
+
+    @property
+    def pending_model(self) -> ModelQuestion | None:
+        """The open question about the action definitions."""
+        return self.definitions.pending
+
+    @property
+    def planned(self) -> Node | None:
+        """The tree planned from the action definitions."""
+        return self.definitions.planned
 
     @property
     def generation(self) -> int:
@@ -291,7 +301,7 @@ class SessionManager:
         # "wrong"/"falsch" undo, but to an open question they are a "no", as before they named a command
         answering = command is None or command in ANSWERING or is_no(line, self.lang)
         if self.pending_model is not None and answering:
-            return self._answer_model(line)
+            return self.definitions.answer(line)
         if self.pending is not None and answering:
             return self._answer(line)
         if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
@@ -360,12 +370,12 @@ class SessionManager:
         if self.mode is Mode.ASKING:  # the answer is what is open, and there is none to take back yet
             return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
         if self.showing.has_steps:
-            return [Reply(ReplyKind.INFO, self.showing.take_back(_step_number(rest, self.lang))), self._state_reply()]
+            return [Reply(ReplyKind.INFO, self.showing.take_back(step_number(rest, self.lang))), self._state_reply()]
         if rest.strip():
             return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
-        self.pending = self.pending_model = None  # a question stays paid for, but it is about what is undone
+        self.pending = self.definitions.pending = None  # a question stays paid for, but it is about what is undone
         self.record.add(Undone())
         self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
@@ -418,7 +428,7 @@ class SessionManager:
         tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
-        stop_after = _number(rest, self.lang)
+        stop_after = whole_number(rest, self.lang)
         self.showing.close()
         started: list[tuple[State, str]] = []
 
@@ -474,7 +484,7 @@ class SessionManager:
         return [Reply(ReplyKind.INFO, m.NOT_RUNNING(self.lang))]
 
     def cmd_show(self, rest: str) -> list[Reply]:
-        full = normalize(rest) in _FULL_WORDS
+        full = says_full(rest)
         if self.pruned is None and self.planned is not None:
             return [self._tree_reply(self.planned, full)]
         if self.pruned is None:
@@ -482,71 +492,29 @@ class SessionManager:
         return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
-        return [self._state_reply(full=normalize(rest) in _FULL_WORDS)]
+        return [self._state_reply(full=says_full(rest))]
 
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
-        names = self._condition_names(rest)
+        names = condition_names(self.domain, rest, self.lang)
         self.world.arrange(self.domain.state(names))
         self.topic = self.phrases.topic_in(rest)  # "start ball found", then "go to it"
         self.record.add(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
         return [self._state_reply()]
 
-    def _condition_names(self, text: str) -> list[str]:
-        """The conditions a teacher names, as labels in either language ("the bin is within reach,
-        ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
-        names: list[str] = []
-        for part in (p for p in _PARTS.split(text) if p.strip()):
-            whole = self._condition_named(part)
-            for word in [part] if whole is not None else part.split():  # else names side by side
-                found = self._condition_named(word)
-                if found is None:
-                    known = ", ".join(c.label(self.lang) for c in self.domain.conditions)
-                    raise TeachError(m.UNKNOWN_CONDITION(self.lang, name=word.strip(), known=known))
-                names.append(found)
-        return names
-
-    def _condition_named(self, text: str) -> str | None:
-        key = normalize(text)
-        for condition in self.domain.conditions:
-            if key in {normalize(condition.name), normalize(_spelled(condition.name)), normalize(condition.en),
-                       normalize(condition.de)}:
-                return condition.name
-        return None
-
-    def _node_named(self, text: str) -> str:
-        """The action or condition ``why`` asks about: its label, its name in any case, or any
-        words the prompt would take as that one step ("grab it", a typo), also a verb alone
-        ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""
-        condition = self._condition_named(text)
-        if condition is not None:
-            return condition
-        key = normalize(text)
-        for action in self.domain.actions:
-            if key in {normalize(action.name), normalize(_spelled(action.name))}:
-                return action.name
-        for words in (text, f"{text} it", f"it {text}"):
-            try:
-                tokens = self.phrases.parse(words, self.lang, topic=self.topic)
-            except UnknownPhrase:
-                continue
-            if len(tokens) == 1 and tokens[0].kind == "action":
-                return tokens[0].name
-        return text.strip()
-
     def cmd_reset(self, rest: str) -> list[Reply]:
         if self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.FINISH_FIRST(self.lang))]
         self.showing.close()
-        seed = _number(rest, self.lang)
+        seed = whole_number(rest, self.lang)
         self.world.reset(seed)
         self.record.add(Situated(state_text(self.world.state()), "reset", seed))  # on disk before the teacher sees it
         return [self._state_reply()]
 
     def cmd_ask(self, rest: str) -> list[Reply]:
-        if self.model_repair is not None and not self.model_repair.plan().usable:
-            return self._ask_model()
+        if self.definitions.unusable:
+            return self.definitions.ask()
         replies = self._maybe_ask(force=True)
         return replies or [Reply(ReplyKind.INFO, self._no_question_text())]
 
@@ -556,7 +524,7 @@ class SessionManager:
     def cmd_why(self, rest: str) -> list[Reply]:
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
-        name = self._node_named(rest)
+        name = node_named(self.domain, self.phrases, rest, self.lang, self.topic)
         lines = self.learning.why(name, self.lang)
         if lines is None:
             return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=rest.strip()))]
@@ -577,68 +545,15 @@ class SessionManager:
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
 
-    # --- action definitions (the thesis's Approach 1, repaired by questions) ---------------
-
     def cmd_model(self, rest: str) -> list[Reply]:
-        from teach.dialogue.model_repair import ModelRepair
-
-        path = Path(rest.strip())
         if not rest.strip():
             return [Reply(ReplyKind.ERROR, m.WHICH_FILE(self.lang))]
-        model = self.store.read_model(path)
-        if model.condition_names != self.domain.condition_names or \
-                not set(model.action_names) <= set(self.domain.action_names):
-            raise TeachError(m.MODEL_MISMATCH(self.lang, domain=self.domain.path), path)
-        self.model_repair = ModelRepair(model, self.budget, lang=self.lang)
-        self.pending_model = None
-        self.record.add(ModelLoaded(str(path.resolve())))
-        return self._show_plan(ask=True)
+        return self.definitions.load(Path(rest.strip()), self.domain)
 
     def cmd_plan(self, rest: str) -> list[Reply]:
-        if self.model_repair is None:
+        if self.definitions.repair is None:
             return [Reply(ReplyKind.ERROR, m.NO_DEFINITIONS(self.lang))]
-        return self._show_plan(ask=False)
-
-    def _show_plan(self, ask: bool) -> list[Reply]:
-        """What the action definitions give; after a change (``ask``) the tree is saved as a
-        generation and, while it is not usable, the next repair question is asked."""
-        assert self.model_repair is not None
-        outcome = self.model_repair.plan()
-        if outcome.usable and outcome.tree is not None:
-            self.planned = outcome.tree
-            if ask:
-                self.learning.save_generation(outcome.tree, "planned from the action definitions")
-            return [Reply(ReplyKind.SAY, m.CAN_BUILD(self.lang)), self._tree_reply(outcome.tree)]
-        replies = [Reply(ReplyKind.SAY, m.CANNOT_BUILD(self.lang, reason=outcome.reason))]
-        return replies + (self._ask_model() if ask else [])
-
-    def _ask_model(self) -> list[Reply]:
-        assert self.model_repair is not None
-        if self.budget.left <= 0:
-            return [Reply(ReplyKind.INFO, self._no_question_text())]
-        question = self.model_repair.ask()
-        if question is None:
-            return [Reply(ReplyKind.INFO, m.NOTHING_TO_ASK(self.lang))]
-        self.pending_model = question
-        self.record.add(Asked(model_question=question.to_json()))
-        text = self.model_repair.text(question, self.lang)
-        self.observer.on_question(text, self.budget.left)
-        return [Reply(ReplyKind.QUESTION, text)]
-
-    def _answer_model(self, line: str) -> list[Reply]:
-        assert self.model_repair is not None and self.pending_model is not None
-        question = self.pending_model
-        text = self.model_repair.text(question, self.lang)
-        if normalize(line) in SKIP_WORDS:
-            self.pending_model = None
-            self.observer.on_answer(text, line, "nothing (skipped)")
-            self.record.add(ModelAnswered(question.to_json(), "skip"))
-            return [Reply(ReplyKind.INFO, m.ASK_ANOTHER(self.lang))]
-        change = self.model_repair.apply(question, line)  # UnknownPhrase keeps the question open
-        self.pending_model = None
-        self.observer.on_answer(text, line, change)
-        self.record.add(ModelAnswered(question.to_json(), line))
-        return [Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))] + self._show_plan(ask=True)
+        return self.definitions.show(ask=False)
 
     # --- demonstrations ---------------------------------------------------------------------
 
@@ -878,10 +793,8 @@ class SessionManager:
                               self.store.journal_path) from None
 
     def _replay_journal(self) -> None:
-        from teach.dialogue.model_repair import ModelQuestion, ModelRepair
-
         self.learning.restart()
-        self.model_repair, self.pending_model, self.planned = None, None, None
+        self.definitions.restart()
         # every question asked stays paid for, even when what it was about is undone
         asked = sum(not e.state for e in self.journal.events if isinstance(e, Asked))  # action definitions' questions
         self.budget = QuestionBudget(self.settings.questions, len(self.record.charged()) + asked)
@@ -890,11 +803,8 @@ class SessionManager:
             if isinstance(event, DemoLearned):
                 self.learning.learn_demonstration(self.store.read_demonstration(event.file, self.domain),
                                                   event.source)
-            elif isinstance(event, ModelLoaded):
-                self.model_repair = ModelRepair(self.store.read_model(Path(event.file)), self.budget, lang=self.lang)
-            elif isinstance(event, ModelAnswered) and self.model_repair is not None:
-                if event.answer != "skip":
-                    self.model_repair.apply(ModelQuestion.from_json(event.question), event.answer)
+            elif isinstance(event, (ModelLoaded, ModelAnswered)):
+                self.definitions.replay(event)
             elif isinstance(event, Answered):
                 answered += 1
                 state = parse_state_text(event.state)
@@ -914,9 +824,7 @@ class SessionManager:
                         pass  # it was rejected when it was given, too
         if self.learning.has_behaviour:
             self.learning.prune()
-        if self.model_repair is not None:
-            outcome = self.model_repair.plan()
-            self.planned = outcome.tree if outcome.usable else None
+        self.definitions.replan()
 
     @classmethod
     def resume(cls, settings: Settings, domain: Domain, world: TeachingWorld,
@@ -1012,8 +920,6 @@ if _UNHANDLED:  # a command declared in teach/session/commands.py needs its cmd_
 
 _OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,
                   Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
-_FULL_WORDS = ("full", "ganz", "all", "alles")
-_PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
 
 
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
@@ -1031,33 +937,6 @@ def _reproduced_text(reproduced: int, total: int) -> m.Text:
     if total == 1:
         return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
     return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
-
-
-def _spelled(name: str) -> str:
-    """An identifier as words: BallFound → "Ball Found"."""
-    return re.sub(r"(?<!^)(?=[A-Z])", " ", name)
-
-
-_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
-
-
-def _step_number(text: str, lang: str) -> int | None:
-    """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
-    words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
-    return _number(" ".join(words), lang)
-
-
-def _number(text: str, lang: str) -> int | None:
-    """An optional whole number argument ("run 3", "reset 7")."""
-    if not text.strip():
-        return None
-    try:
-        value = int(text.strip())
-    except ValueError:
-        raise TeachError(m.WHOLE_NUMBER(lang, text=text.strip())) from None
-    if value < 0:
-        raise TeachError(m.NOT_NEGATIVE(lang))
-    return value
 
 
 def _asked_about(question: Question) -> str | None:
