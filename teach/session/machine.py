@@ -37,6 +37,7 @@ from teach.domain import Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
+from teach.session import running
 from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
 from teach.session.commands import (
     ANSWERING,
@@ -74,15 +75,16 @@ from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.published import Mode, SessionView
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import TryWatch, failed_tries, tried_lines, why_not
+from teach.session.resumed import restore_open, restore_situation
+from teach.session.run_report import why_not
 from teach.session.settings import Settings, WorldKind
-from teach.session.showing import Showing
+from teach.session.showing import Showing, steps_said
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.symbolic import missing_preconditions
-from teach.world.protocol import Outcome, TeachingWorld, WorldEvent
+from teach.world.protocol import TeachingWorld
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion
@@ -428,57 +430,9 @@ class SessionManager:
         tree = self.runnable
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
-        stop_after = whole_number(rest, self.lang)
-        self.showing.close()
-        started: list[tuple[State, str]] = []
-
-        def announce(action: str) -> None:
-            started.append((self.world.state(), action))
-            self.showing.save_run(started)  # on disk before the teacher sees it: a kill mid-run keeps the steps done
-            self.turn.say([Reply(ReplyKind.INFO, m.RUNNING_ACTION(self.lang, action=self.domain.action(action).label(
-                self.lang)))])
-
-        def heard(event: WorldEvent) -> None:
-            self.turn.say([self.showing.event_reply(event)])
-
-        self.observer.on_run_start(tree)
-        ticker = self.world.ticker
-        watch = self.world.ticker = TryWatch(ticker, tree, self.world.state)  # what failed, for the teacher
-        try:
-            result = self.world.run(tree, max_actions=4 * len(self.domain.actions) + 4, interrupt=self._interrupt,
-                                    stop_after=stop_after, on_action=announce, on_event=heard)
-        finally:
-            self.world.ticker = ticker
-        self.observer.on_run_end(result.outcome.value, len(result.steps))
-        unmet = unmet_goal(self.domain, self.world.state(), self.lang)
-        finished = result.outcome is Outcome.SUCCESS and not unmet
-        if not finished:  # what the robot did so far and what the teacher shows next become one correction
-            self.showing.from_run(result)
-        self.record.note_open("run")  # how the run ended is on disk before the teacher hears of it
-        self.record.save()
-        if not result.steps and finished:
-            return [Reply(ReplyKind.SAY, m.NOTHING_TO_DO(self.lang))]
-        done = ", ".join(self.domain.action(a).label(self.lang) for _, a in result.steps)
-        replies = [Reply(ReplyKind.INFO, m.I_DID(self.lang, actions=done) if done else m.I_DID_NOTHING(self.lang))]
-        tried = tried_lines(failed_tries(watch, started, result), self.domain, self.lang)
-        replies += [Reply(ReplyKind.INFO, line) for line in tried]
-        if finished:
-            replies.append(Reply(ReplyKind.SAY, m.TASK_FINISHED(self.lang)))
-            return replies + [self._state_reply()]
-        if result.outcome is Outcome.INTERRUPTED and stop_after is None and started:  # Ctrl-C: say where
-            message = m.STOPPED_DURING(self.lang, action=self.domain.action(started[-1][1]).label(self.lang))
-        elif result.outcome is Outcome.INTERRUPTED:
-            message = m.STOPPED(self.lang)
-        elif result.outcome is Outcome.SUCCESS:
-            message = m.THOUGHT_DONE(self.lang, unmet=unmet)
-        elif result.outcome is Outcome.FAILURE and tried:  # what failed is said above
-            message = m.STUCK_AFTER_TRYING(self.lang)
-        else:
-            message = m.STUCK(self.lang, outcome=_OUTCOME_WORDS[result.outcome](self.lang))
-        replies += [Reply(ReplyKind.SAY, message), self._state_reply()]
-        if result.outcome in (Outcome.SUCCESS, Outcome.FAILURE):  # "I thought I was done", or nothing fits
-            replies += self._ask_after_run()
-        return replies
+        told = running.run(tree, self.showing, self.observer, whole_number(rest, self.lang), self._interrupt)
+        replies = told.replies + ([self._state_reply()] if told.state_line else [])
+        return replies + (self._ask_after_run() if told.ask else [])
 
     def cmd_stop(self, rest: str) -> list[Reply]:
         return [Reply(ReplyKind.INFO, m.NOT_RUNNING(self.lang))]
@@ -540,7 +494,7 @@ class SessionManager:
         steps = len(self.open.steps) if self.open is not None else 0
         if steps and self._quit_warned_at != self.step - 1:  # not right after the warning
             self._quit_warned_at = self.step
-            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, steps=_steps(steps, self.lang)))]
+            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, steps=steps_said(steps, self.lang)))]
         self.finished = True
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
@@ -841,56 +795,12 @@ class SessionManager:
             from teach.bt.xml import tree_to_xml
 
             manager.observer.on_tree(manager.generation, current, tree_to_xml(current), "resumed")
-        manager._restore_situation()
-        manager._restore_open_demonstration()
+        exact = settings.world is not WorldKind.MUJOCO
+        manager.restored = restore_situation(manager.record, world, manager.domain, manager.lang, exact, manager.demos)
+        manager.restored = restore_open(manager.record, world, manager.domain, manager.lang) or manager.restored
         return manager
 
     # --- helpers ---------------------------------------------------------------------------
-
-    def _restore_situation(self) -> None:
-        """Set the world up as the journal last saw it with no demonstration open, and say so. A
-        'reset N' is made again exactly; otherwise the conditions are arranged, which in MuJoCo
-        places the objects anew (the teacher is told)."""
-        last = self.record.last_situated()
-        if last is None:
-            if self.demos:  # a journal from before situations were journalled
-                self.world.arrange(self.demos[-1].steps[-1].state)
-            return
-        state = self.record.state(last.state, f"events[{self.journal.events.index(last)}]: state", self.domain)
-        exact = self.settings.world is not WorldKind.MUJOCO
-        try:
-            if last.seed is not None:
-                self.world.reset(last.seed)
-                exact = self.world.state() == state
-            if not exact or self.world.state() != state:
-                self.world.arrange(state)
-        except TeachError:  # the world cannot be put in that situation
-            situation = describe_situation(self.domain, state, self.lang)
-            self.restored = [Reply(ReplyKind.INFO, m.SITUATION_NOT_RESTORED(self.lang, situation=situation))]
-            return
-        text = m.SITUATION_RESTORED if exact else m.SITUATION_RESTORED_ANEW
-        self.restored = [Reply(ReplyKind.INFO, text(self.lang))]
-
-    def _restore_open_demonstration(self) -> None:
-        """Reopen the demonstration that was open when the session ended; a run the session ended
-        in becomes the correction its finished steps begin, the world set up before the action it
-        had begun."""
-        journalled = self.record.journalled_open(self.domain)
-        if journalled is None:
-            return
-        steps, where, run = journalled
-        try:
-            self.world.arrange(where)
-        except TeachError:  # the world cannot be put back there: the last situation stays
-            return
-        self.open = OpenDemonstration.from_steps(steps) if steps else None
-        if run:
-            label = self.domain.action(run).label(self.lang)
-            text = m.RUN_RESTORED(self.lang, action=label, steps=_steps(len(steps), self.lang)) if steps else \
-                m.RUN_RESTORED_NO_STEPS(self.lang, action=label)
-        else:
-            text = m.OPEN_RESTORED(self.lang, steps=_steps(len(steps), self.lang))
-        self.restored = [Reply(ReplyKind.INFO, text)]
 
     def _tree_reply(self, tree: Node, full: bool = False) -> Reply:
         """The tree in sentences of the session's language; the symbols too for a facilitator or 'show full'."""
@@ -918,18 +828,9 @@ if _UNHANDLED:  # a command declared in teach/session/commands.py needs its cmd_
     raise TypeError(f"commands without a handler: {', '.join(_UNHANDLED)}")
 
 
-_OUTCOME_WORDS = {Outcome.SUCCESS: m.OUTCOME_SUCCESS, Outcome.FAILURE: m.OUTCOME_FAILURE,
-                  Outcome.TIMEOUT: m.OUTCOME_TIMEOUT, Outcome.INTERRUPTED: m.OUTCOME_INTERRUPTED}
-
-
 def _counted(count: int, none: m.Text, one: m.Text, many: m.Text) -> m.Text:
     """The text for ``count`` things: "no questions", "1 question", "2 questions"."""
     return none if count == 0 else one if count == 1 else many
-
-
-def _steps(count: int, lang: str) -> str:
-    """How many steps, in words: "1 step", "3 steps"."""
-    return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
 
 
 def _reproduced_text(reproduced: int, total: int) -> m.Text:

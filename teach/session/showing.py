@@ -164,3 +164,8 @@ class Showing:
         first, last = back.taken.first, len(self.record.open.steps)
         return (m.REDONE_ONE_STEP if last == first else m.REDONE_STEPS)(
             self.lang, first=first, last=last, steps="; ".join(back.taken.words))
+
+
+def steps_said(count: int, lang: str) -> str:
+    """How many steps, in words: "1 step", "3 steps"."""
+    return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
