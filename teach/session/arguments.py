@@ -10,6 +10,7 @@ from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
 from teach.domain import Domain
 from teach.errors import TeachError
+from teach.messages import Lang
 
 _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
@@ -21,7 +22,7 @@ def says_full(text: str) -> bool:
     return normalize(text) in _FULL_WORDS
 
 
-def whole_number(text: str, lang: str) -> int | None:
+def whole_number(text: str, lang: Lang) -> int | None:
     """An optional whole number argument ("run 3", "reset 7")."""
     if not text.strip():
         return None
@@ -34,13 +35,13 @@ def whole_number(text: str, lang: str) -> int | None:
     return value
 
 
-def step_number(text: str, lang: str) -> int | None:
+def step_number(text: str, lang: Lang) -> int | None:
     """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
     words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
     return whole_number(" ".join(words), lang)
 
 
-def condition_names(domain: Domain, text: str, lang: str) -> list[str]:
+def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
     """The conditions a teacher names, as labels in either language ("the bin is within reach,
     ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
     names: list[str] = []
@@ -64,7 +65,7 @@ def condition_named(domain: Domain, text: str) -> str | None:
     return None
 
 
-def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: str, topic: str | None) -> str:
+def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic: str | None) -> str:
     """The action or condition ``why`` asks about: its label, its name in any case, or any
     words the prompt would take as that one step ("grab it", a typo; "it" is ``topic``), also a
     verb alone ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""

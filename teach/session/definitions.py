@@ -18,6 +18,7 @@ from teach.dialogue.phrases import normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import Domain
 from teach.errors import TeachError
+from teach.messages import Lang
 from teach.session.commands import SKIP_WORDS
 from teach.session.journal import Asked, Event, ModelAnswered, ModelLoaded
 from teach.session.learning import Learning
@@ -28,7 +29,7 @@ from teach.session.replies import Reply, ReplyKind
 class Definitions:
     """The loaded definitions, the tree planned from them and the repair question open now."""
 
-    def __init__(self, record: SessionRecord, learning: Learning, budget: Callable[[], QuestionBudget], lang: str,
+    def __init__(self, record: SessionRecord, learning: Learning, budget: Callable[[], QuestionBudget], lang: Lang,
                  tree_reply: Callable[[Node], Reply]):
         self.record, self.learning, self.budget, self.lang = record, learning, budget, lang
         self.tree_reply = tree_reply

@@ -35,6 +35,7 @@ from teach.dialogue.phrases import (
 from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget, describe_situation
 from teach.domain import Domain, State
 from teach.errors import FormatError, LearnError, TeachError
+from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
 from teach.session import running
@@ -99,7 +100,7 @@ class SessionManager:
         self.settings = settings
         self.world = world
         self.observer = observer or Observer()
-        self.lang = settings.lang
+        self.lang = Lang.parse(settings.lang)
         self.vocabulary = Vocabulary(domain, world.events)
         journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang, settings.questions,
                                      settings.world, settings.seed, guess=not settings.safe)

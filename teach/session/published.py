@@ -12,6 +12,7 @@ from enum import StrEnum
 from pathlib import Path
 
 from teach.domain import Domain
+from teach.messages import Lang
 
 
 class Mode(StrEnum):
@@ -28,7 +29,7 @@ class SessionView:
     """The session as its drivers see it now."""
 
     mode: Mode
-    lang: str
+    lang: Lang
     domain: Domain
     """The domain taught in (with the actions guiding added)."""
     phrases: tuple[str, ...]

@@ -8,6 +8,7 @@ from teach.demos import Demonstration
 from teach.dialogue.questions import describe_situation
 from teach.domain import Domain
 from teach.errors import TeachError
+from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
@@ -15,7 +16,7 @@ from teach.session.showing import steps_said
 from teach.world.protocol import TeachingWorld
 
 
-def restore_situation(record: SessionRecord, world: TeachingWorld, domain: Domain, lang: str, exact: bool,
+def restore_situation(record: SessionRecord, world: TeachingWorld, domain: Domain, lang: Lang, exact: bool,
                       demos: list[Demonstration]) -> list[Reply]:
     """Set the world up as the journal last saw it with no demonstration open, and say so. A
     'reset N' is made again exactly; otherwise the conditions are arranged (``exact``: that puts
@@ -38,7 +39,7 @@ def restore_situation(record: SessionRecord, world: TeachingWorld, domain: Domai
     return [Reply(ReplyKind.INFO, (m.SITUATION_RESTORED if exact else m.SITUATION_RESTORED_ANEW)(lang))]
 
 
-def restore_open(record: SessionRecord, world: TeachingWorld, domain: Domain, lang: str) -> list[Reply] | None:
+def restore_open(record: SessionRecord, world: TeachingWorld, domain: Domain, lang: Lang) -> list[Reply] | None:
     """Reopen the demonstration that was open when the session ended; a run the session ended
     in becomes the correction its finished steps begin, the world set up before the action it
     had begun. None: nothing was open, or the world cannot be put back there."""

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from teach import messages as m
 from teach.domain import State
 from teach.errors import TeachError
+from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
@@ -39,7 +40,7 @@ class Showing:
     """The demonstration being shown: opened by its first step, each step said and journalled."""
 
     def __init__(self, record: SessionRecord, turn: Turn, world: TeachingWorld, vocabulary: Vocabulary,
-                 lang: str):
+                 lang: Lang):
         self.record, self.turn, self.world, self.vocabulary = record, turn, world, vocabulary
         self.lang = lang
         self._taken_back: _StepsTakenBack | None = None
@@ -166,6 +167,6 @@ class Showing:
             self.lang, first=first, last=last, steps="; ".join(back.taken.words))
 
 
-def steps_said(count: int, lang: str) -> str:
+def steps_said(count: int, lang: Lang) -> str:
     """How many steps, in words: "1 step", "3 steps"."""
     return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
