@@ -6,7 +6,14 @@ tree that the teacher can interrupt and correct. Every driver (the terminal, scr
 bench-teach) feeds lines to ``handle(line, interrupt)``, which returns every reply of that line
 in order. A driver that shows replies while a line is still being handled (steps as they
 happen, run progress) sets ``live``: it then sees each of those same replies once, as it is
-produced. Files are read and written only through the ``SessionStore``.
+produced; between lines it reads ``view()``. Files are read and written only through the
+``SessionStore``.
+
+The machine keeps dispatch, the commands, the situation questions and the learning results;
+the state it shares is owned by the pieces it composes, which guiding and the hand follower
+get instead of the machine: the session record (journal, store, open demonstration: the one
+place that journals), the turn (the replies of one line) and ``Showing`` (the open
+demonstration in words).
 """
 
 from __future__ import annotations
@@ -92,6 +99,8 @@ if TYPE_CHECKING:
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
+
+
 class SessionManager:
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
