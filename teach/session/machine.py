@@ -9,11 +9,11 @@ happen, run progress) sets ``live``: it then sees each of those same replies onc
 produced; between lines it reads ``view()``. Files are read and written only through the
 ``SessionStore``.
 
-The machine keeps dispatch, the commands, the situation questions and the learning results;
-the state it shares is owned by the pieces it composes, which guiding and the hand follower
-get instead of the machine: the session record (journal, store, open demonstration: the one
-place that journals), the turn (the replies of one line) and ``Showing`` (the open
-demonstration in words).
+The machine keeps dispatch, the commands and the learning results; the state it shares is
+owned by the pieces it composes, which guiding and the hand follower get instead of the
+machine: the session record (journal, store, open demonstration: the one place that
+journals), the turn (the replies of one line) and ``Showing`` (the open demonstration in
+words); ``Asking`` holds the situation questions, ``Definitions`` the action definitions.
 """
 
 from __future__ import annotations
@@ -37,9 +37,8 @@ from teach.dialogue.phrases import (
     command_hint,
     is_no,
     is_yes,
-    normalize,
 )
-from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget, describe_situation
+from teach.dialogue.questions import Question, QuestionBudget, describe_situation
 from teach.domain import Domain, State
 from teach.errors import FormatError, LearnError, TeachError
 from teach.messages import Lang
@@ -47,15 +46,13 @@ from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
 from teach.session import running
 from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
+from teach.session.asking import Asking
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
     COMMAND_WORDS,
     COMMANDS,
-    DONE_WORDS,
-    IMPOSSIBLE_WORDS,
     LOOKING,
-    SKIP_WORDS,
     Command,
     Verb,
     parse_command,
@@ -65,7 +62,6 @@ from teach.session.describe import unmet_goal, why_refused
 from teach.session.guiding import Guiding
 from teach.session.journal import (
     Answered,
-    Asked,
     DemoLearned,
     Event,
     Journal,
@@ -79,7 +75,7 @@ from teach.session.journal import (
     redoable,
     state_text,
 )
-from teach.session.learning import DONE_ABOUT, Learning
+from teach.session.learning import Learning
 from teach.session.published import Mode, SessionView
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
@@ -91,15 +87,10 @@ from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
-from teach.symbolic import missing_preconditions
 from teach.world.protocol import TeachingWorld
 
 if TYPE_CHECKING:
     from teach.dialogue.model_repair import ModelQuestion
-
-QUESTIONS_PER_TURN = 2
-MIN_DEMOS_BEFORE_ASKING = 2
-
 
 class SessionManager:
     """One teaching session. Not thread-safe: one driver feeds it lines."""
@@ -118,8 +109,8 @@ class SessionManager:
         self.turn = Turn(self.observer, lambda: self.budget.left)
         self.showing = Showing(self.record, self.turn, world, self.vocabulary, self.lang)
         self.learning = Learning(domain, self.store, self.observer, settings.safe)
-        self.budget = QuestionBudget(settings.questions)
-        self.pending: Question | None = None
+        self.asking = Asking(self.record, self.learning, self.vocabulary, self.turn, self.lang, world.state,
+                             settings.seed, settings.questions, lambda started: self._after_learning(True, started))
         self.definitions = Definitions(self.record, self.learning, lambda: self.budget, self.lang, self._tree_reply)
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
@@ -129,7 +120,6 @@ class SessionManager:
         """The step at which quitting with an open demonstration was warned about."""
         self.step = 0
         self._interrupt: Callable[[], bool] | None = None
-        self._turn_questions = 0
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self.store.prepare(domain)
         self.observer.on_domain(domain)
@@ -202,6 +192,16 @@ class SessionManager:
         if self.open is not None and len(self.open.steps) > self.open.robot_steps:
             return None  # the teacher is showing something: finish or cancel it first
         return self.learning.tree if self.learning.has_behaviour else self.planned
+
+    @property
+    def budget(self) -> QuestionBudget:
+        """The situation and definition questions left (the labelling questions have their own)."""
+        return self.asking.budget
+
+    @property
+    def pending(self) -> Question | None:
+        """The situation question waiting for its answer."""
+        return self.asking.pending
 
     @property
     def pending_model(self) -> ModelQuestion | None:
@@ -302,7 +302,7 @@ class SessionManager:
                     return self._act(tokens)
                 if len(tokens) != 1 or tokens[0].kind != "action":
                     return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-                return self.apply_answer(tokens[0].name, tokens[0].text)
+                return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         line = command_hint(line, self.lang, COMMAND_WORDS) or line
@@ -315,10 +315,10 @@ class SessionManager:
         if self.pending_model is not None and answering:
             return self.definitions.answer(line)
         if self.pending is not None and answering:
-            return self._answer(line)
+            return self.asking.answer(line)
         if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
-        self._turn_questions = 0
+        self.asking.in_a_row = 0
         if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if command is None:
@@ -387,7 +387,7 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
-        self.pending = self.definitions.pending = None  # a question stays paid for, but it is about what is undone
+        self.asking.pending = self.definitions.pending = None  # paid for, but about what is undone
         self.record.add(Undone())
         self.store.retire_undone(self.journal)
         self._rebuild_from_journal()
@@ -442,7 +442,7 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         told = running.run(tree, self.showing, self.observer, whole_number(rest, self.lang), self._interrupt)
         replies = told.replies + ([self._state_reply()] if told.state_line else [])
-        return replies + (self._ask_after_run() if told.ask else [])
+        return replies + (self.asking.ask_after_run() if told.ask else [])
 
     def cmd_stop(self, rest: str) -> list[Reply]:
         return [Reply(ReplyKind.INFO, m.NOT_RUNNING(self.lang))]
@@ -479,8 +479,8 @@ class SessionManager:
     def cmd_ask(self, rest: str) -> list[Reply]:
         if self.definitions.unusable:
             return self.definitions.ask()
-        replies = self._maybe_ask(force=True)
-        return replies or [Reply(ReplyKind.INFO, self._no_question_text())]
+        replies = self.asking.maybe_ask(len(self.demos), force=True)
+        return replies or [Reply(ReplyKind.INFO, self.asking.none_text())]
 
     def cmd_skip(self, rest: str) -> list[Reply]:
         return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
@@ -598,122 +598,6 @@ class SessionManager:
 
     # --- questions --------------------------------------------------------------------------
 
-    def _maybe_ask(self, force: bool = False) -> list[Reply]:
-        """Ask the best question if the budget allows; unforced, at most QUESTIONS_PER_TURN in a row."""
-        if self.pending is not None:
-            return []
-        if not force and (len(self.demos) < MIN_DEMOS_BEFORE_ASKING or self._turn_questions >= QUESTIONS_PER_TURN):
-            return []
-        question = self.next_question()
-        return [] if question is None or not self._affordable(question.state) else self._ask(question)
-
-    def _ask_after_run(self) -> list[Reply]:
-        """A run that ended "done" with the goal unmet, or doing nothing: the situation it ended
-        in is the most useful question there is, so it is asked at once while questions are left."""
-        state = self.world.state()
-        if not self.learning.has_behaviour:  # a tree planned from action definitions: their questions come from 'model'
-            return []
-        if self.pending is not None or state in self.learning.asked or not self._affordable(state):
-            return []
-        return self._ask(self.learning.question_where_stuck(state) or Question(state, 1.0))
-
-    def _affordable(self, state: State) -> bool:
-        """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""
-        return self.budget.left > 0 or state_text(state) in self.record.charged()
-
-    def _ask(self, question: Question) -> list[Reply]:
-        """Ask ``question``: paid for once per situation, even if an undo made it open again."""
-        if state_text(question.state) not in self.record.charged():
-            self.budget.spend()
-        self._turn_questions += 1
-        self.pending = question
-        self.learning.asked.add(question.state)
-        self.record.add(Asked(state=state_text(question.state)))
-        return [self._question_reply(question)]
-
-    def _question_reply(self, question: Question) -> Reply:
-        text = question.text(self.domain, self.lang)
-        self.observer.on_question(text, self.budget.left)
-        yes = [m.YES_WORD(self.lang)] if question.kind in MUST_KINDS else []
-        options = " / ".join(yes + [a.label(self.lang) for a in self.domain.actions] +
-                             [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
-        return Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")
-
-    def next_question(self) -> Question | None:
-        return self.learning.next_question(self.settings.seed)
-
-    def _answer(self, line: str) -> list[Reply]:
-        question = self.pending
-        assert question is not None
-        key = normalize(line)
-        if key in SKIP_WORDS:
-            self.pending = None
-            text = question.text(self.domain, self.lang)
-            self.record.add(Answered(state_text(question.state), "skip", text))
-            self.observer.on_answer(text, line, "nothing (skipped)")
-            return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
-        if key in IMPOSSIBLE_WORDS:
-            return self._cannot_happen(question)
-        yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
-        if question.kind in MUST_KINDS and is_no(line, self.lang):
-            return [Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]  # the question stays open
-        if key in DONE_WORDS or (yes and question.action is None):
-            unmet = unmet_goal(self.domain, question.state, self.lang)
-            if unmet:  # the question stays open and is not paid for again
-                return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
-                        self._question_reply(question)]
-            answer: str | None = None
-        else:
-            if yes:
-                answer = question.action
-            else:
-                tokens = [t for t in self.phrases.parse(line, self.lang) if t.kind == "action"]
-                if len(tokens) != 1:
-                    return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-                answer = tokens[0].name
-            assert answer is not None
-            if missing_preconditions(self.domain, question.state, answer):
-                # as for 'done': an answer the domain file shows cannot work there is not learned
-                label = self.domain.action(answer).label(self.lang)
-                reason = why_not(self.domain, answer, question.state, self.lang)
-                return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)),
-                        self._question_reply(question)]
-        return self.apply_answer(answer, line)
-
-    def _cannot_happen(self, question: Question) -> list[Reply]:
-        """The asked-about situation cannot happen: journalled, never asked again, and not paid for."""
-        self.pending = None
-        text = question.text(self.domain, self.lang)
-        self.record.add(Answered(state_text(question.state), IMPOSSIBLE, text))
-        self.learning.rule_out(question.state, f"answer to question {self.budget.used}")
-        self.budget.used -= 1
-        self.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
-        return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang))]
-
-    def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
-        """Learn from the answer to the pending question (None: the task is done there)."""
-        question = self.pending
-        assert question is not None
-        started = time.perf_counter()
-        text = question.text(self.domain, self.lang)
-        source = f"answer to question {self.budget.used}"
-        self.pending = None
-        try:
-            update = self.learning.learn_answer(question.state, answer, source, _asked_about(question))
-        except LearnError as error:
-            return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
-                    Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
-        change = self.learning.describe(update, self.lang)
-        # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
-        self.record.add(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
-        self.observer.on_answer(text, said, change)
-        self.learning.report("answer", update, self.lang)
-        head = self.turn.say([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
-        return head + self._after_learning(ask=True, started=started)
-
-    def _no_question_text(self) -> str:
-        return (m.ALL_QUESTIONS_USED if self.budget.left <= 0 else m.NO_QUESTION_NOW)(self.lang)
-
     # --- learning results -------------------------------------------------------------------
 
     def _after_learning(self, ask: bool, started: float | None = None,
@@ -738,7 +622,7 @@ class SessionManager:
             reproduced=report.reproduced, total=report.total)
         replies = self.turn.say([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
         if ask:
-            replies += self._maybe_ask()
+            replies += self.asking.maybe_ask(len(self.demos))
         return replies
 
     # --- the journal: undo and resume -------------------------------------------------------
@@ -759,9 +643,7 @@ class SessionManager:
     def _replay_journal(self) -> None:
         self.learning.restart()
         self.definitions.restart()
-        # every question asked stays paid for, even when what it was about is undone
-        asked = sum(not e.state for e in self.journal.events if isinstance(e, Asked))  # action definitions' questions
-        self.budget = QuestionBudget(self.settings.questions, len(self.record.charged()) + asked)
+        self.asking.rebuilt(self.settings.questions)
         answered = 0
         for event in effective_events(self.journal.events):
             if isinstance(event, DemoLearned):
@@ -848,10 +730,3 @@ def _reproduced_text(reproduced: int, total: int) -> m.Text:
     if total == 1:
         return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
     return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
-
-
-def _asked_about(question: Question) -> str | None:
-    """What a "may I still …?" or "is the task done?" question asked about (None: a plain one)."""
-    if question.kind == "must-goal":
-        return DONE_ABOUT
-    return question.action if question.kind == "must-precondition" else None
