@@ -80,7 +80,6 @@ from teach.session.published import Mode, SessionView
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
 from teach.session.resumed import restore_open, restore_situation
-from teach.session.run_report import why_not
 from teach.session.settings import Settings, WorldKind
 from teach.session.showing import Showing, steps_said
 from teach.session.store import SessionStore
@@ -527,41 +526,7 @@ class SessionManager:
     def _act(self, tokens: list[Token]) -> list[Reply]:
         """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
         self.topic = self.phrases.topic(tokens) or self.topic
-        replies: list[Reply] = []
-        for index, token in enumerate(tokens):
-            if token.kind == "event":
-                result = self.world.perturb(token.name)
-                self.showing.external(result.before, token.text)
-                self.observer.on_external(token.name)
-                self.record.save_open()
-                replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
-                continue
-            result = self.world.act(token.name)
-            label = self.domain.action(token.name).label(self.lang)
-            if not result.ok:
-                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label,
-                                                                  reason=why_not(self.domain, token.name, result.before,
-                                                                                 self.lang))))
-                if self.facilitator and result.message:  # the world's own words are for the facilitator
-                    replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
-                break
-            if result.events:  # the world stopped it: the rest of the line no longer fits
-                replies += self.turn.say(self.showing.halted(token.name, result) + self._not_done(tokens[index + 1:]))
-                break
-            if result.after == result.before:
-                # a step that changes nothing would teach two different actions in one state
-                replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
-                continue
-            self.showing.step(result.before, token.name, label)
-            replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
-        replies.append(self._state_reply())
-        return replies
-
-    def _not_done(self, tokens: list[Token]) -> list[Reply]:
-        if not tokens:
-            return []
-        words = [t.text if t.kind == "event" else self.domain.action(t.name).label(self.lang) for t in tokens]
-        return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
+        return self.showing.act(tokens, self.facilitator) + [self._state_reply()]
 
     def _finish_demo(self, goal: State) -> list[Reply]:
         """The open demonstration ends in ``goal`` (where the goal holds): learned and written."""

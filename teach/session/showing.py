@@ -12,12 +12,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from teach import messages as m
+from teach.dialogue.phrases import Token
 from teach.domain import State
 from teach.errors import TeachError
 from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
+from teach.session.run_report import why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -102,6 +104,47 @@ class Showing:
         replies += [self.event_reply(event) for event in result.events]
         self.record.save_open()  # on disk before the teacher sees the event
         return replies
+
+    def act(self, tokens: list[Token], facilitator: bool) -> list[Reply]:
+        """Do the parsed steps in the world, each recorded in the open demonstration (opened by
+        the first that happens) and said as it happens; one that cannot be done ends the line
+        (``facilitator``: with the world's own words why)."""
+        domain = self.vocabulary.domain
+        replies: list[Reply] = []
+        for index, token in enumerate(tokens):
+            if token.kind == "event":
+                result = self.world.perturb(token.name)
+                self.external(result.before, token.text)
+                self.record.observer.on_external(token.name)
+                self.record.save_open()
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
+                continue
+            result = self.world.act(token.name)
+            label = domain.action(token.name).label(self.lang)
+            if not result.ok:
+                reason = why_not(domain, token.name, result.before, self.lang)
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
+                if facilitator and result.message:  # the world's own words are for the facilitator
+                    replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
+                break
+            if result.events:  # the world stopped it: the rest of the line no longer fits
+                replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
+                break
+            if result.after == result.before:
+                # a step that changes nothing would teach two different actions in one state
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
+                continue
+            self.step(result.before, token.name, label)
+            replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
+        return replies
+
+    def _not_done(self, tokens: list[Token]) -> list[Reply]:
+        """The rest of a line the world stopped, said as not done."""
+        if not tokens:
+            return []
+        domain = self.vocabulary.domain
+        words = [t.text if t.kind == "event" else domain.action(t.name).label(self.lang) for t in tokens]
+        return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
     def from_run(self, result: RunResult) -> None:
         """What a run that did not finish did (and the world's events in it, a slip) opens the
