@@ -9,6 +9,28 @@ from __future__ import annotations
 
 import string
 from dataclasses import dataclass
+from enum import StrEnum
+from pathlib import Path
+
+from teach.errors import FormatError
+
+
+class Lang(StrEnum):
+    """The languages the session speaks. A ``StrEnum``: ``Lang.DE == "de"``, so a language read
+    as a string anywhere still compares equal; it is parsed once where it enters (the command
+    line's settings, a dialogue's ``@lang``, a journal's header), so an unknown one is an error."""
+
+    EN = "en"
+    DE = "de"
+
+    @classmethod
+    def parse(cls, text: str, path: str | Path | None = None, line: int | None = None) -> Lang:
+        """``text`` as a language, or one line naming the file (and line) it came from."""
+        try:
+            return cls(text)
+        except ValueError:
+            known = ", ".join(cls)
+            raise FormatError(f"unknown language {str(text)[:40]!r} (known: {known})", path, line) from None
 
 
 @dataclass(frozen=True)
@@ -17,11 +39,12 @@ class Text:
     de: str
 
     def __call__(self, lang: str, **fields: object) -> str:
-        return (self.de if lang == "de" else self.en).format(**fields)
+        """The text in ``lang`` (a ``Lang``; a plain "en"/"de" from outside the session works too)."""
+        return (self.de if lang == Lang.DE else self.en).format(**fields)
 
-    def fields(self, lang: str) -> set[str]:
+    def fields(self, lang: Lang) -> set[str]:
         """The ``{name}`` fields the text in ``lang`` fills in."""
-        text = self.de if lang == "de" else self.en
+        text = self.de if lang == Lang.DE else self.en
         return {name for _, name, _, _ in string.Formatter().parse(text) if name}
 
 

@@ -116,9 +116,12 @@ class BtcppRun:
             time.sleep(0.0005)
         self.counts.append(self._records())
 
-    def tick(self, expected_records: int) -> Status:
+    def tick(self, expected_records: int | None) -> Status:
+        """One tick; then wait for its records (None: do not wait, the ticks' records are only
+        counted together, once the tree is halted)."""
         status = FROM_BTCPP[self.tree.tick_exactly_once()]
-        self.wait_for(expected_records)
+        if expected_records is not None:
+            self.wait_for(expected_records)
         return status
 
     def halt(self, expected_records: int) -> None:

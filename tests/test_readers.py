@@ -102,7 +102,7 @@ def test_the_usual_ids_still_read(ball: Domain) -> None:
 
 
 @pytest.mark.parametrize(("setting", "words"), [
-    ("@lang fr", "@lang must be one of en, de"),
+    ("@lang fr", "unknown language 'fr' (known: en, de)"),
     ("@world mars", "@world must be one of mujoco, symbolic, offline"),
     ("@questions -1", "0 or more"),
     ("@questions +3", "written in digits"),

@@ -269,14 +269,14 @@ def test_resume_keeps_the_sessions_language(ball, tmp_path, capsys):
 def test_another_order_is_learned_not_refused(ball, tmp_path):
     """People correct the robot in another order than before: that is a demonstration like any
     other (the thesis's topological order refused it)."""
-    from teach.demos import Step, parse_demonstration
-    from teach.session.machine import _OpenDemo
+    from teach.demos import parse_demonstration
+    from teach.open_demonstration import OpenDemonstration
 
     session = new_session(ball, tmp_path, lang="de")
     session.import_demonstrations([parse_demonstration("0;0;0;0;0;1\n1;0;0;0;0;2\n1;1;0;0;0;3\n1;1;1;0;0;4\n"
                                                        "1;1;1;1;0;5\n1;1;1;1;1;0\n", ball, "a.csv")])
     # from the same start the teacher now goes to the bin before finding the ball
-    session.open = _OpenDemo([Step(ball.state([]), 4, 1)])
+    session.open = OpenDemonstration.from_steps([(ball.state([]), 4, "")])
     session.world.arrange(ball.state(["BinClose"]))
     session.handle("Ball finden, zum Ball gehen, Ball greifen, Ball in den Eimer legen")
     replies = session.handle("fertig")
@@ -322,7 +322,7 @@ def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys)
     assert answered and all(q["literal"] == "" for q in answered)
     resumed = SessionManager.resume(Settings("participant6", lang="de", world=WorldKind.SYMBOLIC, base=tmp_path,
                                              record=False), ball, SymbolicWorld(ball))
-    assert resumed.model_repair is not None and resumed.model_repair.asked  # the answers were applied again
+    assert resumed.definitions.repair is not None and resumed.definitions.repair.asked  # the answers were applied again
 
 
 # --- the careless teacher (issue 11) ---------------------------------------------------------------

@@ -47,7 +47,7 @@ from teach.learn.model_gaps import (
     reachable,
     requires,
 )
-from teach.messages import Text
+from teach.messages import Lang, Text
 
 
 class QuestionKind(StrEnum):
@@ -85,12 +85,12 @@ _SHOWN: dict[str, Text] = {  # how an answer word is offered
 _LIST_SPLIT = re.compile(r"\s*(?:[,;]|\band\b|\bund\b)\s*", re.IGNORECASE)
 
 
-def _q(text: str, lang: str) -> str:
+def _q(text: str, lang: Lang) -> str:
     """A label in the language's quotation marks."""
     return m.QUOTED(lang, text=text)
 
 
-def _literal_label(domain: Domain, literal: Literal, lang: str) -> str:
+def _literal_label(domain: Domain, literal: Literal, lang: Lang) -> str:
     return domain.condition(literal.name).label(lang, literal.value)
 
 
@@ -122,7 +122,7 @@ class ModelQuestion:
         return cls(QuestionKind(data["kind"]), data.get("action", ""), Literal.parse(literal) if literal else None,
                    data.get("other", ""))
 
-    def text(self, domain: Domain, lang: str = "en") -> str:
+    def text(self, domain: Domain, lang: Lang = Lang.EN) -> str:
         """The question in plain words from the domain's labels, with the expected answers."""
         act = _q(domain.action(self.action).label(lang), lang) if self.action else ""
         cond = _q(_literal_label(domain, self.literal, lang), lang) if self.literal is not None else ""
@@ -217,12 +217,12 @@ def _word(answer: str, kinds: Sequence[str]) -> str | None:
     return None
 
 
-def _unknown(answer: str, offered: Sequence[str], lang: str) -> UnknownPhrase:
+def _unknown(answer: str, offered: Sequence[str], lang: Lang) -> UnknownPhrase:
     close = difflib.get_close_matches(answer.strip().lower(), offered, n=1, cutoff=0.0)
     return UnknownPhrase(answer.strip(), close or list(offered[:1]), lang)
 
 
-def _offered(kinds: Sequence[str], lang: str) -> list[str]:
+def _offered(kinds: Sequence[str], lang: Lang) -> list[str]:
     return [_SHOWN[k](lang) for k in kinds]
 
 
@@ -248,7 +248,7 @@ class _Conditions:
         if key:
             self._map.setdefault(key, literal)
 
-    def parse(self, text: str, lang: str) -> list[Literal]:
+    def parse(self, text: str, lang: Lang) -> list[Literal]:
         """All conditions in an answer like "the ball is in the bin and the ball is not in my hand"."""
         whole = self._one(text)
         if whole is not None:
@@ -275,7 +275,7 @@ class _Conditions:
             return self._map[close[0]]  # a clear typo
         return None
 
-    def pretty(self, literal: Literal, lang: str) -> str:
+    def pretty(self, literal: Literal, lang: Lang) -> str:
         for label in self._shown[lang]:
             if self._map.get(normalize(label)) == literal:
                 return label
@@ -291,7 +291,7 @@ class ModelRepair:
     the model by the answer. Only ``ask`` spends the budget, and it never asks beyond it."""
 
     def __init__(self, model: Domain, budget: QuestionBudget, goal: Sequence[Literal] | None = None,
-                 true_model: Domain | None = None, lang: str = "en"):
+                 true_model: Domain | None = None, lang: Lang = Lang.EN):
         self.model = model
         self.budget = budget
         self.goal = tuple(model.goal if goal is None else goal)
@@ -324,7 +324,7 @@ class ModelRepair:
             self.asked.append(question)
         return question
 
-    def text(self, question: ModelQuestion, lang: str | None = None) -> str:
+    def text(self, question: ModelQuestion, lang: Lang | None = None) -> str:
         return question.text(self.model, lang or self.lang)
 
     def apply(self, question: ModelQuestion, answer: str) -> str:
@@ -475,7 +475,7 @@ class ModelOracle:
     def __init__(self, true_domain: Domain):
         self.true_domain = true_domain
 
-    def answer(self, question: ModelQuestion, lang: str = "en") -> str:
+    def answer(self, question: ModelQuestion, lang: Lang = Lang.EN) -> str:
         true = self.true_domain
         if question.kind is QuestionKind.TIMING:
             action, literal = true.action(question.action), question.literal
@@ -505,7 +505,7 @@ class ModelOracle:
         raise ValueError(f"unknown question kind {question.kind!r}")
 
 
-def repair(model_domain: Domain, budget: QuestionBudget, oracle: ModelOracle, lang: str = "en") -> RepairReport:
+def repair(model_domain: Domain, budget: QuestionBudget, oracle: ModelOracle, lang: Lang = Lang.EN) -> RepairReport:
     """Ask and apply until the model is usable, the budget is spent or nothing is left to ask."""
     session = ModelRepair(model_domain, budget, true_model=oracle.true_domain, lang=lang)
     before = session.plan()

@@ -25,6 +25,7 @@ from itertools import pairwise
 
 from teach.domain import Domain
 from teach.errors import TeachError
+from teach.messages import Lang
 
 MAX_LINE_CHARS = 500  # longer lines are refused: nobody types that much at once
 _SHOWN_CHARS = 60  # an unknown part is quoted at most this long
@@ -91,14 +92,14 @@ class Suggestion:
     candidate: Token  # what I guess they meant
     before: tuple[Token, ...]  # what the line said before them, understood
     rest: str  # what follows them, not read yet
-    lang: str
+    lang: Lang
     perturb: bool = False
     topic: str | None = None  # the object named last before them
 
     def question(self) -> str:
         """The whole reading so far with the guess at its end: a yes confirms what was shown, all of it."""
         reading = ", ".join(t.text for t in (*self.before, self.candidate))
-        if self.lang == "de":
+        if self.lang == Lang.DE:
             return f"Meintest du „{reading}“?"
         return f"Did you mean “{reading}”?"
 
@@ -107,15 +108,15 @@ class UnknownPhrase(TeachError):
     """A part of the input matched nothing for sure; ``suggestions`` are the closest known phrases,
     ``suggestion`` (when there is one) the structured first of them, ready to be confirmed."""
 
-    def __init__(self, text: str, suggestions: list[str], lang: str = "en", suggestion: Suggestion | None = None):
+    def __init__(self, text: str, suggestions: list[str], lang: Lang = Lang.EN, suggestion: Suggestion | None = None):
         self.text = text
         self.suggestion = suggestion
         self.suggestions = [suggestion.candidate.text] + suggestions if suggestion is not None else suggestions
         shown = _shorten(text)
         if suggestion is not None:
             hint = " " + suggestion.question()
-            message = f"Das kenne ich nicht: „{shown}“.{hint}" if lang == "de" else f"I don't know “{shown}”.{hint}"
-        elif lang == "de":
+            message = f"Das kenne ich nicht: „{shown}“.{hint}" if lang == Lang.DE else f"I don't know “{shown}”.{hint}"
+        elif lang == Lang.DE:
             hint = f" Meintest du „{self.suggestions[0]}“?" if self.suggestions else ""
             message = f"Das kenne ich nicht: „{shown}“.{hint}"
         else:
@@ -127,8 +128,8 @@ class UnknownPhrase(TeachError):
 class LineTooLong(TeachError):
     """A line longer than ``MAX_LINE_CHARS``: refused in one short sentence, never echoed."""
 
-    def __init__(self, length: int, lang: str = "en"):
-        if lang == "de":
+    def __init__(self, length: int, lang: Lang = Lang.EN):
+        if lang == Lang.DE:
             message = (f"Die Zeile ist zu lang ({length} Zeichen, höchstens {MAX_LINE_CHARS}). "
                        "Bitte schreib einen Schritt nach dem anderen.")
         else:
@@ -137,7 +138,7 @@ class LineTooLong(TeachError):
         super().__init__(message)
 
 
-def check_length(line: str, lang: str = "en") -> None:
+def check_length(line: str, lang: Lang = Lang.EN) -> None:
     """Raise ``LineTooLong`` for a line nobody could have meant as one instruction."""
     if len(line) > MAX_LINE_CHARS:
         raise LineTooLong(len(line), lang)
@@ -179,24 +180,24 @@ def _says(text: str, words: set[str]) -> bool:
     return key in words or (key != "" and all(w in words for w in key.split()))
 
 
-def _answer_sets(table: dict[str, set[str]], lang: str) -> set[str]:
+def _answer_sets(table: dict[str, set[str]], lang: Lang) -> set[str]:
     """The session language's words, and English ones in any language (many people say "ok", "no")."""
     return table.get(lang, set()) | table["en"]
 
 
-def is_yes(text: str, lang: str = "en") -> bool:
+def is_yes(text: str, lang: Lang = Lang.EN) -> bool:
     """Whether a reply to "Did you mean …?" says yes; an empty reply (Enter) does."""
     if not text.strip():
         return True
     return _says(text, _answer_sets(_YES, lang))
 
 
-def is_no(text: str, lang: str = "en") -> bool:
+def is_no(text: str, lang: Lang = Lang.EN) -> bool:
     """Whether a reply to "Did you mean …?" says no."""
     return _says(text, _answer_sets(_NO, lang))
 
 
-def command_hint(line: str, lang: str, commands: Iterable[str]) -> str | None:
+def command_hint(line: str, lang: Lang, commands: Iterable[str]) -> str | None:
     """The command a conversational line amounts to, as the line to handle instead, or None.
 
     ``commands`` are the session's command words (compared after ``normalize``). "ok done",
@@ -206,7 +207,7 @@ def command_hint(line: str, lang: str, commands: Iterable[str]) -> str | None:
     check_length(line, lang)
     names = {normalize(c) for c in commands}
     if _HELP_MARKS.match(line.strip()):
-        for word in (("hilfe", "help") if lang == "de" else ("help", "hilfe")):
+        for word in (("hilfe", "help") if lang == Lang.DE else ("help", "hilfe")):
             if word in names:
                 return word
         return None
@@ -233,7 +234,7 @@ class _Entry:
     kind: str
     name: str
     phrase: str
-    lang: str  # "" for an internal name
+    lang: Lang | None  # None for an internal name
 
 
 @dataclass(frozen=True, slots=True)
@@ -264,7 +265,7 @@ class PhraseBook:
 
     def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...]) -> None:
         spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", name)  # FindBall → "Find Ball"
-        for lang, phrases in (("en", english), ("de", german)):
+        for lang, phrases in ((Lang.EN, english), (Lang.DE, german)):
             if phrases:
                 self._labels.setdefault((name, lang), phrases[0])
             for phrase in phrases:
@@ -272,7 +273,7 @@ class PhraseBook:
                 self._note_nouns(phrase)
                 self._display[lang].setdefault(phrase, name)
         for internal in (name, spelled):
-            self._enter(_Entry(kind, name, internal, ""))
+            self._enter(_Entry(kind, name, internal, None))
 
     def _enter(self, entry: _Entry) -> None:
         """The first phrase of each kind keeps a key: an action and an event may share one."""
@@ -288,7 +289,7 @@ class PhraseBook:
             if article in _ARTICLES and noun not in _IGNORED | _ARTICLES | _PRONOUNS and noun not in self._nouns:
                 self._nouns.append(noun)
 
-    def phrases(self, lang: str = "en") -> list[str]:
+    def phrases(self, lang: Lang = Lang.EN) -> list[str]:
         """Phrases shown for completion, in the given language."""
         return sorted(self._display[lang])
 
@@ -305,7 +306,7 @@ class PhraseBook:
 
     # --- parsing ------------------------------------------------------------------------------------
 
-    def parse(self, line: str, lang: str = "en", *, perturb: bool = False, topic: str | None = None) -> list[Token]:
+    def parse(self, line: str, lang: Lang = Lang.EN, *, perturb: bool = False, topic: str | None = None) -> list[Token]:
         """All actions and events in a line, in order.
 
         ``perturb``: the teacher said "perturb": every part names an event, typos tolerated.
@@ -329,7 +330,7 @@ class PhraseBook:
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
-    def _read(self, chunks: list[str], lang: str, perturb: bool, topic: str | None,
+    def _read(self, chunks: list[str], lang: Lang, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
             words = phrase_key(chunk)
@@ -423,7 +424,7 @@ class PhraseBook:
             return about_topic[0]
         return None, None
 
-    def _candidates(self, piece: _Piece, lang: str) -> tuple[Token, list[str]]:
+    def _candidates(self, piece: _Piece, lang: Lang) -> tuple[Token, list[str]]:
         """An ambiguous piece's readings: the first as a token, the others' texts."""
         seen: dict[str, Token] = {}
         for entry, _ in piece.options:
@@ -477,7 +478,7 @@ class PhraseBook:
             self._ranking = (said, sorted(scored, key=lambda pair: -pair[0]))
         return self._ranking[1]
 
-    def _clear_typo(self, chunk: str, words: tuple[str, ...], lang: str, perturb: bool) -> Token | None:
+    def _clear_typo(self, chunk: str, words: tuple[str, ...], lang: Lang, perturb: bool) -> Token | None:
         """The phrase a chunk is a clear typo of: close, and nothing else (another phrase of its
         kind, or any phrase of the other kind: events outside "perturb", actions in it) comes near."""
         said = " ".join(words)
@@ -490,7 +491,7 @@ class PhraseBook:
             return None
         return Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
 
-    def _unknown(self, chunk: str, words: tuple[str, ...], lang: str, perturb: bool, topic: str | None,
+    def _unknown(self, chunk: str, words: tuple[str, ...], lang: Lang, perturb: bool, topic: str | None,
                  tokens: list[Token], later: str) -> UnknownPhrase:
         """The error for a chunk read neither exactly nor as a clear typo, with the closest phrase
         as a confirmable suggestion. Outside "perturb" an event is offered only for a pronoun
@@ -513,7 +514,7 @@ class PhraseBook:
         candidate = Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
         return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
 
-    def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: str) -> bool:
+    def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: Lang) -> bool:
         """Whether ``entry`` is the one phrase ``said`` is near: a word of it is one the teacher
         typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"), and every phrase of another
         action or event in the session's language within ``_SUGGEST_MARGIN`` of it has fewer
@@ -523,7 +524,7 @@ class PhraseBook:
         if not shared:
             return False
         return all(self._shared(said, other.phrase) < shared for r, other in self._ranked(said)
-                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, ""))
+                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, None))
 
     @staticmethod
     def _shared(said: str, phrase: str) -> int:
@@ -531,7 +532,7 @@ class PhraseBook:
         theirs = [w for w in phrase_key(phrase) if w not in _ARTICLES]
         return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
 
-    def _text(self, entry: _Entry, lang: str) -> str:
+    def _text(self, entry: _Entry, lang: Lang) -> str:
         """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""
         if entry.lang == lang:
             return entry.phrase

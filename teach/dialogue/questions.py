@@ -43,6 +43,7 @@ from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
+from teach.messages import Lang
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
@@ -107,7 +108,7 @@ class Question:
     settles: tuple[tuple[str, bool], ...] = ()
     """The literals (condition, value) that always held so far and do not hold here."""
 
-    def text(self, domain: Domain, lang: str = "en") -> str:
+    def text(self, domain: Domain, lang: Lang = Lang.EN) -> str:
         situation = describe_situation(domain, self.state, lang)
         if self.kind in MUST_KINDS:
             held = join_words([domain.condition(name).label(lang, value) for name, value in self.settles], lang)
@@ -122,7 +123,7 @@ class Question:
         return m.SITUATION_QUESTION(lang, situation=situation)
 
 
-def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
+def describe_situation(domain: Domain, state: State, lang: Lang = Lang.EN) -> str:
     """A state in plain words: what holds, then ``but`` what does not."""
     true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
@@ -132,7 +133,7 @@ def describe_situation(domain: Domain, state: State, lang: str = "en") -> str:
     return join_words(true or false, lang)
 
 
-def join_words(items: list[str], lang: str) -> str:
+def join_words(items: list[str], lang: Lang) -> str:
     """``a``, ``a and b``, ``a, b and c`` in the session's language."""
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
 

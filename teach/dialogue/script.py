@@ -26,11 +26,12 @@ from pathlib import Path
 from teach import limits
 from teach.errors import FormatError
 from teach.fsutil import read_text
+from teach.messages import Lang
 
 AUDIO = "@audio "
 """``@audio FILE.wav``: an input line said aloud, recognised before the dialogue runs (teach/voice/script.py)."""
 SETTINGS = {"lang": str, "questions": int, "seed": int, "world": str, "domain": str}
-CHOICES = {"lang": ("en", "de"), "world": ("mujoco", "symbolic", "offline")}
+CHOICES = {"world": ("mujoco", "symbolic", "offline")}
 _WHOLE_NUMBER = re.compile(r"[0-9]{1,9}", re.ASCII)
 """How @questions and @seed are written: ASCII digits only (no sign, '_', or other scripts' digits)."""
 
@@ -80,6 +81,8 @@ def _setting(key: str, value: str, path: Path, line: int) -> object:
             what = "0 or more" if value.startswith("-") else "written in digits"
             raise FormatError(f"@{key} needs a int {what}, got {shown}", path, line)
         return int(value)
+    if key == "lang":
+        return Lang.parse(value, path, line)
     if key in CHOICES and value not in CHOICES[key]:
         raise FormatError(f"@{key} must be one of {', '.join(CHOICES[key])}, got {shown}", path, line)
     if not value:

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from teach import messages as m
 from teach.domain import Domain, Literal, State
 from teach.errors import LearnError
+from teach.messages import Lang
 
 if TYPE_CHECKING:
     from teach.learn.learner import Explanation, Update
@@ -16,13 +17,13 @@ if TYPE_CHECKING:
 _WHY = {"contradiction": m.WHY_CONTRADICTION, "repeated": m.WHY_REPEATED, "order": m.WHY_ORDER}
 
 
-def why_refused(error: LearnError, lang: str) -> str:
+def why_refused(error: LearnError, lang: Lang) -> str:
     """A learner's refusal in the teacher's words (the details follow for the facilitator)."""
     reason = _WHY.get(error.kind)
     return reason(lang) if reason is not None else error.message
 
 
-def describe_update(update: Update, learned: list[str], domain: Domain, lang: str) -> str:
+def describe_update(update: Update, learned: list[str], domain: Domain, lang: Lang) -> str:
     """What an update changed, in the teacher's words (``learned``: actions new in the tree)."""
     parts: list[str] = []
     if learned:
@@ -37,7 +38,7 @@ def describe_update(update: Update, learned: list[str], domain: Domain, lang: st
     return text[0].upper() + text[1:] + "."
 
 
-def explain_node(why: Explanation, domain: Domain, lang: str) -> str:
+def explain_node(why: Explanation, domain: Domain, lang: Lang) -> str:
     """A node's reason in the teacher's words ("" for the tree's own structure)."""
     sources = "; ".join(source_words(source, lang) for source in why.sources[:3]) + (
         " …" if len(why.sources) > 3 else "")
@@ -60,7 +61,7 @@ _DEMO_LINE = re.compile(r"^(?:imported .*\()?demo-(\d+)\.csv\)?(?::(\d+))?$")
 _ANSWER = re.compile(r"^answer to question (\d+)$")
 
 
-def source_words(source: str, lang: str) -> str:
+def source_words(source: str, lang: Lang) -> str:
     """Where the learner saw something, for the teacher: "demo-002.csv:3" → "demonstration 2,
     step 3", "answer to question 1" → "your answer to question 1" (anything else as it is)."""
     demo = _DEMO_LINE.match(source)
@@ -75,7 +76,7 @@ def source_words(source: str, lang: str) -> str:
     return source
 
 
-def literals_label(text: str, domain: Domain, lang: str) -> str:
+def literals_label(text: str, domain: Domain, lang: Lang) -> str:
     """"!BallFound & BinClose" → "I cannot see the ball and the bin is within reach"."""
     labels = []
     for part in text.split("&"):
@@ -85,7 +86,7 @@ def literals_label(text: str, domain: Domain, lang: str) -> str:
     return m.AND(lang).join(labels)
 
 
-def unmet_goal(domain: Domain, state: State, lang: str) -> str:
+def unmet_goal(domain: Domain, state: State, lang: Lang) -> str:
     """The domain's goal conditions that do not hold, in words ("" when the goal holds)."""
     missing = [lit for lit in domain.goal if not domain.holds(lit, state)]
     return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)

@@ -8,16 +8,17 @@ from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, normalize
 from teach.dialogue.script import Script
 from teach.errors import FormatError, TeachError
+from teach.messages import Lang
 from teach.session.commands import COMMAND_WORDS, DONE_WORDS, SKIP_WORDS, Verb, parse_command
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
-def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
+def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     """Refuse a file that is not a dialogue (XML, a README, a CSV): every input line must be a
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
-    answers = DONE_WORDS | SKIP_WORDS | {normalize(word(language)) for word in m.ANSWER_WORDS
-                                         for language in ("en", "de")}
+    lang = Lang.parse(language)
+    answers = DONE_WORDS | SKIP_WORDS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, line in script.lines:
         command, rest = parse_command(command_hint(line, lang, COMMAND_WORDS) or line)  # "ok done", as the session
@@ -35,7 +36,7 @@ def check_lines(script: Script, phrases: PhraseBook, lang: str) -> None:
                               "(is this a dialogue? --lenient types such lines anyway)", script.path, number)
 
 
-def _names_actions_or_events(line: str, phrases: PhraseBook, lang: str, topic: str | None) -> tuple[bool, str | None]:
+def _names_actions_or_events(line: str, phrases: PhraseBook, lang: Lang, topic: str | None) -> tuple[bool, str | None]:
     for perturb in (False, True):
         try:
             tokens = phrases.parse(line, lang, perturb=perturb, topic=topic)

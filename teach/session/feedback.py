@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from teach import messages as m
+from teach.messages import Lang
 
 if TYPE_CHECKING:
     from teach.sim.guide import Feedback
@@ -16,7 +17,7 @@ LEVEL = 0.03            # m: the ball this close to the hand's height is "at han
 STILL = 0.005           # m (or 0.5 degree, 5 mm of lift or finger): the command moved nothing
 
 
-def feedback_line(feedback: Feedback, lang: str) -> str:
+def feedback_line(feedback: Feedback, lang: Lang) -> str:
     """One line: "ball 34 cm, 20° to my left, 5 cm below my hand · bin 1.2 m ahead · lift 26 cm ·
     hand open · last: ↑ moved me 10 cm"."""
     hand = m.FEEDBACK_OPEN if feedback.hand_open else m.FEEDBACK_CLOSED
@@ -26,14 +27,14 @@ def feedback_line(feedback: Feedback, lang: str) -> str:
                             lift=_length(feedback.lift, lang), hand=hand(lang), last=_last(feedback, lang))
 
 
-def _length(metres: float, lang: str) -> str:
+def _length(metres: float, lang: Lang) -> str:
     if abs(metres) < 1.0:
         return m.FEEDBACK_CM(lang, cm=round(abs(metres) * 100))
     tenths = round(abs(metres) * 10)
     return m.FEEDBACK_M(lang, whole=tenths // 10, tenth=tenths % 10)
 
 
-def _where(distance: float, bearing: float, lang: str) -> str:
+def _where(distance: float, bearing: float, lang: Lang) -> str:
     length = _length(distance, lang)
     if abs(bearing) <= AHEAD_DEGREES:
         return m.FEEDBACK_AHEAD(lang, distance=length)
@@ -43,13 +44,13 @@ def _where(distance: float, bearing: float, lang: str) -> str:
     return side(lang, distance=length, degrees=round(abs(bearing)))
 
 
-def _height(height: float, lang: str) -> str:
+def _height(height: float, lang: Lang) -> str:
     if abs(height) <= LEVEL:
         return m.FEEDBACK_AT_HAND_HEIGHT(lang)
     return (m.FEEDBACK_ABOVE if height > 0 else m.FEEDBACK_BELOW)(lang, distance=_length(height, lang))
 
 
-def _last(feedback: Feedback, lang: str) -> str:
+def _last(feedback: Feedback, lang: Lang) -> str:
     command = feedback.last
     if command is None:
         return m.FEEDBACK_NOTHING_YET(lang)

@@ -25,19 +25,20 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
 from teach import messages as m
-from teach.demos import Step
-from teach.dialogue.phrases import PhraseBook, is_no, is_yes, normalize
+from teach.dialogue.phrases import is_no, is_yes, normalize
 from teach.dialogue.questions import QuestionBudget
 from teach.domain import Domain
 from teach.errors import FormatError, TeachError
 from teach.learn.recognise import Recognition, changed_literals, describe_change, explain, question, recognise
 from teach.session.commands import SKIP_WORDS
 from teach.session.journal import GuidedActionTaught
+from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
+from teach.session.showing import Showing
+from teach.session.turn import Turn
 
 if TYPE_CHECKING:
     from teach.session.hand import HandFollower
-    from teach.session.machine import SessionManager
     from teach.sim.guide import Guide, Sample
     from teach.sim.guided_skill import GuidedMotion
     from teach.sim.segment import Segment, Segmenter
@@ -65,10 +66,19 @@ class _Due:
 
 
 class Guiding:
-    """The guiding side of one session: the guide, its segments, and the labelling questions."""
+    """The guiding side of one session: the guide, its segments, and the labelling questions.
 
-    def __init__(self, manager: SessionManager, label_questions: int):
-        self.manager = manager
+    It adds its steps to the open demonstration (``showing``), speaks through the turn, journals
+    and writes a new action through the session record, and hands a grown domain to ``adopted``
+    (the machine learns again in it)."""
+
+    def __init__(self, showing: Showing, record: SessionRecord, turn: Turn, label_questions: int,
+                 adopted: Callable[[Domain], None]):
+        self.showing, self.record, self.turn = showing, record, turn
+        self.world = showing.world
+        self.vocabulary = showing.vocabulary
+        self.lang = showing.lang
+        self.adopted = adopted
         self.budget = QuestionBudget(label_questions)
         self.guide: Guide | None = None
         self.segmenter: Segmenter | None = None
@@ -79,8 +89,8 @@ class Guiding:
         self.hand: HandFollower | None = None  # following the teacher's hand in the viewer (``guide hand``)
 
     @property
-    def lang(self) -> str:
-        return self.manager.lang
+    def domain(self) -> Domain:
+        return self.vocabulary.domain
 
     @property
     def active(self) -> bool:
@@ -89,7 +99,7 @@ class Guiding:
     # --- guiding ---------------------------------------------------------------------------
 
     def can_guide(self) -> bool:
-        return isinstance(self.manager.world, GuidableWorld)
+        return isinstance(self.world, GuidableWorld)
 
     def refusal(self) -> list[Reply]:
         return [Reply(ReplyKind.ERROR, m.GUIDING_NEEDS_MUJOCO(self.lang))]
@@ -98,11 +108,9 @@ class Guiding:
         """Start guiding (if not yet): the open demonstration is opened if need be."""
         from teach.sim.segment import Segmenter
 
-        world = self.manager.world
+        world = self.world
         assert isinstance(world, GuidableWorld)
-        replies: list[Reply] = []
-        if self.manager.open is None:
-            replies += self.manager.cmd_demonstrate("")
+        replies = self.showing.begin()
         if self.guide is None:
             self.segmenter, self.labelled = Segmenter(), 0
             self.guide = world.start_guiding(self._feed)
@@ -113,7 +121,7 @@ class Guiding:
         """``guide`` alone: guiding begins (the terminal's guide mode); ``guide stop``: it ends;
         otherwise one primitive."""
         if not rest.strip():
-            return self.manager._flush(self.begin()) + [Reply(ReplyKind.INFO, m.GUIDE_MODE_ON(self.lang))]
+            return self.turn.say(self.begin()) + [Reply(ReplyKind.INFO, m.GUIDE_MODE_ON(self.lang))]
         if normalize(rest) in STOP_WORDS:
             return self.end() + [Reply(ReplyKind.INFO, m.GUIDE_MODE_OFF(self.lang))]
         return self.line(rest)
@@ -128,7 +136,7 @@ class Guiding:
             raise TeachError(error.message) from None
         if command.verb == "hand":
             return self.follow_hand(command.amount)
-        replies = self.manager._flush(self.begin())
+        replies = self.turn.say(self.begin())
         assert self.guide is not None
         self.guide.run(command)
         self._settle()
@@ -159,14 +167,14 @@ class Guiding:
 
     def follow_hand(self, seconds: float) -> list[Reply]:
         """``guide hand``: follow the teacher's drag in the MuJoCo viewer (``teach.session.hand``)."""
-        from teach.session.hand import HandFollower
+        from teach.session.hand import HandFollower  # it imports MuJoCo's hand contact code
 
-        if getattr(self.manager.world, "viewer", None) is None:
+        if getattr(self.world, "viewer", None) is None:
             return [Reply(ReplyKind.ERROR, m.HAND_NEEDS_VIEWER(self.lang))]
-        replies = self.manager._flush(self.begin())
+        replies = self.turn.say(self.begin())
         assert self.guide is not None and self.segmenter is not None
         if self.hand is None or self.hand.guide is not self.guide:
-            self.hand = HandFollower(self, self.guide)
+            self.hand = HandFollower(self, self.guide, self.showing, self.record.observer, self.turn)
         return replies + self.hand.follow(seconds)
 
     def line_for_key(self, name: str) -> str | None:
@@ -215,7 +223,7 @@ class Guiding:
             replies += self.hand.after_labels()
         if self.pending is None and not self.active and self.segmenter is not None:
             self.segmenter = None
-        return self.manager._flush(replies)
+        return self.turn.say(replies)
 
     def _next_due(self, final: bool) -> _Due | None:
         from teach.sim.segment import join_all
@@ -225,8 +233,7 @@ class Guiding:
         segments = self.segmenter.segments[self.labelled:]
         if not segments:
             return None
-        manager = self.manager
-        groups = explain(manager.domain, [(s.before, s.after) for s in segments])
+        groups = explain(self.domain, [(s.before, s.after) for s in segments])
         span, recognition = groups[0]
         if recognition.fits:
             return _Due(join_all(segments[span.start:span.stop]), recognition, len(span))
@@ -235,15 +242,14 @@ class Guiding:
         # a stretch of motion that no known action explains is asked about as one
         unknown = next((g.start for g, r in groups if r.fits), len(segments))
         joined = join_all(segments[:unknown])
-        return _Due(joined, recognise(manager.domain, joined.before, joined.after), unknown)
+        return _Due(joined, recognise(self.domain, joined.before, joined.after), unknown)
 
     def _record(self, due: _Due, action: str, who: str, text: str | None = None) -> list[Reply]:
-        manager = self.manager
-        assert manager.open is not None
-        definition = manager.domain.action(action)
+        opened = self.showing.open
+        assert opened is not None
+        definition = self.domain.action(action)
         label = definition.label(self.lang)
-        manager.open.add(Step(due.segment.before, definition.id, len(manager.open.steps) + 1),
-                         m.GUIDED_WORDS(self.lang, action=label))
+        opened.add(due.segment.before, definition.id, m.GUIDED_WORDS(self.lang, action=label))
         self.labelled += due.spans
         self._observe(due, action, who)
         return [Reply(ReplyKind.INFO, text or m.GUIDED_STEP(self.lang, change=self._change(due), action=label))]
@@ -256,7 +262,7 @@ class Guiding:
         """The segment's boundaries and label, and who gave it, for the recording."""
         segment = due.segment
         change = ", ".join(str(lit) for lit in due.recognition.changes)
-        self.manager.observer.on_learner(
+        self.record.observer.on_learner(
             "guided segment", f"{segment.start_time:.2f}-{segment.end_time:.2f} s: {change} → "
                               f"{action or 'left out'} (labelled by {who})")
 
@@ -264,18 +270,18 @@ class Guiding:
         self.budget.spend()
         self.pending = due
         text = self._question(due)
-        self.manager.observer.on_learner("labelling question", text)
+        self.record.observer.on_learner("labelling question", text)
         options = m.LABEL_OPTIONS(self.lang, used=self.budget.used, total=self.budget.total)
         return [Reply(ReplyKind.QUESTION, f"{text}\n   {options}")]
 
     def _question(self, due: _Due) -> str:
-        return question(self.manager.domain, due.recognition, self.lang)
+        return question(self.domain, due.recognition, self.lang)
 
     def _change(self, due: _Due) -> str:
-        return describe_change(self.manager.domain, due.recognition, self.lang)
+        return describe_change(self.domain, due.recognition, self.lang)
 
     def _label_of(self, action: str) -> str:
-        return self.manager.domain.action(action).label(self.lang)
+        return self.domain.action(action).label(self.lang)
 
     # --- answers ---------------------------------------------------------------------------
 
@@ -302,14 +308,14 @@ class Guiding:
             self.pending = None
             replies = self._record(due, action, "teacher",
                                    m.LABEL_THANKS(self.lang, action=self._label_of(action)))
-        self.manager.observer.on_answer(self._question(due), said, replies[-1].text)
-        return self.manager._flush(replies) + self.label(final=not self.active)
+        self.record.observer.on_answer(self._question(due), said, replies[-1].text)
+        return self.turn.say(replies) + self.label(final=not self.active)
 
     def _answered_action(self, due: _Due, said: str) -> str | None:
         if is_yes(said, self.lang) and due.recognition.fits:
             return due.recognition.best
         try:
-            tokens = [t for t in self.manager.phrases.parse(said, self.lang) if t.kind == "action"]
+            tokens = [t for t in self.vocabulary.phrases.parse(said, self.lang) if t.kind == "action"]
         except TeachError:
             return None
         return tokens[0].name if len(tokens) == 1 else None
@@ -326,45 +332,42 @@ class Guiding:
     def _new_action(self, due: _Due, phrase: str) -> list[Reply]:
         from teach.sim.guided_skill import motion_from_segment
 
-        manager = self.manager
         name = action_name(phrase)
-        if manager.domain.has_action(name) or any(normalize(phrase) == normalize(p) for a in manager.domain.actions
-                                                   for p in (*a.en, *a.de)):
+        domain = self.domain
+        if domain.has_action(name) or any(normalize(phrase) == normalize(p) for a in domain.actions
+                                          for p in (*a.en, *a.de)):
             return [Reply(ReplyKind.ERROR, m.NEW_ACTION_TAKEN(self.lang, action=phrase))]
-        domain = manager.domain
         phrases: dict[str, tuple[str, ...]] = {"en": (), "de": ()}
         phrases[self.lang] = (phrase,)  # in the session's language only: it is the teacher's word
         changes = changed_literals(domain, due.segment.before, due.segment.after)
         # what became true is what it is for; a condition lost on the way is a side effect (unless that is all)
         effects = tuple(lit for lit in changes if lit.value) or changes
         motion = replace(motion_from_segment(name, due.segment, domain, phrases["en"], phrases["de"]), effects=effects)
-        grown = manager.store.add_action(action_block(domain, name, phrases, effects))
-        file = manager.store.write_motion(motion)
+        grown = self.record.store.add_action(action_block(domain, name, phrases, effects))
+        file = self.record.store.write_motion(motion)
         self.adopt(grown, [motion])
-        manager._journal(GuidedActionTaught(name, file))
+        self.record.add(GuidedActionTaught(name, file))
         self.pending = None
         return self._record(due, name, "teacher (a new action)",
                             m.NEW_ACTION_LEARNED(self.lang, action=phrase, change=self._change(due)))
 
     def adopt(self, domain: Domain, motions: Sequence[GuidedMotion]) -> None:
         """Teach from now on in ``domain`` (the session's copy with new actions), their motions runnable."""
-        manager = self.manager
-        world = manager.world
+        world = self.world
         assert isinstance(world, GuidableWorld)
         for motion in motions:
             world.learn_skill(motion)
         world.adopt_domain(domain)
-        manager.domain = manager.learning.domain = domain
-        manager.phrases = PhraseBook(domain, world.events)  # type: ignore[attr-defined]
-        manager._rebuild_from_journal()
+        self.vocabulary.adopt(domain)
+        self.adopted(domain)
 
     def restore(self, events: Sequence[object]) -> None:
         """On resume: the actions taught by guidance are back in the domain and runnable."""
         taught = [e for e in events if isinstance(e, GuidedActionTaught)]
         if not taught or not self.can_guide():
             return
-        domain = self.manager.store.session_domain()
-        self.adopt(domain, [self.manager.store.read_motion(e.motion, domain) for e in taught])
+        domain = self.record.store.session_domain()
+        self.adopt(domain, [self.record.store.read_motion(e.motion, domain) for e in taught])
 
 
 STOP_WORDS = ("stop", "end", "ende", "halt", "aus")

@@ -15,16 +15,19 @@ prompt, then says ``guide hand`` again.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from teach import messages as m
+from teach.observe.hook import Observer
 from teach.session.replies import Reply, ReplyKind
+from teach.session.showing import Showing
+from teach.session.turn import Turn
 from teach.sim.hand import PUSH_EPSILON, Moved, ObjectWatch, robot_bodies, robot_wrench
 from teach.world.protocol import WorldEvent
 
 if TYPE_CHECKING:
-    from teach.session.guiding import Guiding
     from teach.sim.guide import Guide
+    from teach.sim.segment import Segmenter
 
 LET_GO_SECONDS = 1.5   # the hand is off everything this long: the teacher has let go
 MAX_SECONDS = 60.0     # ``guide hand`` alone never follows longer than this
@@ -33,11 +36,29 @@ MOVED_EVENT = "moved by hand"  # the external action's name in the recording
 _THINGS = {"ball": m.HAND_THE_BALL, "bin": m.HAND_THE_BIN}
 
 
+class Labelling(Protocol):
+    """What the hand follower needs of guiding (``teach.session.guiding.Guiding``): the segments
+    of the motion so far and their labelling."""
+
+    segmenter: Segmenter | None
+    labelled: int
+    """How many of the segmenter's segments are steps (or left out) already."""
+
+    @property
+    def pending(self) -> object | None: ...
+
+    @property
+    def active(self) -> bool: ...
+
+    def label(self, final: bool) -> list[Reply]: ...
+
+
 class HandFollower:
     """Follows the hand over one guide; holds back a moved thing's step while a label is asked."""
 
-    def __init__(self, guiding: Guiding, guide: Guide):
+    def __init__(self, guiding: Labelling, guide: Guide, showing: Showing, observer: Observer, turn: Turn):
         self.guiding, self.guide = guiding, guide
+        self.showing, self.observer, self.turn = showing, observer, turn
         self.watch = ObjectWatch(guide.world, guide.period)
         self._robot = robot_bodies(guide.world)
         self._held: list[Moved] = []  # moves that wait for the labels of what came before them
@@ -49,9 +70,7 @@ class HandFollower:
 
     def follow(self, seconds: float) -> list[Reply]:
         guiding, guide, watch = self.guiding, self.guide, self.watch
-        lang = guiding.lang
-        manager = guiding.manager
-        manager._flush([Reply(ReplyKind.INFO, m.HAND_FOLLOWING(lang))])
+        self.turn.say([Reply(ReplyKind.INFO, m.HAND_FOLLOWING(self.showing.lang))])
         replies: list[Reply] = []
         limit = seconds if seconds > 0 else MAX_SECONDS
         elapsed = off = 0.0
@@ -94,15 +113,16 @@ class HandFollower:
             from teach.sim.segment import Segmenter
 
             guiding.segmenter, guiding.labelled = Segmenter(), 0
-        return guiding.manager._flush(replies)
+        return self.turn.say(replies)
 
     def _record(self, moved: Moved) -> Reply:
-        manager = self.guiding.manager
+        lang = self.showing.lang
         thing = _THINGS[moved.thing]
         if moved.before == moved.after:
-            return Reply(ReplyKind.INFO, m.HAND_MOVED_NOTHING(manager.lang, thing=thing(manager.lang)))
+            return Reply(ReplyKind.INFO, m.HAND_MOVED_NOTHING(lang, thing=thing(lang)))
         en, de = m.HAND_MOVED("en", thing=thing("en")), m.HAND_MOVED("de", thing=thing("de"))
-        manager._add_event(WorldEvent(MOVED_EVENT, moved.before, moved.after, en, de))
-        manager.observer.on_external(MOVED_EVENT)
-        manager._save_open()
-        return manager._event_reply(WorldEvent(MOVED_EVENT, moved.before, moved.after, en, de))
+        event = WorldEvent(MOVED_EVENT, moved.before, moved.after, en, de)
+        self.showing.event(event)
+        self.observer.on_external(MOVED_EVENT)
+        self.showing.record.save_open()
+        return self.showing.event_reply(event)

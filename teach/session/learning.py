@@ -19,6 +19,7 @@ from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.learn.inquiry import next_question
 from teach.learn.learner import Learner, Update
 from teach.learn.safe_inquiry import unsure_here
+from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.session.describe import describe_update, explain_node
 from teach.session.store import SessionStore
@@ -143,16 +144,16 @@ class Learning:
         self.observer.on_tree(self.generation, tree, tree_to_xml(tree), f"generation {self.generation}: {reason}")
         return path
 
-    def describe(self, update: Update, lang: str) -> str:
+    def describe(self, update: Update, lang: Lang) -> str:
         return describe_update(update, self._learned_actions, self.domain, lang)
 
-    def report(self, event: str, update: Update, lang: str) -> str:
+    def report(self, event: str, update: Update, lang: Lang) -> str:
         """Tell the observer what an update changed; returns it in words."""
         change = self.describe(update, lang)
         self.observer.on_learner(event, change, [], learner=LEARNER_NAMES[self.learner.safe])
         return change
 
-    def why(self, name: str, lang: str) -> list[str] | None:
+    def why(self, name: str, lang: Lang) -> list[str] | None:
         """Why an action or condition is in the tree, one line per reason (None: it is not)."""
         nodes = [n for n in walk(self.learner.tree) if isinstance(n, Action | Condition) and n.name == name]
         lines = [explain_node(self.learner.why(node.uid), self.domain, lang) for node in nodes]

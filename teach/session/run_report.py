@@ -11,6 +11,7 @@ from teach import messages as m
 from teach.bt.nodes import Action, Node, Status, walk
 from teach.bt.tick import TickResult
 from teach.domain import Domain, State
+from teach.messages import Lang
 from teach.world.protocol import Outcome, RunResult, Ticker
 
 
@@ -46,7 +47,7 @@ def failed_tries(watch: TryWatch, started: list[tuple[State, str]], result: RunR
     return failed
 
 
-def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: str) -> list[str]:
+def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: Lang) -> list[str]:
     """ "I tried to grasp the ball (2 times), but it did not work: first this must be true: …",
     one line per action and reason, in the order they first failed."""
     counted: dict[tuple[str, str], int] = {}
@@ -61,7 +62,7 @@ def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: str) -> l
     return lines
 
 
-def why_not(domain: Domain, action: str, state: State, lang: str) -> str:
+def why_not(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """Why an action failed, in words: the preconditions it lacked, if it has any."""
     values = dict(zip(domain.condition_names, state, strict=True))
     missing = [domain.condition(p.name).label(lang, p.value)

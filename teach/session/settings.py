@@ -8,9 +8,10 @@ from enum import StrEnum
 from pathlib import Path
 
 from teach.errors import TeachError
+from teach.messages import Lang
 
 SESSION_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]*$")
-LANGUAGES = ("en", "de")
+LANGUAGES = tuple(Lang)
 
 
 class WorldKind(StrEnum):
@@ -30,7 +31,8 @@ class Settings:
     session: str
     domain: Path | None = None
     """The domain file; None: the ball-in-bin domain."""
-    lang: str = "en"
+    lang: str = Lang.EN
+    """A ``Lang`` once made (a string from the command line or a journal is parsed here)."""
     questions: int = 5
     seed: int = 0
     world: WorldKind = WorldKind.MUJOCO
@@ -58,8 +60,7 @@ class Settings:
         if not SESSION_NAME.match(self.session):
             raise TeachError(f"session name {self.session!r} must be letters, digits, '-' and '_' "
                              "(it names folders under demos/ and trees/)")
-        if self.lang not in LANGUAGES:
-            raise TeachError(f"unknown language {self.lang!r} (choose en or de)")
+        object.__setattr__(self, "lang", Lang.parse(self.lang))
         if self.questions < 0:
             raise TeachError("--questions must be 0 or more")
         object.__setattr__(self, "world", WorldKind.parse(self.world))

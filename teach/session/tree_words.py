@@ -21,6 +21,7 @@ from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
 from teach.dialogue.questions import join_words
 from teach.domain import Domain
+from teach.messages import Lang
 
 
 @dataclass(frozen=True)
@@ -56,7 +57,7 @@ class _Rule:
         return self.guard + ((self.done_when,) if self.done_when is not None else ())
 
 
-def tree_lines(tree: Node, domain: Domain, lang: str) -> list[str]:
+def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
     """What the tree does, in sentences of ``lang``, one rule a line."""
     rules = _reachable(_deduplicated(_rules(tree, (), at_root=True)))
     lines: list[str] = []
@@ -174,7 +175,7 @@ def _reachable(rules: list[_Rule]) -> list[_Rule]:
     return kept
 
 
-def _what(rule: _Rule, domain: Domain, lang: str) -> str:
+def _what(rule: _Rule, domain: Domain, lang: Lang) -> str:
     if rule.kind == "done":
         return m.WORDS_I_AM_DONE(lang)
     labels = [_action_label(name, domain, lang) for name in rule.actions]
@@ -185,11 +186,11 @@ def _what(rule: _Rule, domain: Domain, lang: str) -> str:
     return m.WORDS_SOME_OF(lang, actions=m.OR(lang).join(m.WORDS_QUOTED(lang, action=a) for a in labels))
 
 
-def _action_label(name: str, domain: Domain, lang: str) -> str:
+def _action_label(name: str, domain: Domain, lang: Lang) -> str:
     return domain.action(name).label(lang) if domain.has_action(name) else name
 
 
-def _check_words(check: _Check, domain: Domain, lang: str) -> str:
+def _check_words(check: _Check, domain: Domain, lang: Lang) -> str:
     if check.kind == "literal":
         if domain.has_condition(check.name):
             return domain.condition(check.name).label(lang, check.value)

@@ -15,10 +15,11 @@ from pathlib import Path
 
 from teach.bt.nodes import Status
 from teach.demos import Demonstration, Step, next_demo_path, write_demonstration
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domain_file, load_domain
+from teach.domain import EXTERNAL_ACTION, Domain, State, find_domain_file, load_domain
 from teach.errors import DomainError, FormatError
 from teach.fsutil import atomic_write_text
 from teach.observe.hook import Observer
+from teach.open_demonstration import OpenDemonstration, WorldEventStep
 from teach.sim.perturb import PERTURBATIONS
 from teach.sim.skills import FrameClock, run_skill
 from teach.sim.slip import SLIP, SlipWatch, let_fall
@@ -37,16 +38,19 @@ class RecordedStep:
 
 
 class Recorder:
-    """Turns guidance (actions and perturbations, one at a time) into a demonstration."""
+    """Turns guidance (actions and perturbations, one at a time) into a demonstration, built by
+    the one demonstration builder (``teach.open_demonstration``) the session uses too."""
 
     def __init__(self, world: World, observer: Observer | None = None, prefix: Demonstration | None = None):
         self.world = world
         self.domain = world.domain
         self.observer = observer
         self.frames = FrameClock(world, observer)
-        self.steps: list[Step] = list(prefix.steps) if prefix is not None else []
-        if self.steps and self.steps[-1].action == GOAL_ACTION:
-            self.steps.pop()  # a finished run continued by the teacher: the goal line comes last
+        self.open = OpenDemonstration.continuing(prefix) if prefix is not None else OpenDemonstration()
+
+    @property
+    def steps(self) -> list[Step]:
+        return self.open.steps
 
     def step(self, action: str) -> RecordedStep:
         """Run the skill for ``action`` (a name or phrase) and record (state, action, next state).
@@ -61,12 +65,11 @@ class Recorder:
         held = watch.lost()
         if held is None:
             return self._note(before, definition.id, definition.name, status)
-        if held != before:
-            self.steps.append(Step(before, definition.id, len(self.steps) + 1))
+        self.open.halted(before, definition.id, held, definition.name, [WorldEventStep(held, SLIP)])
         if self.observer is not None:
             self.observer.on_external(SLIP)
         let_fall(self.world, lambda: self.frames(None))
-        return self._note(held, EXTERNAL_ACTION, SLIP, None)
+        return RecordedStep(held, EXTERNAL_ACTION, self.world.state(), SLIP, None)
 
     def perturb(self, name: str) -> RecordedStep:
         """Apply a perturbation and record it as an external action (-1)."""
@@ -78,10 +81,11 @@ class Recorder:
         if self.observer is not None:
             self.observer.on_external(name)
         self.frames(None)
-        return self._note(before, EXTERNAL_ACTION, name, None)
+        self.open.add_event(WorldEventStep(before, name))
+        return RecordedStep(before, EXTERNAL_ACTION, self.world.state(), name, None)
 
     def _note(self, before: State, action: int, name: str, status: Status | None) -> RecordedStep:
-        self.steps.append(Step(before, action, len(self.steps) + 1))
+        self.open.add(before, action, name)
         return RecordedStep(before, action, self.world.state(), name, status)
 
     def goal_holds(self) -> bool:
@@ -90,15 +94,7 @@ class Recorder:
 
     def done(self, name: str = "demo") -> Demonstration:
         """The demonstration so far; its last line is the goal state when the goal holds."""
-        steps = list(self.steps)
-        if self.goal_holds():
-            steps.append(Step(self.world.state(), GOAL_ACTION, len(steps) + 1))
-        elif steps and steps[-1].action == EXTERNAL_ACTION:
-            raise DomainError("a demonstration cannot end with a perturbation unless the goal holds "
-                              "(the CSV format needs an action in the state after it)")
-        if not steps:
-            raise DomainError("nothing recorded: guide at least one action")
-        return Demonstration(name, tuple(steps))
+        return self.open.finish(name, self.world.state() if self.goal_holds() else None)
 
 
 def resolve_action(domain: Domain, text: str) -> str:

@@ -29,7 +29,8 @@ from teach import messages as m
 from teach.dialogue.completion import TeachCompleter, command_words
 from teach.dialogue.phrases import is_yes
 from teach.session.commands import COMMANDS, Verb
-from teach.session.machine import Mode, SessionManager
+from teach.session.machine import SessionManager
+from teach.session.published import Mode, SessionView
 from teach.session.replies import Reply, ReplyKind
 from teach.terminal.run_keys import RunKeys, is_terminal
 from teach.terminal.view import prompt, render_reply, render_teacher, toolbar
@@ -44,11 +45,11 @@ class Terminal:
         self._on_shown = on_shown  # sees each reply once it is shown (the robot's voice)
         self._listen = listen  # push-to-talk (F5, or the line 'listen'): the line heard and if surely, or None
         self.console = console or Console(highlight=False)
-        words = command_words(c.usage(manager.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
-                                                                           if n.isalpha()]
+        view = manager.view()
+        words = command_words(c.usage(view.lang) for c in COMMANDS) + [n for c in COMMANDS for n in c.names
+                                                                        if n.isalpha()]
         self.prompt: PromptSession[str] = PromptSession(
-            completer=TeachCompleter(sorted(set(words)), manager.phrases.phrases(manager.lang),
-                                     _argument_names(manager)),
+            completer=TeachCompleter(sorted(set(words)), list(view.phrases), _argument_names(view)),
             history=FileHistory(str(history)) if history else InMemoryHistory(),
             bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True,
             key_bindings=self._talk_key() if listen else None)
@@ -57,12 +58,17 @@ class Terminal:
         self._last_state = ""  # the state line last shown
         self._typed = ""  # what a letter typed in the guide mode starts the next line with
 
+    @property
+    def view(self) -> SessionView:
+        """The session as it is now (the driver reads nothing else of it)."""
+        return self.manager.view()
+
     def run(self) -> None:
         self.manager.live = self._show
         self.manager.greet()
-        while not self.manager.finished:
+        while not self.view.finished:
             try:
-                line = self.prompt.prompt(prompt(self.manager.mode, self.manager.lang), default=self._typed)
+                line = self.prompt.prompt(prompt(self.view.mode, self.view.lang), default=self._typed)
             except KeyboardInterrupt:
                 continue
             except EOFError:  # Ctrl-D: quit (with an open demonstration the first one only warns)
@@ -75,21 +81,21 @@ class Terminal:
                 if heard is None:
                     continue
                 line, sure = heard
-                self.console.print(render_teacher(line, self.manager.mode, self.manager.lang))
+                self.console.print(render_teacher(line, self.view.mode, self.view.lang))
                 if not sure and not self._confirmed(line):
                     continue
             self._handle(line)
 
     def _confirmed(self, heard: str) -> bool:
         """A line heard unsurely is handled only once the teacher says yes to it."""
-        self._show(Reply(ReplyKind.QUESTION, m.HEARD_DID_YOU_MEAN(self.manager.lang, line=heard)))
+        self._show(Reply(ReplyKind.QUESTION, m.HEARD_DID_YOU_MEAN(self.view.lang, line=heard)))
         try:
-            answer = self.prompt.prompt(prompt("asking", self.manager.lang))
+            answer = self.prompt.prompt(prompt("asking", self.view.lang))
         except (KeyboardInterrupt, EOFError):
             return False
-        if is_yes(answer, self.manager.lang):
+        if is_yes(answer, self.view.lang):
             return True
-        self._show(Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.manager.lang)))
+        self._show(Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.view.lang)))
         return False
 
     def _talk_key(self) -> KeyBindings:
@@ -104,16 +110,17 @@ class Terminal:
 
     def _toolbar(self) -> str:
         """The bottom line; once the teacher has guided, the labelling questions left as well."""
-        guiding = self.manager.guiding
-        extra = m.TOOLBAR_LABELS(self.manager.lang, left=guiding.budget.left) if guiding.used else ""
-        return toolbar(self.manager) + extra
+        view = self.view
+        extra = m.TOOLBAR_LABELS(view.lang, left=view.labels_left) if view.guided else ""
+        return toolbar(view) + extra
 
     def _show(self, reply: Reply) -> None:
         if self._keys_guiding and reply.kind is ReplyKind.STATE and reply.text == self._last_state:
             return  # steering with the keys: the state line again only when it changed
         if reply.kind is ReplyKind.STATE:
             self._last_state = reply.text
-        self.console.print(render_reply(reply, self.manager.domain, self.manager.lang))
+        view = self.view
+        self.console.print(render_reply(reply, view.domain, view.lang))
         if self._on_shown is not None:
             self._on_shown(reply)
 
@@ -128,17 +135,17 @@ class Terminal:
         interrupt flag instead of ending the program."""
         command, rest = self.manager.command(line)
         if command is Verb.GUIDE and not rest.strip() \
-                and self.manager.mode is not Mode.ASKING:
+                and self.view.mode is not Mode.ASKING:
             self.manager.handle(line)
-            if self.manager.guiding.active:
+            if self.view.guiding:
                 self._guide_mode()
             return
-        if command is not Verb.RUN or self.manager.mode is Mode.ASKING \
-                or self.manager.runnable is None:  # the session explains why it will not run
+        if command is not Verb.RUN or self.view.mode is Mode.ASKING \
+                or not self.view.can_run:  # the session explains why it will not run
             self.manager.handle(line)
             return
         self._interrupt.clear()
-        self.console.print(f"[dim]{m.ROBOT_RUNNING(self.manager.lang)}[/dim]")
+        self.console.print(f"[dim]{m.ROBOT_RUNNING(self.view.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
         keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
@@ -157,7 +164,7 @@ class Terminal:
                 signal.signal(signal.SIGINT, previous)
 
     def _typed_while_running(self, line: str) -> None:
-        self.console.print(f"[bold red]{m.WAIT_OR_CTRL_C(self.manager.lang, line=line)}[/bold red]")
+        self.console.print(f"[bold red]{m.WAIT_OR_CTRL_C(self.view.lang, line=line)}[/bold red]")
 
     def _guide_mode(self) -> None:
         """Keys drive the robot, one ``guide …`` line each, until Esc (or Ctrl-C, Ctrl-D) or a
@@ -172,7 +179,7 @@ class Terminal:
 
     def _steer(self) -> None:
         """The guide mode's loop: one key, one ``guide …`` line."""
-        while self.manager.guiding.active and self.manager.mode is not Mode.ASKING:
+        while self.view.guiding and self.view.mode is not Mode.ASKING:
             key = self._guide_key()
             if key in _LEAVE:
                 self.manager.handle("guide stop")
@@ -180,7 +187,7 @@ class Terminal:
             if key.startswith(_TYPED):
                 self._typed = key[len(_TYPED):]
                 return
-            line = self.manager.guiding.line_for_key(key)
+            line = self.manager.key_line(key)
             if line is not None:
                 self.manager.handle(line)
 
@@ -198,7 +205,7 @@ class Terminal:
         def typed(event: KeyPressEvent) -> None:
             event.app.exit(result=_TYPED + event.data if event.data.isprintable() else "")
 
-        text = FormattedTextControl(lambda: m.GUIDE_MODE_ON(self.manager.lang))
+        text = FormattedTextControl(lambda: m.GUIDE_MODE_ON(self.view.lang))
         app: Application[str] = Application(layout=Layout(Window(text, height=1)), key_bindings=bindings,
                                             input=self.prompt.input, output=self.prompt.output,
                                             erase_when_done=True)  # the hint stays on one line, not one per key
@@ -217,9 +224,9 @@ _LISTENING = "\x00listen"  # what the push-to-talk key ends the prompt with (no 
 _LISTEN_WORDS = ("listen",)  # English only: a German session cannot listen
 
 
-def _argument_names(manager: SessionManager) -> dict[str, list[str]]:
+def _argument_names(view: SessionView) -> dict[str, list[str]]:
     """What Tab offers after 'start' (conditions) and 'why' (actions and conditions), in the session's language."""
-    conditions = [c.label(manager.lang) for c in manager.domain.conditions]
-    actions = [a.label(manager.lang) for a in manager.domain.actions]
+    conditions = [c.label(view.lang) for c in view.domain.conditions]
+    actions = [a.label(view.lang) for a in view.domain.actions]
     return {name: conditions if command is Verb.START else actions + conditions
             for command in COMMANDS if command in (Verb.START, Verb.WHY) for name in command.names}

@@ -9,24 +9,29 @@ from teach.dialogue.model_repair import ModelOracle
 from teach.dialogue.oracle import SituationOracle, answer_open_questions
 from teach.dialogue.script import Script
 from teach.session.machine import SessionManager
+from teach.session.replies import Reply
 from teach.terminal.view import render_reply, render_teacher
 
 
 def run_script(script: Script, manager: SessionManager, console: Console,
                oracle: SituationOracle | None = None, model_oracle: ModelOracle | None = None) -> None:
     """Every reply is printed as the session produces it, like the terminal does."""
-    manager.live = lambda reply: console.print(render_reply(reply, manager.domain, manager.lang))
+    def show(reply: Reply) -> None:
+        view = manager.view()
+        console.print(render_reply(reply, view.domain, view.lang))
 
-    def oracle_says(line: str) -> None:
-        console.print(render_teacher(f"{line}   [oracle]", manager.mode, manager.lang))
+    def teacher_says(line: str) -> None:
+        view = manager.view()
+        console.print(render_teacher(line, view.mode, view.lang))
 
+    manager.live = show
     manager.greet()
     for _, line in script.lines:
-        answer_open_questions(manager, oracle, model_oracle, oracle_says)
-        console.print(render_teacher(line, manager.mode, manager.lang))
+        answer_open_questions(manager, oracle, model_oracle, lambda said: teacher_says(f"{said}   [oracle]"))
+        teacher_says(line)
         manager.handle(line)
-        if manager.finished:
+        if manager.view().finished:
             break
-    answer_open_questions(manager, oracle, model_oracle, oracle_says)
-    if not manager.finished:
+    answer_open_questions(manager, oracle, model_oracle, lambda said: teacher_says(f"{said}   [oracle]"))
+    if not manager.view().finished:
         manager.handle("save")

@@ -3,18 +3,14 @@ terminal and by scripted replays (so a transcript shows exactly what the termina
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from rich.console import RenderableType
 from rich.panel import Panel
 from rich.text import Text
 
 from teach import messages as m
 from teach.domain import Domain
+from teach.session.published import SessionView
 from teach.session.replies import Reply, ReplyKind
-
-if TYPE_CHECKING:
-    from teach.session.machine import SessionManager
 
 STYLES = {ReplyKind.SAY: "bold cyan", ReplyKind.INFO: "white", ReplyKind.ERROR: "bold red",
           ReplyKind.QUESTION: "bold magenta"}
@@ -53,12 +49,11 @@ def render_teacher(line: str, mode: str = "idle", lang: str = "en") -> Text:
     return text
 
 
-def toolbar(manager: SessionManager) -> str:
+def toolbar(view: SessionView) -> str:
     """The terminal's bottom line: mode, questions left, generation; what holds (by name) for a
     facilitator only, since the state line already says it in words and names are long."""
-    mode = MODES[manager.mode](manager.lang)
-    if not manager.facilitator:
-        return m.TOOLBAR_PLAIN(manager.lang, mode=mode, left=manager.budget.left, generation=manager.generation)
-    holds = ", ".join(n for n, v in zip(manager.domain.condition_names, manager.world.state(), strict=True) if v)
-    return m.TOOLBAR(manager.lang, mode=mode, holds=holds or "—", left=manager.budget.left,
-                     generation=manager.generation)
+    mode = MODES[view.mode](view.lang)
+    if not view.facilitator:
+        return m.TOOLBAR_PLAIN(view.lang, mode=mode, left=view.questions_left, generation=view.generation)
+    return m.TOOLBAR(view.lang, mode=mode, holds=", ".join(view.holds) or "—", left=view.questions_left,
+                     generation=view.generation)

@@ -14,10 +14,11 @@ from teach.voice.speaker import session_speaker
 @contextmanager
 def spoken_session(manager: SessionManager, note: Callable[[str], None] = print) -> Iterator[Callable[[Reply], None]]:
     """What a driver calls with each reply it shows; at the end, what is still waiting is said."""
-    speaker = session_speaker(manager.lang, manager.store.run_dir / "speech", note)
+    view = manager.view()
+    speaker = session_speaker(view.lang, view.run_dir / "speech", note)
 
     def shown(reply: Reply) -> None:
-        line = spoken_line(reply, manager.lang)
+        line = spoken_line(reply, view.lang)
         if line is not None:
             speaker.say(line)
 

@@ -1,0 +1,91 @@
+"""What a command's argument names: a whole number ("run 3"), a step ("undo to step 3"), the
+conditions of 'start' and the action or condition of 'why', in either language, by label or
+by name in any case."""
+
+from __future__ import annotations
+
+import re
+
+from teach import messages as m
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.domain import Domain
+from teach.errors import TeachError
+from teach.messages import Lang
+
+_FULL_WORDS = ("full", "ganz", "all", "alles")
+_PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
+
+
+def says_full(text: str) -> bool:
+    """Whether 'show' or 'state' asks for everything ("show full", "zeige alles")."""
+    return normalize(text) in _FULL_WORDS
+
+
+def whole_number(text: str, lang: Lang) -> int | None:
+    """An optional whole number argument ("run 3", "reset 7")."""
+    if not text.strip():
+        return None
+    try:
+        value = int(text.strip())
+    except ValueError:
+        raise TeachError(m.WHOLE_NUMBER(lang, text=text.strip())) from None
+    if value < 0:
+        raise TeachError(m.NOT_NEGATIVE(lang))
+    return value
+
+
+def step_number(text: str, lang: Lang) -> int | None:
+    """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
+    words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
+    return whole_number(" ".join(words), lang)
+
+
+def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
+    """The conditions a teacher names, as labels in either language ("the bin is within reach,
+    ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+    names: list[str] = []
+    for part in (p for p in _PARTS.split(text) if p.strip()):
+        whole = condition_named(domain, part)
+        for word in [part] if whole is not None else part.split():  # else names side by side
+            found = condition_named(domain, word)
+            if found is None:
+                known = ", ".join(c.label(lang) for c in domain.conditions)
+                raise TeachError(m.UNKNOWN_CONDITION(lang, name=word.strip(), known=known))
+            names.append(found)
+    return names
+
+
+def condition_named(domain: Domain, text: str) -> str | None:
+    key = normalize(text)
+    for condition in domain.conditions:
+        if key in {normalize(condition.name), normalize(_spelled(condition.name)), normalize(condition.en),
+                   normalize(condition.de)}:
+            return condition.name
+    return None
+
+
+def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic: str | None) -> str:
+    """The action or condition ``why`` asks about: its label, its name in any case, or any
+    words the prompt would take as that one step ("grab it", a typo; "it" is ``topic``), also a
+    verb alone ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""
+    condition = condition_named(domain, text)
+    if condition is not None:
+        return condition
+    key = normalize(text)
+    for action in domain.actions:
+        if key in {normalize(action.name), normalize(_spelled(action.name))}:
+            return action.name
+    for words in (text, f"{text} it", f"it {text}"):
+        try:
+            tokens = phrases.parse(words, lang, topic=topic)
+        except UnknownPhrase:
+            continue
+        if len(tokens) == 1 and tokens[0].kind == "action":
+            return tokens[0].name
+    return text.strip()
+
+
+def _spelled(name: str) -> str:
+    """An identifier as words: BallFound → "Ball Found"."""
+    return re.sub(r"(?<!^)(?=[A-Z])", " ", name)

@@ -1,0 +1,215 @@
+"""The open demonstration in the session's words: how steps, events, 'undo N' and 'redo' of
+the demonstration being shown are recorded, said and journalled.
+
+The steps themselves are built by ``teach.open_demonstration`` (the one builder, which the
+MuJoCo recorder uses too); the session record holds the demonstration open now and journals
+it. Named steps, guided ones (``teach.session.guiding``) and the hand follower's moves all go
+through one ``Showing``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from teach import messages as m
+from teach.dialogue.phrases import Token
+from teach.domain import State
+from teach.errors import TeachError
+from teach.messages import Lang
+from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
+from teach.session.record import SessionRecord
+from teach.session.replies import Reply, ReplyKind
+from teach.session.run_report import why_not
+from teach.session.turn import Turn
+from teach.session.vocabulary import Vocabulary
+from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
+
+
+@dataclass(frozen=True)
+class _StepsTakenBack:
+    """What 'undo N' took from the open demonstration, so 'redo' can put it back while nothing
+    happened since: the open demonstration still ends where they began and the world is as the
+    undo left it."""
+
+    taken: TakenBack
+    world_after: State
+    """The world when the undo was said (after the steps): a redo puts it back there."""
+    arranged: State
+    """The world the undo left (before the steps)."""
+
+
+class Showing:
+    """The demonstration being shown: opened by its first step, each step said and journalled."""
+
+    def __init__(self, record: SessionRecord, turn: Turn, world: TeachingWorld, vocabulary: Vocabulary,
+                 lang: Lang):
+        self.record, self.turn, self.world, self.vocabulary = record, turn, world, vocabulary
+        self.lang = lang
+        self._taken_back: _StepsTakenBack | None = None
+
+    @property
+    def open(self) -> OpenDemonstration | None:
+        return self.record.open
+
+    @property
+    def has_steps(self) -> bool:
+        return self.record.open is not None and bool(self.record.open.steps)
+
+    def begin(self) -> list[Reply]:
+        """Open a demonstration if none is (said: "New demonstration")."""
+        if self.record.open is not None:
+            return []
+        self.record.open = OpenDemonstration()
+        return [Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))]
+
+    def for_step(self) -> OpenDemonstration:
+        """The open demonstration, opened when its first step has happened (a failed first step opens none)."""
+        self.turn.say(self.begin())
+        assert self.record.open is not None
+        return self.record.open
+
+    def close(self) -> None:
+        """The demonstration is finished or discarded: none is open."""
+        self.record.open = None
+
+    # --- steps -----------------------------------------------------------------------------
+
+    def step(self, before: State, action: str, words: str) -> None:
+        """The robot did ``action`` in ``before``; journalled before the teacher sees its "✓"."""
+        self.for_step().add(before, self.vocabulary.domain.action(action).id, words)
+        self.record.save_open()
+
+    def event(self, event: WorldEvent) -> None:
+        """An event of the world as an external step (-1) of the open demonstration."""
+        self.external(event.before, self.said(event))
+
+    def external(self, before: State, said: str) -> None:
+        """Something changed in ``before`` that the robot did not do (``said``: what happened)."""
+        self.for_step().add_event(WorldEventStep(before, m.EVENT_STEP(self.lang, event=said)))
+
+    def said(self, event: WorldEvent) -> str:
+        return m.Text(event.en, event.de)(self.lang)
+
+    def event_reply(self, event: WorldEvent) -> Reply:
+        return Reply(ReplyKind.INFO, m.EVENT(self.lang, event=self.said(event)))
+
+    def halted(self, action: str, result: ActResult) -> list[Reply]:
+        """An action the world's events halted: its own part kept as a step if it changed
+        anything (else dropped: said which), then each event as an external step (-1)."""
+        label = self.vocabulary.domain.action(action).label(self.lang)
+        events = [WorldEventStep(e.before, m.EVENT_STEP(self.lang, event=self.said(e))) for e in result.events]
+        kept = self.for_step().halted(result.before, self.vocabulary.domain.action(action).id, result.action_after,
+                                      m.HALTED_STEP(self.lang, action=label), events)
+        replies = [Reply(ReplyKind.INFO, (m.HALTED_KEPT if kept else m.HALTED_DROPPED)(self.lang, action=label))]
+        replies += [self.event_reply(event) for event in result.events]
+        self.record.save_open()  # on disk before the teacher sees the event
+        return replies
+
+    def act(self, tokens: list[Token], facilitator: bool) -> list[Reply]:
+        """Do the parsed steps in the world, each recorded in the open demonstration (opened by
+        the first that happens) and said as it happens; one that cannot be done ends the line
+        (``facilitator``: with the world's own words why)."""
+        domain = self.vocabulary.domain
+        replies: list[Reply] = []
+        for index, token in enumerate(tokens):
+            if token.kind == "event":
+                result = self.world.perturb(token.name)
+                self.external(result.before, token.text)
+                self.record.observer.on_external(token.name)
+                self.record.save_open()
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
+                continue
+            result = self.world.act(token.name)
+            label = domain.action(token.name).label(self.lang)
+            if not result.ok:
+                reason = why_not(domain, token.name, result.before, self.lang)
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
+                if facilitator and result.message:  # the world's own words are for the facilitator
+                    replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
+                break
+            if result.events:  # the world stopped it: the rest of the line no longer fits
+                replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
+                break
+            if result.after == result.before:
+                # a step that changes nothing would teach two different actions in one state
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
+                continue
+            self.step(result.before, token.name, label)
+            replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
+        return replies
+
+    def _not_done(self, tokens: list[Token]) -> list[Reply]:
+        """The rest of a line the world stopped, said as not done."""
+        if not tokens:
+            return []
+        domain = self.vocabulary.domain
+        words = [t.text if t.kind == "event" else domain.action(t.name).label(self.lang) for t in tokens]
+        return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
+
+    def from_run(self, result: RunResult) -> None:
+        """What a run that did not finish did (and the world's events in it, a slip) opens the
+        correction the teacher's next steps continue."""
+        domain = self.vocabulary.domain
+        steps = [(state, domain.action(action).id,
+                  m.ROBOT_DID_STEP(self.lang, action=domain.action(action).label(self.lang)))
+                 for state, action in result.steps]
+        events = [(after, WorldEventStep(event.before, m.EVENT_STEP(self.lang, event=self.said(event))))
+                  for after, event in result.events]
+        self.record.open = OpenDemonstration.from_run(steps, events)
+
+    def save_run(self, started: list[tuple[State, str]]) -> None:
+        """A run's progress on disk before the teacher sees it: a kill mid-run keeps the steps done."""
+        domain = self.vocabulary.domain
+        done = [(state, domain.action(action).id,
+                 m.ROBOT_DID_STEP(self.lang, action=domain.action(action).label(self.lang)))
+                for state, action in started[:-1]]
+        self.record.save_run(done, started[-1][0], started[-1][1])
+
+    # --- 'steps', 'undo N', 'redo' ---------------------------------------------------------
+
+    def listing(self) -> list[Reply]:
+        if not self.has_steps:
+            return [Reply(ReplyKind.INFO, m.NO_OPEN_STEPS(self.lang))]
+        assert self.record.open is not None
+        lines = [f"  {number}. {words}" for number, words in enumerate(self.record.open.words, 1)]
+        return [Reply(ReplyKind.INFO, m.OPEN_STEPS(self.lang) + "\n" + "\n".join(lines))]
+
+    def take_back(self, first: int | None) -> str:
+        """Take back steps ``first``.. (the last one when None): the world goes back to the state
+        before them. Returns what was said of it."""
+        opened = self.record.open
+        assert opened is not None
+        count = len(opened.steps)
+        if first is None:
+            first = count
+        if not 1 <= first <= count:
+            raise TeachError(m.NO_SUCH_STEP(self.lang, number=first, count=count))
+        world_after = self.world.state()
+        taken = opened.take_back(first)
+        self.world.arrange(taken.steps[0].state)
+        self._taken_back = _StepsTakenBack(taken, world_after, self.world.state())
+        if not opened.steps:
+            self.record.open = None
+        text = m.UNDONE_ONE_STEP if first == count else m.UNDONE_STEPS
+        return text(self.lang, first=first, last=count, steps="; ".join(taken.words))
+
+    def put_back(self) -> str | None:
+        """Bring back the steps the last 'undo N' took, while nothing happened since (the open
+        demonstration ends where they began, the world is as the undo left it); None otherwise."""
+        back, self._taken_back = self._taken_back, None
+        open_steps = len(self.record.open.steps) if self.record.open is not None else 0
+        if back is None or open_steps != back.taken.first - 1 or self.world.state() != back.arranged:
+            return None
+        if self.record.open is None:
+            self.record.open = OpenDemonstration()
+        self.record.open.put_back(back.taken)
+        self.world.arrange(back.world_after)
+        self.record.save_open()
+        first, last = back.taken.first, len(self.record.open.steps)
+        return (m.REDONE_ONE_STEP if last == first else m.REDONE_STEPS)(
+            self.lang, first=first, last=last, steps="; ".join(back.taken.words))
+
+
+def steps_said(count: int, lang: Lang) -> str:
+    """How many steps, in words: "1 step", "3 steps"."""
+    return (m.STEP_COUNT if count == 1 else m.STEPS_COUNT)(lang, count=count)
