@@ -44,6 +44,12 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
     return [("file", args.output)] if args.output else []
 
 
+def inputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command reads, which no output may replace (teach.protect)."""
+    named = [("tree file", args.oracle), ("domain file", args.oracle_model), ("domain file", args.domain)]
+    return [("set", args.train), ("set", args.test)] + [(what, path) for what, path in named if path]
+
+
 def run(args: argparse.Namespace) -> int:
     import tempfile
 
