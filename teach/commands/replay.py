@@ -118,6 +118,8 @@ def run(args: argparse.Namespace) -> int:
                              store.journal_path if store.has_journal() else store.demo_dir)
 
     console = Console(highlight=False)
-    with opened_session(settings, fresh=True, domain=domain, origin=origin, before_clearing=replaceable) as manager:
+    reads = [("dialogue", args.dialogue), ("tree file", args.oracle), ("domain file", args.oracle_model)]
+    with opened_session(settings, fresh=True, domain=domain, origin=origin, before_clearing=replaceable,
+                        inputs=[(what, path) for what, path in reads if path is not None]) as manager:
         run_script(script, manager, console, oracle, model_oracle)
     return 0
