@@ -121,12 +121,12 @@ def opened_session(settings: Settings, resume: bool = False, fresh: bool = False
 def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, origin: str,
           note: Callable[[str], None]) -> SessionManager:
     store = SessionStore(settings.base, settings.session, settings.record)
-    leftovers = [] if store.has_journal() else store.startup_leftovers()
+    leftovers = [] if fresh or store.has_journal() else store.startup_leftovers()  # fresh: cleared below
     if resume and leftovers:  # killed while starting: nothing was taught, so it starts anew
         note(f"{store.journal_path}: no journal, only what a start that was killed leaves "
              f"({', '.join(map(str, leftovers))}): nothing was taught; starting session {settings.session} anew")
         resume = False
-    elif leftovers and not fresh:
+    elif leftovers:
         note(f"{store.journal_path}: removing what a start of this session that was killed left "
              f"({', '.join(map(str, leftovers))}; nothing was taught)")
     if resume:

@@ -97,10 +97,8 @@ class SessionStore:
                 raise TeachError(f"holds {extra[0]}, but the session has no journal: it was not left by a start "
                                  "that was killed; move it away or choose another session name", folder)
             found.append(folder)
-        if self.recording is not None:
-            part = self.recording.with_name(self.recording.name + ".part")
-            found += [part] if part.is_file() else []
-        return found
+        part = self.journal_path.with_name(f"{self.demo_dir.name}.rrd.part")  # recorded or not this time
+        return found + ([part] if part.is_file() else [])
 
     def remove(self, leftovers: list[Path]) -> None:
         """Remove what ``startup_leftovers`` found."""
