@@ -51,6 +51,7 @@ READERS = {
 }
 READERS["set"] = READERS["csv"]
 READERS["recording"] = [("review", "{P}"), ("review", "{P}", "--step", "3")]
+READERS["btlog"] = [("review", "{P}")]
 
 
 @dataclass(frozen=True)
@@ -111,9 +112,11 @@ def build(tmp_path: Path) -> list[Run]:
                 continue  # a test set is read with the training set's domain, never its own
             argv = tuple(part.format(**places, **fill) for part in command)
             expect = next((places[key] for key in ("PDIR", "PSTUDY") if "{" + key + "}" in command), path)
+            if entry.kind == "btlog":  # the bad log lies in the recording's run folder
+                expect = str(Path(path).with_suffix(""))
             runs.append(Run(f"{entry.kind}/{entry.name}: {command[0]}", argv, folder(), expect,
                             bool(entry.special)))
-    for case in outputs(fill["TREE"], fill["SET"]):
+    for case in outputs(fill["TREE"], fill["SET"], fill["DIALOGUE"]):
         cwd = folder()
         case.setup(cwd)
         runs.append(Run(f"output/{case.name}", case.args, cwd, case.expect, True))

@@ -317,7 +317,7 @@ def test_kills_during_start_up_leave_nothing_a_resume_does_not_explain(tmp_path,
     over all the same (test_a_start_killed_before_its_journal_is_taken_over)."""
     import random
 
-    from killed_session import kill_after_start, kill_after_marker
+    from killed_session import kill_after_marker, kill_after_start
 
     from teach.session.setup import opened_session
 

@@ -410,7 +410,8 @@ def _read_xml(raw: bytes, path: str | Path) -> tuple[str, dict[int, str]]:
     try:
         document = etree.fromstring(raw, parser)
     except etree.XMLSyntaxError as exc:
-        raise FormatError(f"the tree XML in the header is not well-formed (line {exc.lineno}: {exc.msg})",
+        message = str(exc.msg).splitlines()[0] if exc.msg else "syntax error"  # lxml's may run over lines
+        raise FormatError(f"the tree XML in the header is not well-formed (line {exc.lineno}: {message})",
                           path) from None
     names: dict[int, str] = {}
     for tree in document.iter("BehaviorTree"):

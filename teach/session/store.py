@@ -27,9 +27,11 @@ ORPHANED = "orphaned"
 
 
 def session_root(base: Path) -> Path:
-    """The folder below which no part of a session's paths may be a symbolic link: the one
-    holding ``base``, so ``--base LINK`` is refused as a link inside the project would be."""
-    return Path(os.path.abspath(base)).parent
+    """The folder below which no part of a session's paths may be a symbolic link: the working
+    folder when ``base`` lies in it, else the one holding ``base``; so ``--base LINK`` (and
+    ``--base LINK/sub``) is refused as a link inside the project would be."""
+    here, absolute = Path(os.path.abspath(os.curdir)), Path(os.path.abspath(base))
+    return here if absolute == here or here in absolute.parents else absolute.parent
 
 
 class SessionStore:
