@@ -28,8 +28,9 @@ into), or ("owned", folder) a command may empty whole (a session's folders)."""
 
 
 def resolved(path: str | Path) -> Path:
-    """``path`` absolute, with every symbolic link of its existing part resolved."""
-    return Path(os.path.abspath(path)).resolve(strict=False)
+    """``path`` absolute, with every symbolic link of its existing part resolved (a link loop is
+    left as it is: its reader refuses it)."""
+    return Path(os.path.realpath(path))
 
 
 def _identity(path: Path) -> tuple[int, int] | None:
