@@ -51,11 +51,11 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def read_bytes(path: str | Path, what: str, limit: int, links: bool = True) -> bytes:
-    """At most ``limit`` bytes of a regular file. Special files (pipes, devices, sockets,
-    folders; with ``links`` False, symbolic links too) are refused before they are opened, and
-    the file is opened without blocking, so a FIFO cannot hang the reader (and what was opened
-    is checked again); the size is counted while reading, never taken from st_size."""
+def open_regular(path: str | Path, what: str, links: bool = True) -> int:
+    """A read-only descriptor of a regular file, or a one-line ``FormatError``. Special files
+    (pipes, devices, sockets, folders; with ``links`` False, symbolic links too) are refused
+    before they are opened (``lstat``, then the link's target), the open never blocks (a FIFO
+    swapped in cannot hang it) and what was opened is checked again."""
     try:
         before = os.lstat(path)
         if stat.S_ISLNK(before.st_mode) and links:
@@ -66,10 +66,18 @@ def read_bytes(path: str | Path, what: str, limit: int, links: bool = True) -> b
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC | nofollow)
     except OSError as exc:
         raise FormatError(f"cannot read {what}: {exc.strerror}", path) from None
+    opened = os.fstat(fd)
+    if not stat.S_ISREG(opened.st_mode):  # replaced between lstat and open
+        os.close(fd)
+        raise FormatError(f"is {_kind(opened.st_mode)}, not a {what}", path)
+    return fd
+
+
+def read_bytes(path: str | Path, what: str, limit: int, links: bool = True) -> bytes:
+    """At most ``limit`` bytes of a regular file opened by ``open_regular``; the size is counted
+    while reading, never taken from st_size."""
+    fd = open_regular(path, what, links)
     try:
-        opened = os.fstat(fd)
-        if not stat.S_ISREG(opened.st_mode):  # replaced between stat and open
-            raise FormatError(f"is {_kind(opened.st_mode)}, not a {what}", path)
         chunks: list[bytes] = []
         total = 0
         while total <= limit:
