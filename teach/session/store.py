@@ -192,7 +192,7 @@ class SessionStore:
         write_demonstration(path, demo)
 
     def read_demonstration(self, file: str, domain: Domain) -> Demonstration:
-        return read_demonstration(self.demo_dir / file, domain)
+        return read_demonstration(_own(self.demo_dir / file), domain)
 
     def last_generation(self) -> int:
         return last_generation(self.tree_dir)
@@ -212,12 +212,13 @@ class SessionStore:
         copy = self.demo_dir / "domain.toml"
         if not copy.is_file():
             raise FormatError("the session keeps no copy of its domain to add an action to", copy)
-        atomic_write_text(copy, read_text(copy, "domain file", limits.MAX_DOMAIN_BYTES).rstrip("\n") + "\n\n" + block)
+        atomic_write_text(copy, read_text(copy, "domain file", limits.MAX_DOMAIN_BYTES, links=False).rstrip("\n")
+                          + "\n\n" + block)
         return load_domain(copy)
 
     def session_domain(self) -> Domain:
         """The session's own domain copy, with the actions taught by guidance."""
-        return load_domain(self.demo_dir / "domain.toml")
+        return load_domain(_own(self.demo_dir / "domain.toml"))
 
     def write_motion(self, motion: GuidedMotion) -> str:
         """Save a guided motion beside the domain copy; its file name, for the journal."""
@@ -230,7 +231,7 @@ class SessionStore:
     def read_motion(self, file: str, domain: Domain) -> GuidedMotion:
         from teach.sim.guided_skill import load_motion
 
-        return load_motion(self.demo_dir / file, domain)
+        return load_motion(_own(self.demo_dir / file), domain)
 
     # --- the journal -----------------------------------------------------------------------
 
@@ -258,6 +259,14 @@ class SessionStore:
             raise FormatError("no such session journal (was the session id right?)", self.journal_path)
         return Journal.from_bytes(read_bytes(self.journal_path, "session journal", limits.MAX_JSON_BYTES, links=False),
                                   self.journal_path)
+
+
+def _own(path: Path) -> Path:
+    """``path``, a file of the session's own, refused when it is a symbolic link: what a session
+    reads back it wrote itself, never through a link to somewhere else."""
+    if path.is_symlink():
+        raise FormatError("is a symbolic link: a session's own files are never read through one", path)
+    return path
 
 
 def _interrupted(name: str) -> bool:
