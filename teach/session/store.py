@@ -69,6 +69,7 @@ class SessionStore:
                 check_output(path, root)
             else:
                 check_output_folder(path, root)
+                _no_links_inside(path)
 
     def prepare(self, domain: Domain) -> None:
         """Create the session's folders; keep a copy of the domain beside its demonstrations."""
@@ -259,6 +260,16 @@ class SessionStore:
             raise FormatError("no such session journal (was the session id right?)", self.journal_path)
         return Journal.from_bytes(read_bytes(self.journal_path, "session journal", limits.MAX_JSON_BYTES, links=False),
                                   self.journal_path)
+
+
+def _no_links_inside(folder: Path) -> None:
+    """Refuse a symbolic link anywhere in one of the session's folders: all it holds the session
+    wrote itself, and reads back or moves."""
+    for top, folders, files in os.walk(folder):
+        for name in folders + files:
+            if os.path.islink(os.path.join(top, name)):
+                raise FormatError("is a symbolic link: a session's own files are never read or written through "
+                                  "one", Path(top) / name)
 
 
 def _own(path: Path) -> Path:
