@@ -1,7 +1,8 @@
 """The hostile corpus (tests/hostile_corpus.py) through every command that reads each kind of file,
 and every hostile output path through every command that writes one: each run must end with
 exit status 2 and one line ``teach: FILE[:LINE]: what is wrong`` naming the bad file, no
-traceback, no hang (each run has an alarm), nothing on standard output and no file changed.
+traceback, no hang (each run has an alarm), nothing on standard output, no file changed and no
+process left running.
 
 The runs go through ``teach.cli.main`` in forked processes (tests/cli_batch.py); a sample (one
 run of every special file and output path, and every 60th run) also through fresh
@@ -165,6 +166,23 @@ def problem(run: Run, status: int, stdout: str, stderr: str) -> str | None:
     return None
 
 
+def processes_in(folder: Path) -> list[str]:
+    """Processes (a child a command started, like ``rerun rrd verify``) still running with their
+    working folder or a command-line argument under ``folder``."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdecimal():
+            continue
+        try:
+            where = os.readlink(entry / "cwd")
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:  # ended meanwhile, or another user's
+            continue
+        if where.startswith(str(folder)) or any(arg.startswith(str(folder).encode()) for arg in argv):
+            found.append(f"{entry.name}: {b' '.join(argv).decode(errors='replace')[:200]}")
+    return found
+
+
 def test_every_hostile_input_and_output_path_gives_one_line_and_changes_nothing(tmp_path: Path) -> None:
     runs = build(tmp_path)
     kinds = Counter(run.name.split("/")[0] for run in runs)
@@ -186,9 +204,11 @@ def test_every_hostile_input_and_output_path_gives_one_line_and_changes_nothing(
 
     after = snapshot(tmp_path)
     changed = sorted(set(before.items()) ^ set(after.items()))
+    left = processes_in(tmp_path)
     print(f"\nhostile corpus: {len(entries)} files and paths ({dict(sorted(kinds.items()))} runs), "
           f"{len(runs)} runs, {len(runs) - len(failures)} one-line errors with exit 2; "
           f"{len(sample)} also in fresh processes")
     assert not failures, f"{len(failures)} of {len(runs)} runs broke the promise:\n" + "\n".join(failures[:60])
     assert not differ, "\n".join(differ[:20])
     assert not changed, f"files changed: {changed[:20]}"
+    assert not left, f"processes left running in the runs' folders: {left}"
