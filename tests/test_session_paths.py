@@ -41,3 +41,22 @@ def test_a_session_file_replaced_by_a_link_is_refused_on_resume(taught: Path, ow
             pass
     assert caught.value.path == str(path) and "\n" not in str(caught.value)
     assert path.is_symlink() and outside.is_file()
+
+
+def test_an_audio_line_heard_from_the_sessions_own_folder_is_refused(tmp_path: Path,
+                                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    """A replay forgets its session's earlier folders: a dialogue's ``@audio`` file inside them
+    would be deleted after it was heard, so the replay is refused before it starts."""
+    from teach.cli import main
+
+    speech = tmp_path / "recordings" / "said" / "speech"
+    speech.mkdir(parents=True)
+    assert main(["speak", "find the ball", "-o", str(speech / "001.wav")]) == 0
+    dialogue = tmp_path / "said.dialogue"
+    dialogue.write_text("@world symbolic\n@audio recordings/said/speech/001.wav\n", encoding="utf-8")
+    before = sorted(tmp_path.rglob("*"))
+    assert main(["replay", str(dialogue), "--base", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err == (f"teach: {tmp_path / 'recordings' / 'said'}: holds {speech / '001.wav'}, which this command "
+                   "reads: write into another folder\n")
+    assert sorted(tmp_path.rglob("*")) == before
