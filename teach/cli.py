@@ -36,7 +36,8 @@ def build_parser() -> argparse.ArgumentParser:
         command = sub.add_parser(module.NAME, help=module.HELP, description=module.__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
         module.add_arguments(command)
-        command.set_defaults(run=module.run, outputs=getattr(module, "outputs", None))
+        command.set_defaults(run=module.run, outputs=getattr(module, "outputs", None),
+                             inputs=getattr(module, "inputs", None))
     return parser
 
 
@@ -49,7 +50,7 @@ def main(argv: list[str] | None = None) -> int:
     from teach.lock import claim_outputs
 
     try:
-        with claim_outputs(args.outputs(args) if args.outputs else ()):
+        with claim_outputs(args.outputs(args) if args.outputs else (), args.inputs(args) if args.inputs else ()):
             return int(args.run(args) or 0)
     except TeachError as error:
         print(f"teach: {error}", file=sys.stderr)

@@ -51,21 +51,33 @@ def _kind(mode: int) -> str:
     return "not a regular file"
 
 
-def read_bytes(path: str | Path, what: str, limit: int) -> bytes:
-    """At most ``limit`` bytes of a regular file. Special files (pipes, devices, sockets,
-    folders) are refused before they are read, and the file is opened without blocking, so a
-    FIFO cannot hang the reader; the size is counted while reading, never taken from st_size."""
+def open_regular(path: str | Path, what: str, links: bool = True) -> int:
+    """A read-only descriptor of a regular file, or a one-line ``FormatError``. Special files
+    (pipes, devices, sockets, folders; with ``links`` False, symbolic links too) are refused
+    before they are opened (``lstat``, then the link's target), the open never blocks (a FIFO
+    swapped in cannot hang it) and what was opened is checked again."""
     try:
-        before = os.stat(path)
+        before = os.lstat(path)
+        if stat.S_ISLNK(before.st_mode) and links:
+            before = os.stat(path)
         if not stat.S_ISREG(before.st_mode):
             raise FormatError(f"is {_kind(before.st_mode)}, not a {what}", path)
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC)
+        nofollow = 0 if links else os.O_NOFOLLOW
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC | nofollow)
     except OSError as exc:
         raise FormatError(f"cannot read {what}: {exc.strerror}", path) from None
+    opened = os.fstat(fd)
+    if not stat.S_ISREG(opened.st_mode):  # replaced between lstat and open
+        os.close(fd)
+        raise FormatError(f"is {_kind(opened.st_mode)}, not a {what}", path)
+    return fd
+
+
+def read_bytes(path: str | Path, what: str, limit: int, links: bool = True) -> bytes:
+    """At most ``limit`` bytes of a regular file opened by ``open_regular``; the size is counted
+    while reading, never taken from st_size."""
+    fd = open_regular(path, what, links)
     try:
-        opened = os.fstat(fd)
-        if not stat.S_ISREG(opened.st_mode):  # replaced between stat and open
-            raise FormatError(f"is {_kind(opened.st_mode)}, not a {what}", path)
         chunks: list[bytes] = []
         total = 0
         while total <= limit:
@@ -100,10 +112,10 @@ def decode_text(data: bytes, what: str, path: str | Path) -> str:
     return text
 
 
-def read_text(path: str | Path, what: str, limit: int = limits.MAX_JSON_BYTES) -> str:
+def read_text(path: str | Path, what: str, limit: int = limits.MAX_JSON_BYTES, links: bool = True) -> str:
     """A UTF-8 text file of at most ``limit`` bytes, or a one-line ``FormatError`` naming ``what``
     it should have been."""
-    return decode_text(read_bytes(path, what, limit), what, path)
+    return decode_text(read_bytes(path, what, limit, links), what, path)
 
 
 _JSON_TOKENS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]', re.DOTALL)

@@ -28,6 +28,7 @@ from pathlib import Path
 from types import TracebackType
 
 from teach.errors import TeachError
+from teach.protect import Input, Output, refuse_inputs
 
 SUFFIX = ".teach-lock"
 
@@ -276,16 +277,14 @@ def holding(*locks: ResourceLock) -> Iterator[None]:
         yield
 
 
-Output = tuple[str, Path]
-"""An output a command writes: ("file", path), ("folder", path) or ("set", demonstration set folder)."""
-
-
 @contextlib.contextmanager
-def claim_outputs(outputs: Sequence[Output]) -> Iterator[None]:
+def claim_outputs(outputs: Sequence[Output], inputs: Sequence[Input] = ()) -> Iterator[None]:
     """Check every output a command will write before it writes any (so a bad second output
-    leaves the first unwritten), then hold a lock on each while the command runs."""
+    leaves the first unwritten), none of them one of the ``inputs`` it reads (teach.protect),
+    then hold a lock on each while the command runs."""
     from teach.fsutil import check_output, check_output_folder
 
+    refuse_inputs(outputs, inputs)
     seen: set[str] = set()
     for kind, path in outputs:
         if _key_path(path) in seen:

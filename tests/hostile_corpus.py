@@ -6,7 +6,9 @@ Every entry must be refused by every command that reads its kind with one line
 ``teach: FILE[:LINE]: what is wrong`` and exit status 2 (tests/test_hostile_corpus.py runs them).
 Kinds: ``tree``, ``domain``, ``csv`` (one bad file in an otherwise good set), ``set`` (a whole
 demonstration folder), ``dialogue``, ``recording`` (rerun files with values missing or of the
-wrong type, written by rerun itself); ``output`` cases are paths a command must refuse to write.
+wrong type, written by rerun itself), ``btlog`` (a run log beside a good recording); ``output``
+cases are paths a command must refuse to write, among them what the command reads and a
+session's own paths.
 Special files (FIFOs, sockets, devices, symlinks, folders, missing files) are made by
 ``materialise``; nothing here knows the ball task beyond using its files as the good inputs.
 """
@@ -463,6 +465,111 @@ def recordings() -> list[Hostile]:
     return [Hostile("recording", name, content) for name, content in written.items()] + _special("recording")
 
 
+# --- run logs (.btlog) beside a recording ---------------------------------------------------------
+
+BTLOG_MAGIC = b"BTCPP4-FileLogger2"
+BTLOG_XML = ('<root BTCPP_format="4">\n<BehaviorTree ID="MainTree" _fullpath="">\n'
+             '<ReactiveSequence name="ReactiveSequence" _uid="1">\n<Ready name="Ready" _uid="2"/>\n'
+             '<Work name="Work" _uid="3"/>\n</ReactiveSequence>\n</BehaviorTree>\n<TreeNodesModel>\n'
+             '<Condition ID="Ready"/>\n<Action ID="Work"/>\n</TreeNodesModel>\n</root>\n')
+
+
+def btlog_file(xml: str = BTLOG_XML, records: bytes | None = None, protocol: int = 1, size: int | None = None,
+               start: bytes = b"\x00" * 8) -> bytes:
+    """A FileLogger2 file: magic, protocol, XML size and XML, first timestamp, 9-byte records."""
+    raw = xml.encode("utf-8", errors="surrogateescape")
+    if records is None:  # root RUNNING, Ready SUCCESS, Work RUNNING
+        records = b"".join(_record(t, uid, status) for t, uid, status in ((0, 1, 1), (0, 2, 2), (5, 3, 1)))
+    return (BTLOG_MAGIC + bytes([protocol]) + (len(raw) if size is None else size).to_bytes(4, "little", signed=True)
+            + raw + start + records)
+
+
+def _record(time_us: int, uid: int, status: int) -> bytes:
+    return time_us.to_bytes(6, "little") + uid.to_bytes(2, "little") + bytes([status])
+
+
+GOOD_BTLOG = btlog_file()
+
+
+def btlogs() -> list[Hostile]:
+    """Run logs ``teach review`` reads beside a recording: each case is ``run-002.btlog`` after a
+    good ``run-001.btlog``, beside a good recording."""
+    good_xml = BTLOG_XML
+    cases: dict[str, bytes] = {
+        "empty": b"",
+        "magic-only": BTLOG_MAGIC,
+        "magic-and-protocol": BTLOG_MAGIC + b"\x01",
+        "wrong-magic": b"BTCPP3-FileLogger2" + GOOD_BTLOG[len(BTLOG_MAGIC):],
+        "magic-lower-case": BTLOG_MAGIC.lower() + GOOD_BTLOG[len(BTLOG_MAGIC):],
+        "protocol-0": btlog_file(protocol=0),
+        "protocol-2": btlog_file(protocol=2),
+        "protocol-255": btlog_file(protocol=255),
+        "xml-size-0": btlog_file(size=0),
+        "xml-size-negative": btlog_file(size=-5),
+        "xml-size-huge": btlog_file(size=2**31 - 1),
+        "xml-size-past-the-end": btlog_file(size=len(good_xml) + 100, records=b""),
+        "no-timestamp": btlog_file(start=b"", records=b""),
+        "half-a-timestamp": btlog_file(start=b"\x00" * 4, records=b""),
+        "xml-latin1": btlog_file(good_xml.replace("Work", "W\udce4rk")),
+        "xml-nul": btlog_file(good_xml.replace("Work", "Wo\x00rk", 1)),
+        "xml-malformed": btlog_file(good_xml.replace("</root>", "</rot>")),
+        "xml-doctype": btlog_file('<!DOCTYPE root [<!ENTITY x "y">]>\n' + good_xml),
+        "xml-external-entity": btlog_file('<!DOCTYPE r [<!ENTITY e SYSTEM "file:///etc/passwd">]>\n<root>&e;</root>'),
+        "xml-no-tree": btlog_file('<root BTCPP_format="4"/>', records=b""),
+        "xml-not-a-tree": btlog_file("<html><body>hi</body></html>", records=b""),
+        "xml-unknown-node": btlog_file(good_xml.replace("ReactiveSequence", "Frobnicate")),
+        "xml-uid-not-a-number": btlog_file(good_xml.replace('_uid="3"', '_uid="three"')),
+        "xml-uid-negative": btlog_file(good_xml.replace('_uid="3"', '_uid="-3"')),
+        "xml-uid-huge": btlog_file(good_xml.replace('_uid="3"', '_uid="99999999999999999999"')),
+        "xml-uid-twice": btlog_file(good_xml.replace('_uid="3"', '_uid="2"')),
+        "xml-deep-5000": btlog_file('<root BTCPP_format="4"><BehaviorTree ID="MainTree">' + "<Inverter>" * 5000
+                                    + '<Work _uid="1"/>' + "</Inverter>" * 5000 + "</BehaviorTree></root>", b""),
+        "status-5": btlog_file(records=_record(0, 1, 5)),
+        "status-255": btlog_file(records=_record(0, 1, 255)),
+        "uid-0": btlog_file(records=_record(0, 0, 1)),
+        "uid-unknown": btlog_file(records=_record(0, 9, 1)),
+        "uid-65535": btlog_file(records=_record(0, 65535, 1)),
+        "tree-file-instead": GOOD_TREE,
+        "csv-instead": GOOD_DEMO,
+        "domain-instead": GOOD_DOMAIN,
+        "text-instead": b"this is not a log\n",
+        "binary": bytes(random.Random(23).randrange(256) for _ in range(4096)),
+        "utf16": GOOD_BTLOG.decode("latin-1").encode("utf-16"),
+    }
+    for extra in range(1, RECORD_BYTES):  # a record cut short, by each number of bytes
+        cases[f"record-cut-{extra}"] = GOOD_BTLOG + _record(9, 2, 2)[:extra]
+    for percent in (3, 10, 25, 50, 75, 90):  # truncated in the header or the XML
+        cases[f"truncated-{percent:02d}"] = GOOD_BTLOG[:len(GOOD_BTLOG) * percent // 100]
+    entries = [Hostile("btlog", name, content) for name, content in cases.items()]
+    return entries + [Hostile("btlog", f"special-{special}", special=special) for special in SPECIALS
+                      if special not in ("missing", "dotdot-missing")]  # a run log is only read where one is
+
+
+RECORD_BYTES = 9
+
+
+@functools.cache
+def good_recording() -> bytes:
+    """A teach recording ``teach review`` reads (one replay row), written by rerun."""
+    return _written({"good": ("learner/replay", {"reproduced": [1], "total": [1], "lenient": [False]})})["good"]
+
+
+def _make_btlog(entry: Hostile, sub: Path, folder: Path) -> str:
+    """``btlogs/<name>.rrd`` and its runs ``btlogs/<name>/run-001.btlog`` (good), ``run-002.btlog``."""
+    recording = sub / f"{entry.name}.rrd"
+    recording.write_bytes(good_recording())
+    runs = sub / entry.name
+    runs.mkdir()
+    (runs / "run-001.btlog").write_bytes(GOOD_BTLOG)
+    bad = runs / "run-002.btlog"
+    if entry.special:
+        _make_special(entry.special, bad, folder)
+    else:
+        assert entry.content is not None
+        bad.write_bytes(entry.content)
+    return str(recording.relative_to(folder))
+
+
 # --- special files, the same for every kind -----------------------------------------------------
 
 SPECIALS = ("fifo", "folder", "socket", "missing", "symlink-loop", "symlink-to-fifo", "dangling-symlink",
@@ -480,6 +587,8 @@ def materialise(entry: Hostile, folder: Path) -> str:
     sub.mkdir(exist_ok=True)
     if entry.kind == "set":
         return _make_set(entry.special, sub / entry.name, folder)
+    if entry.kind == "btlog":
+        return _make_btlog(entry, sub, folder)
     if entry.kind == "csv":
         target = sub / entry.name
         target.mkdir()
@@ -595,9 +704,10 @@ def _folder(name: str) -> Callable[[Path], None]:
     return lambda folder: (folder / name).mkdir(parents=True)
 
 
-def outputs(tree: str, demo_set: str) -> list[OutputCase]:
-    """Output paths every writing command must refuse before writing anything; ``tree`` and
-    ``demo_set`` are good inputs (absolute paths)."""
+def outputs(tree: str, demo_set: str, dialogue: str = "good.dialogue") -> list[OutputCase]:
+    """Output paths every writing command must refuse before writing anything; ``tree``,
+    ``demo_set`` (holding ``domain.toml`` and ``d1.csv``) and ``dialogue`` are good inputs
+    (absolute paths)."""
     writers: list[tuple[str, tuple[str, ...]]] = [
         ("learn", ("learn", demo_set, "-o")), ("prune", ("prune", tree, "-o")), ("dot", ("dot", tree, "-o"))]
     targets: list[tuple[str, str, str, Callable[[Path], None]]] = [
@@ -638,11 +748,170 @@ def outputs(tree: str, demo_set: str) -> list[OutputCase]:
         OutputCase("record-set-is-a-file", ("record", "--set", "sim", "FindBall"), "demos/sim",
                    _file("demos/sim")),
     ]
-    return cases
+    return cases + inputs_as_outputs(tree, demo_set, dialogue) + session_paths(dialogue)
+
+
+def _copy(source: str, name: str) -> Callable[[Path], None]:
+    return lambda folder: _file(name, Path(source).read_bytes())(folder)
+
+
+def _hard_link(source: str, name: str) -> Callable[[Path], None]:
+    return lambda folder: os.link(source, folder / name)
+
+
+def inputs_as_outputs(tree: str, demo_set: str, dialogue: str) -> list[OutputCase]:
+    """Outputs that are what the command reads (issue 23: ``teach learn SET -o SET/a-good.csv``
+    replaced a demonstration, ``teach dot tree.xml -o tree.xml`` the tree): the same path, another
+    spelling of it, a hard link, a path through a symbolic link, a file inside a set read whole."""
+    demo, domain = f"{demo_set}/d1.csv", f"{demo_set}/domain.toml"
+    folder_of_tree = str(Path(tree).parent)
+    spelled = f"{demo_set}/../{Path(demo_set).name}/d1.csv"
+    learn, bench = ("learn", demo_set), ("bench-teach", demo_set, demo_set, "--oracle", tree, "--questions", "0")
+    none: Callable[[Path], None] = lambda folder: None  # noqa: E731 - a setup that makes nothing
+    table: list[tuple[str, tuple[str, ...], str, Callable[[Path], None]]] = [
+        ("learn-demonstration", (*learn, "-o", demo), demo, none),
+        ("learn-domain-of-the-set", (*learn, "-o", domain), domain, none),
+        ("learn-new-file-in-the-set", (*learn, "-o", f"{demo_set}/zz.csv"), f"{demo_set}/zz.csv", none),
+        ("learn-deep-in-the-set", (*learn, "-o", f"{demo_set}/sub/x.xml"), f"{demo_set}/sub/x.xml", none),
+        ("learn-the-set-itself", (*learn, "-o", demo_set), demo_set, none),
+        ("learn-demonstration-spelled-with-dotdot", (*learn, "-o", spelled), spelled, none),
+        ("learn-hard-link-to-a-demonstration", (*learn, "-o", "hard.csv"), "hard.csv", _hard_link(demo, "hard.csv")),
+        ("learn-through-a-link-to-the-set", (*learn, "-o", "alias/zz.xml"), "alias/zz.xml",
+         lambda folder: (folder / "alias").symlink_to(demo_set)),
+        ("learn-given-domain", (*learn, "--domain", "d.toml", "-o", "d.toml"), "d.toml", _copy(domain, "d.toml")),
+        ("learn-pabt-domain", ("learn", "d.toml", "--approach", "pabt", "-o", "d.toml"), "d.toml",
+         _copy(domain, "d.toml")),
+        ("learn-pabt-domain-hard-link", ("learn", "d.toml", "--approach", "pabt", "-o", "e.toml"), "e.toml",
+         _both(_copy(domain, "d.toml"), lambda folder: os.link(folder / "d.toml", folder / "e.toml"))),
+        ("learn-generations-into-the-set", (*learn, "-o", "out.xml", "--generations", demo_set), demo_set, none),
+        ("learn-generations-into-a-set-folder", (*learn, "-o", "out.xml", "--generations", f"{demo_set}/gens"),
+         f"{demo_set}/gens", none),
+        ("learn-generations-beside-the-domain", (*learn, "--domain", "d.toml", "-o", "out/l.xml",
+                                                 "--generations", "."), ".", _copy(domain, "d.toml")),
+        ("prune-tree", ("prune", tree, "-o", tree), tree, none),
+        ("prune-tree-hard-link", ("prune", tree, "-o", "hard.xml"), "hard.xml", _hard_link(tree, "hard.xml")),
+        ("prune-tree-through-a-link", ("prune", tree, "-o", f"alias/{Path(tree).name}"),
+         f"alias/{Path(tree).name}", lambda folder: (folder / "alias").symlink_to(folder_of_tree)),
+        ("prune-tree-spelled-with-dot", ("prune", "t.xml", "-o", "./t.xml"), "t.xml", _copy(tree, "t.xml")),
+        ("prune-domain", ("prune", tree, "--domain", "d.toml", "-o", "d.toml"), "d.toml", _copy(domain, "d.toml")),
+        ("dot-tree", ("dot", tree, "-o", tree), tree, none),
+        ("dot-tree-relative", ("dot", "t.xml", "-o", "t.xml"), "t.xml", _copy(tree, "t.xml")),
+        ("dot-tree-spelled-with-dotdot", ("dot", "sub/t.xml", "-o", "sub/../sub/t.xml"), "sub/../sub/t.xml",
+         _copy(tree, "sub/t.xml")),
+        ("dot-tree-hard-link", ("dot", tree, "-o", "hard.dot"), "hard.dot", _hard_link(tree, "hard.dot")),
+        ("dot-tree-through-a-link", ("dot", tree, "-o", f"alias/{Path(tree).name}"), f"alias/{Path(tree).name}",
+         lambda folder: (folder / "alias").symlink_to(folder_of_tree)),
+        ("bench-oracle", (*bench, "-o", tree), tree, none),
+        ("bench-training-set", (*bench, "-o", f"{demo_set}/x.xml"), f"{demo_set}/x.xml", none),
+        ("bench-test-set", ("bench-teach", demo_set, "test", "--oracle", tree, "--questions", "0", "-o",
+                            "test/x.xml"), "test/x.xml",
+         _both(_copy(demo, "test/d1.csv"), _copy(domain, "test/domain.toml"))),
+        ("bench-oracle-model", ("bench-teach", demo_set, demo_set, "--oracle-model", "m.toml", "--questions", "0",
+                                "-o", "m.toml"), "m.toml", _copy(domain, "m.toml")),
+        ("bench-domain", (*bench, "--domain", "m.toml", "-o", "m.toml"), "m.toml", _copy(domain, "m.toml")),
+        ("bench-domain-hard-link", (*bench, "--domain", "m.toml", "-o", "n.toml"), "n.toml",
+         _both(_copy(domain, "m.toml"), lambda folder: os.link(folder / "m.toml", folder / "n.toml"))),
+        ("replay-dialogue-in-its-session-folder", ("replay", "demos/good/good.dialogue", "--no-record"),
+         "demos/good", _copy(dialogue, "demos/good/good.dialogue")),
+        ("replay-dialogue-in-its-trees", ("replay", "trees/good/good.dialogue", "--no-record"), "trees/good",
+         _copy(dialogue, "trees/good/good.dialogue")),
+        ("replay-dialogue-is-its-recording", ("replay", "recordings/x.rrd", "--session", "x"), "recordings/x.rrd",
+         _copy(dialogue, "recordings/x.rrd")),
+        ("replay-dialogue-is-its-journal", ("replay", "recordings/j.journal.json", "--session", "j", "--no-record"),
+         "recordings/j.journal.json", _copy(dialogue, "recordings/j.journal.json")),
+        ("replay-oracle-in-its-trees", ("replay", dialogue, "--oracle", "trees/good/gen-01.xml", "--no-record"),
+         "trees/good", _copy(tree, "trees/good/gen-01.xml")),
+        ("replay-domain-in-its-demos", ("replay", dialogue, "--domain", "demos/good/domain.toml", "--no-record"),
+         "demos/good", _copy(domain, "demos/good/domain.toml")),
+        ("replay-oracle-model-in-its-demos", ("replay", dialogue, "--oracle-model", "demos/good/undone/m.toml",
+                                              "--no-record"), "demos/good", _copy(domain, "demos/good/undone/m.toml")),
+        ("replay-dialogue-in-its-run-folder", ("replay", "recordings/good/good.dialogue"), "recordings/good",
+         _copy(dialogue, "recordings/good/good.dialogue")),
+        ("replay-dialogue-under-its-base", ("replay", "b/demos/good/good.dialogue", "--base", "b", "--no-record"),
+         "b/demos/good", _copy(dialogue, "b/demos/good/good.dialogue")),
+        ("session-domain-in-its-demos", ("session", "--session", "S", "--domain", "demos/S/domain.toml", "--world",
+                                         "offline", "--no-record"), "demos/S", _copy(domain, "demos/S/domain.toml")),
+        ("session-domain-in-its-trees", ("session", "--session", "S", "--domain", "trees/S/domain.toml", "--world",
+                                         "offline", "--no-record"), "trees/S", _copy(domain, "trees/S/domain.toml")),
+        ("session-domain-is-its-journal", ("session", "--session", "S", "--domain", "recordings/S.journal.json",
+                                           "--world", "offline", "--no-record"), "recordings/S.journal.json",
+         _copy(domain, "recordings/S.journal.json")),
+        ("session-world-file-in-its-demos", ("session", "--session", "S", "--domain", "demos/S/x/domain.toml",
+                                             "--world", "offline", "--no-record"), "demos/S",
+         _both(_copy(domain, "demos/S/x/domain.toml"), _file("demos/S/x/world.toml", b"# hidden state\n"))),
+    ]
+    return [OutputCase(f"input-{name}", args, expect, setup) for name, args, expect, setup in table]
+
+
+def session_paths(dialogue: str) -> list[OutputCase]:
+    """A session's own paths that are links, special files or files where folders belong: refused
+    before the first folder is made (issue 23: ``teach session --base LINK`` created folders
+    outside; a journal that was a link was read through it; a FIFO recording hung ``--resume``)."""
+    new = ("--session", "S", "--world", "offline")
+    resume = ("--resume", "S", "--world", "offline")
+    outside = _folder("elsewhere")
+    table: list[tuple[str, tuple[str, ...], str, Callable[[Path], None]]] = [
+        ("base-link", ("session", "--base", "LINK", *new), "LINK", _both(outside, _symlink("LINK", "elsewhere"))),
+        ("base-under-a-link", ("session", "--base", "LINK/sub", *new), "LINK",
+         _both(outside, _symlink("LINK", "elsewhere"))),
+        ("base-a-file", ("session", "--base", "b", *new), "b", _file("b")),
+        ("journal-link", ("session", *resume), "recordings/S.journal.json",
+         _both(_file("elsewhere/j.json", b"{}\n"), _folder("recordings"),
+               _symlink("recordings/S.journal.json", "../elsewhere/j.json"))),
+        ("journal-link-new", ("session", *new), "recordings/S.journal.json",
+         _both(_folder("recordings"), _symlink("recordings/S.journal.json", "nowhere.json"))),
+        ("journal-fifo", ("session", *resume), "recordings/S.journal.json",
+         _both(_folder("recordings"), _fifo("recordings/S.journal.json"))),
+        ("journal-folder", ("session", *resume), "recordings/S.journal.json", _folder("recordings/S.journal.json")),
+        ("journal-socket", ("session", *resume), "recordings/S.journal.json",
+         _both(_folder("recordings"), _socket("recordings/S.journal.json"))),
+        ("recording-fifo", ("session", *resume), "recordings/S.rrd",
+         _both(_folder("recordings"), _fifo("recordings/S.rrd"))),
+        ("recording-link", ("session", *new), "recordings/S.rrd",
+         _both(_file("elsewhere/r.rrd"), _folder("recordings"), _symlink("recordings/S.rrd", "../elsewhere/r.rrd"))),
+        ("recording-part-fifo", ("session", *new), "recordings/S.rrd.part",
+         _both(_folder("recordings"), _fifo("recordings/S.rrd.part"))),
+        ("recording-merge-fifo", ("session", *resume), "recordings/S.rrd.merged",
+         _both(_folder("recordings"), _fifo("recordings/S.rrd.merged"))),
+        ("history-folder", ("session", *new, "--no-record"), "recordings/.teach_history",
+         _folder("recordings/.teach_history")),
+        ("history-fifo", ("session", *new, "--no-record"), "recordings/.teach_history",
+         _both(_folder("recordings"), _fifo("recordings/.teach_history"))),
+        ("history-link", ("session", *new, "--no-record"), "recordings/.teach_history",
+         _both(_file("elsewhere/h"), _folder("recordings"), _symlink("recordings/.teach_history", "../elsewhere/h"))),
+        ("demos-folder-link", ("session", *new, "--no-record"), "demos/S",
+         _both(outside, _folder("demos"), _symlink("demos/S", "../elsewhere"))),
+        ("demos-link", ("session", *new, "--no-record"), "demos", _both(outside, _symlink("demos", "elsewhere"))),
+        ("trees-folder-a-file", ("session", *new, "--no-record"), "trees/S", _file("trees/S")),
+        ("trees-folder-a-fifo", ("session", *new, "--no-record"), "trees/S", _both(_folder("trees"), _fifo("trees/S"))),
+        ("run-folder-a-fifo", ("session", *new), "recordings/S", _both(_folder("recordings"), _fifo("recordings/S"))),
+        ("demonstration-a-link", ("session", *resume, "--no-record"), "demos/S/demo-001.csv",
+         _both(_file("elsewhere/d.csv", GOOD_DEMO), _folder("demos/S"),
+               _symlink("demos/S/demo-001.csv", "../../elsewhere/d.csv"))),
+        ("generation-a-link", ("session", *resume, "--no-record"), "trees/S/gen-01.xml",
+         _both(_file("elsewhere/t.xml", GOOD_TREE), _folder("trees/S"),
+               _symlink("trees/S/gen-01.xml", "../../elsewhere/t.xml"))),
+        ("undone-a-link", ("session", *resume, "--no-record"), "demos/S/undone",
+         _both(outside, _folder("demos/S"), _symlink("demos/S/undone", "../../elsewhere"))),
+        ("recordings-link", ("session", *new), "recordings", _both(outside, _symlink("recordings", "elsewhere"))),
+        ("replay-demos-link", ("replay", dialogue, "--no-record"), "demos",
+         _both(outside, _symlink("demos", "elsewhere"))),
+        ("replay-journal-fifo", ("replay", dialogue, "--no-record"), "recordings/good.journal.json",
+         _both(_folder("recordings"), _fifo("recordings/good.journal.json"))),
+        ("replay-journal-link", ("replay", dialogue, "--no-record"), "recordings/good.journal.json",
+         _both(_file("elsewhere/j.json"), _folder("recordings"),
+               _symlink("recordings/good.journal.json", "../elsewhere/j.json"))),
+        ("replay-recording-link", ("replay", dialogue), "recordings/good.rrd",
+         _both(_file("elsewhere/r.rrd"), _folder("recordings"), _symlink("recordings/good.rrd", "../elsewhere/r.rrd"))),
+        ("replay-base-link", ("replay", dialogue, "--base", "LINK", "--no-record"), "LINK",
+         _both(outside, _symlink("LINK", "elsewhere"))),
+        ("replay-trees-a-file", ("replay", dialogue, "--no-record"), "trees", _file("trees")),
+    ]
+    return [OutputCase(f"session-{name}", args, expect, setup) for name, args, expect, setup in table]
 
 
 def corpus() -> list[Hostile]:
-    return trees() + domains() + csvs() + sets() + dialogues() + recordings()
+    return trees() + domains() + csvs() + sets() + dialogues() + recordings() + btlogs()
 
 
 def main(argv: list[str]) -> int:

@@ -121,6 +121,19 @@ def kill_after_marker(cli: PreloadedCli, argv: list[str], after_line: int | None
     return killed
 
 
+def kill_after_start(cli: PreloadedCli, argv: list[str], delay: float) -> Killed:
+    """Run ``teach`` with ``argv`` and SIGKILL it ``delay`` seconds after it was started (a kill
+    during start-up, before the session printed its first line, lands by time alone)."""
+    child = cli.start(argv)
+    time.sleep(delay)
+    child.kill()
+    killed = Killed()
+    with child.stdout:
+        killed.transcript = [line.rstrip("\n") for line in child.stdout]
+    killed.started = bool(killed.transcript) and killed.transcript[0].startswith(MARKER)
+    return killed
+
+
 def phase(line: str) -> str:
     """What the session was doing when ``line`` was the last it printed ("" when the line tells
     nothing, as the wrapped end of a long one): a step, a run, learning from a finished

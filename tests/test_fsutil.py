@@ -40,6 +40,20 @@ def test_a_fifo_is_refused_without_waiting_for_a_writer(tmp_path: Path) -> None:
         read_bytes(fifo, "tree file", 100)
 
 
+def test_a_session_file_that_is_a_link_is_refused_on_read(tmp_path: Path) -> None:
+    """A session's own files (the journal) are never read through a link, as they are never
+    written through one; other inputs may be links, but never to a special file."""
+    (tmp_path / "real.json").write_text("{}")
+    (tmp_path / "journal.json").symlink_to("real.json")
+    with pytest.raises(FormatError, match="is a symbolic link, not a session journal"):
+        read_bytes(tmp_path / "journal.json", "session journal", 100, links=False)
+    assert read_bytes(tmp_path / "journal.json", "session journal", 100) == b"{}"
+    os.mkfifo(tmp_path / "pipe")
+    (tmp_path / "to-pipe").symlink_to("pipe")
+    with pytest.raises(FormatError, match="named pipe"):
+        read_bytes(tmp_path / "to-pipe", "run log", 100)
+
+
 @pytest.mark.parametrize(("path", "kind"), [("/dev/zero", "character device"), ("/dev/null", "character device")])
 def test_devices_are_refused_before_any_byte_is_read(path: str, kind: str) -> None:
     with pytest.raises(FormatError, match=kind):

@@ -1,7 +1,8 @@
 """The hostile corpus (tests/hostile_corpus.py) through every command that reads each kind of file,
 and every hostile output path through every command that writes one: each run must end with
 exit status 2 and one line ``teach: FILE[:LINE]: what is wrong`` naming the bad file, no
-traceback, no hang (each run has an alarm), nothing on standard output and no file changed.
+traceback, no hang (each run has an alarm), nothing on standard output, no file changed and no
+process left running.
 
 The runs go through ``teach.cli.main`` in forked processes (tests/cli_batch.py); a sample (one
 run of every special file and output path, and every 60th run) also through fresh
@@ -51,6 +52,7 @@ READERS = {
 }
 READERS["set"] = READERS["csv"]
 READERS["recording"] = [("review", "{P}"), ("review", "{P}", "--step", "3")]
+READERS["btlog"] = [("review", "{P}")]
 
 
 @dataclass(frozen=True)
@@ -111,9 +113,11 @@ def build(tmp_path: Path) -> list[Run]:
                 continue  # a test set is read with the training set's domain, never its own
             argv = tuple(part.format(**places, **fill) for part in command)
             expect = next((places[key] for key in ("PDIR", "PSTUDY") if "{" + key + "}" in command), path)
+            if entry.kind == "btlog":  # the bad log lies in the recording's run folder
+                expect = str(Path(path).with_suffix(""))
             runs.append(Run(f"{entry.kind}/{entry.name}: {command[0]}", argv, folder(), expect,
                             bool(entry.special)))
-    for case in outputs(fill["TREE"], fill["SET"]):
+    for case in outputs(fill["TREE"], fill["SET"], fill["DIALOGUE"]):
         cwd = folder()
         case.setup(cwd)
         runs.append(Run(f"output/{case.name}", case.args, cwd, case.expect, True))
@@ -162,6 +166,23 @@ def problem(run: Run, status: int, stdout: str, stderr: str) -> str | None:
     return None
 
 
+def processes_in(folder: Path) -> list[str]:
+    """Processes (a child a command started, like ``rerun rrd verify``) still running with their
+    working folder or a command-line argument under ``folder``."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdecimal():
+            continue
+        try:
+            where = os.readlink(entry / "cwd")
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:  # ended meanwhile, or another user's
+            continue
+        if where.startswith(str(folder)) or any(arg.startswith(str(folder).encode()) for arg in argv):
+            found.append(f"{entry.name}: {b' '.join(argv).decode(errors='replace')[:200]}")
+    return found
+
+
 def test_every_hostile_input_and_output_path_gives_one_line_and_changes_nothing(tmp_path: Path) -> None:
     runs = build(tmp_path)
     kinds = Counter(run.name.split("/")[0] for run in runs)
@@ -183,9 +204,11 @@ def test_every_hostile_input_and_output_path_gives_one_line_and_changes_nothing(
 
     after = snapshot(tmp_path)
     changed = sorted(set(before.items()) ^ set(after.items()))
+    left = processes_in(tmp_path)
     print(f"\nhostile corpus: {len(entries)} files and paths ({dict(sorted(kinds.items()))} runs), "
           f"{len(runs)} runs, {len(runs) - len(failures)} one-line errors with exit 2; "
           f"{len(sample)} also in fresh processes")
     assert not failures, f"{len(failures)} of {len(runs)} runs broke the promise:\n" + "\n".join(failures[:60])
     assert not differ, "\n".join(differ[:20])
     assert not changed, f"files changed: {changed[:20]}"
+    assert not left, f"processes left running in the runs' folders: {left}"

@@ -17,6 +17,7 @@ from preloaded_cli import PreloadedCli
 from teach import messages as m
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
+from teach.errors import TeachError
 from teach.session.journal import Answered, DemoLearned
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
@@ -301,6 +302,101 @@ def test_twenty_kills_of_a_mujoco_session_lose_nothing_acknowledged(tmp_path, cl
           f"{interrupted} cut-short writes removed")
     assert resumed_count >= KILLS - 4 and thanked_most > 0 and generation_most >= 5
     assert len(phases) >= 4  # the kills spread over steps, runs, learning, questions, the journal's saves
+
+
+START_UP_KILLS = 8
+
+
+def test_kills_during_start_up_leave_nothing_a_resume_does_not_explain(tmp_path, cli):
+    """A recorded MuJoCo replay killed at seeded moments from its start until just after its first
+    line (building the world, writing the journal, opening the recording, copying the domain):
+    either the journal is on disk, and ``--resume`` opens the session (no demonstration, nothing
+    orphaned, the recording part merged), or nothing but the lock's note is (then a resume says
+    there is no such session and a new start goes ahead). The start-up that left a domain copy and
+    a recording part without a journal (issue 23) is now impossible, and its leftovers are taken
+    over all the same (test_a_start_killed_before_its_journal_is_taken_over)."""
+    import random
+
+    from killed_session import kill_after_marker, kill_after_start
+
+    from teach.session.setup import opened_session
+
+    script = tmp_path / "kill.dialogue"
+    script.write_text(KILL_DIALOGUE, encoding="utf-8")
+
+    def replay(base: Path) -> list[str]:
+        return ["replay", str(script), "--base", str(base)]
+
+    began = time.monotonic()
+    timed = kill_after_marker(cli, replay(tmp_path / "trial-tm"), after_line=0)
+    to_first_line = time.monotonic() - began
+    assert timed.started, timed.transcript
+    rng = random.Random(23)
+    # one kill at once (before the world is built, surely before the journal), the others anywhere
+    moments = [0.0, *sorted(rng.uniform(0.0, 1.2 * to_first_line) for _ in range(START_UP_KILLS - 1))]
+    with_journal, open_already = 0, 0
+    for trial, moment in enumerate(moments):
+        base = tmp_path / f"start-{trial}"
+        killed = kill_after_start(cli, replay(base), moment)
+        journal = base / "recordings" / "kill.journal.json"
+        where = (trial, round(moment, 2), killed.transcript[:1])
+        if not journal.exists():  # killed before the journal: nothing of the session's own on disk
+            left = {str(p.relative_to(base)) for p in base.rglob("*")}
+            assert left <= {"recordings", "recordings/.kill.journal.json.teach-lock"} | \
+                {str(p.relative_to(base)) for p in base.glob("recordings/.kill.journal.json.*.tmp")}, where
+            with pytest.raises(TeachError, match="no such session journal"):
+                with opened_session(Settings("kill", base=base, record=False), resume=True, note=lambda _: None):
+                    pass
+            continue
+        with_journal += 1
+        open_already += killed.started
+        notes: list[str] = []
+        with opened_session(Settings("kill", base=base), resume=True, note=notes.append) as resumed:
+            if not killed.started:  # still starting: nothing taught yet
+                assert resumed.demos == [] and resumed.open is None and notes == [], (where, notes)
+            events = resumed.journal.events
+        assert not list(base.rglob("*.part")) and not list(base.rglob(".*.tmp")), where
+        assert (base / "recordings" / "kill.rrd").is_file(), where
+        journalled = {e.file for e in events if isinstance(e, DemoLearned)}
+        assert {p.name for p in (base / "demos" / "kill").glob("demo-*.csv")} == journalled, where
+    print(f"{START_UP_KILLS} kills in the first {1.2 * to_first_line:.2f} s of start-up: {with_journal} after the "
+          f"journal was written (resumed; {open_already} once the session was open), the others before it "
+          "(nothing left)")
+    assert with_journal < START_UP_KILLS
+
+
+def test_a_start_killed_before_its_journal_is_taken_over(tmp_path, ball):
+    """What a start killed before its journal used to leave (the domain copy, empty folders, a
+    recording part) is taken over by ``--resume`` with one note, or removed by a new start; taught
+    data without a journal is refused and left alone."""
+    from conftest import BALL_DOMAIN
+
+    from teach.session.setup import opened_session
+
+    def leave(session: str) -> None:
+        (tmp_path / "demos" / session).mkdir(parents=True)
+        (tmp_path / "trees" / session).mkdir(parents=True)
+        (tmp_path / "demos" / session / "domain.toml").write_bytes(BALL_DOMAIN.read_bytes())
+        (tmp_path / "recordings").mkdir(exist_ok=True)
+        (tmp_path / "recordings" / f"{session}.rrd.part").write_bytes(b"")
+
+    settings = Settings("S", world=WorldKind.OFFLINE, base=tmp_path, record=False)
+    for resume, said in ((True, "starting session S anew"), (False, "removing what a start")):
+        leave("S")
+        notes: list[str] = []
+        with opened_session(settings, resume=resume, note=notes.append) as manager:
+            assert manager.demos == []
+        assert len(notes) == 1 and said in notes[0] and "recordings/S.rrd.part" in notes[0], notes
+        assert not (tmp_path / "recordings" / "S.rrd.part").exists()
+        assert (tmp_path / "recordings" / "S.journal.json").is_file()
+        for path in [tmp_path / "demos" / "S", tmp_path / "trees" / "S", tmp_path / "recordings" / "S.journal.json"]:
+            subprocess.run(["rm", "-rf", str(path)], check=True)
+    leave("T")
+    (tmp_path / "demos" / "T" / "demo-001.csv").write_text("0;0;0;0;0;1\n")
+    with pytest.raises(TeachError, match="holds demo-001.csv, but the session has no journal"):
+        with opened_session(Settings("T", world=WorldKind.OFFLINE, base=tmp_path, record=False), resume=True):
+            pass
+    assert (tmp_path / "demos" / "T" / "demo-001.csv").is_file() and (tmp_path / "recordings" / "T.rrd.part").exists()
 
 
 def _killed_while_running(cli: PreloadedCli, argv: list[str], at_action: int) -> list[str]:

@@ -32,7 +32,7 @@ def imported(path: Path) -> set[str]:
 
 LAYERS: list[tuple[str, ...]] = [
     ("errors", "limits", "display"),
-    ("fsutil",),
+    ("fsutil", "protect", "children"),
     ("lock", "bt"),
     ("domain",),
     ("demos", "symbolic", "generations"),

@@ -71,3 +71,62 @@ def test_recording_into_a_set_of_another_domain_is_refused(tmp_path):
     with pytest.raises(DomainError, match="other conditions or actions"):
         save_demonstration(demo, folder)
     assert not list(folder.glob("*.csv"))
+
+
+def _sha256s(folder) -> dict[str, str]:
+    import hashlib
+
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest() if p.is_file() else "folder"
+            for p in sorted(folder.rglob("*"))}
+
+
+@pytest.mark.parametrize("output", ["SET/a-good.csv", "SET/domain.toml", "SET/zz.csv", "tree.xml"])
+def test_an_output_that_is_an_input_is_refused_and_nothing_changes(tmp_path, capsys, monkeypatch, output):
+    """Issue 23: these commands once exited 0 having replaced a demonstration, the domain, the
+    input tree, or added an XML "demonstration" to the set."""
+    (tmp_path / "SET").mkdir()
+    (tmp_path / "SET" / "a-good.csv").write_bytes((ROOT / "demos" / "ball" / "delta4" / "d01.csv").read_bytes())
+    (tmp_path / "SET" / "domain.toml").write_bytes((ROOT / "demos" / "ball" / "domain.toml").read_bytes())
+    (tmp_path / "tree.xml").write_bytes(REFERENCE.read_bytes())
+    monkeypatch.chdir(tmp_path)
+    before = _sha256s(tmp_path)
+    argv = ["dot", "tree.xml", "-o", output] if output == "tree.xml" else ["learn", "SET", "-o", output]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.startswith(f"teach: {output}: ") and captured.err.count("\n") == 1
+    assert "this command reads" in captured.err
+    assert _sha256s(tmp_path) == before
+
+
+def test_a_hard_link_to_an_input_is_the_input(tmp_path, capsys):
+    tree = tmp_path / "tree.xml"
+    tree.write_bytes(REFERENCE.read_bytes())
+    (tmp_path / "elsewhere").mkdir()
+    os.link(tree, tmp_path / "elsewhere" / "same.xml")
+    assert main(["prune", str(tree), "-o", str(tmp_path / "elsewhere" / "same.xml")]) == 2
+    assert f"is the tree file {tree} that this command reads" in capsys.readouterr().err
+    assert (tmp_path / "elsewhere" / "same.xml").read_bytes() == REFERENCE.read_bytes()
+
+
+def test_writing_beside_the_inputs_still_works(tmp_path, capsys):
+    """The guard refuses only what is read: the same folder, another name, is fine."""
+    (tmp_path / "tree.xml").write_bytes(REFERENCE.read_bytes())
+    assert main(["dot", str(tmp_path / "tree.xml"), "-o", str(tmp_path / "tree.dot")]) == 0
+    assert main(["learn", str(ROOT / "demos" / "ball" / "delta4"), "-o", str(tmp_path / "tree.xml")]) == 0
+    capsys.readouterr()
+
+
+def test_a_session_base_that_is_a_link_creates_nothing_anywhere(tmp_path, capsys, monkeypatch):
+    """Issue 23: ``teach session --base LINK`` made ``outside/demos`` and ``outside/trees`` before
+    it refused to write through the link."""
+    (tmp_path / "outside").mkdir()
+    (tmp_path / "project").mkdir()
+    (tmp_path / "project" / "LINK").symlink_to(tmp_path / "outside")
+    monkeypatch.chdir(tmp_path / "project")
+    before = _sha256s(tmp_path)
+    for argv in (["session", "--base", "LINK", "--world", "offline"], ["replay", str(ROOT / "dialogues" /
+                 "quickstart.dialogue"), "--base", "LINK", "--world", "offline"]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert "the folder LINK is a symbolic link" in err and err.count("\n") == 1
+    assert _sha256s(tmp_path) == before and not list((tmp_path / "outside").iterdir())

@@ -34,7 +34,7 @@ from teach.bt.nodes import Action, Condition, Inverter, Node, Parallel, Sequence
 from teach.bt.tick import TickResult, always_running
 from teach.bt.xml import MAIN_TREE, MAX_BYTES, tree_to_xml
 from teach.errors import FormatError, TeachError
-from teach.fsutil import atomic_write_bytes
+from teach.fsutil import atomic_write_bytes, read_bytes
 
 MAGIC = b"BTCPP4-FileLogger2"
 PROTOCOL = 1
@@ -42,6 +42,8 @@ SUFFIX = ".btlog"
 RECORD = 9
 MAX_UID = 0xFFFF
 """Node uids are two bytes in a record, so a loggable tree has at most 65535 nodes."""
+MAX_LOG_BYTES = 64 * 1024 * 1024
+"""The largest .btlog read back (the tree's XML and some seven million records)."""
 MAX_TIME_US = 1 << 48
 """Record timestamps are six bytes of µs (almost nine years after the first timestamp)."""
 
@@ -354,13 +356,7 @@ class Btlog:
 
 def read_btlog(path: str | Path) -> Btlog:
     """Read a ``FileLogger2`` file (ours or BehaviorTree.CPP's); a damaged one is a FormatError."""
-    try:
-        data = Path(path).read_bytes()
-    except IsADirectoryError:
-        raise FormatError("is a folder, not a .btlog file", path) from None
-    except OSError as exc:
-        raise FormatError(f"cannot read .btlog file: {exc.strerror}", path) from None
-    return parse_btlog(data, path)
+    return parse_btlog(read_bytes(path, ".btlog file", MAX_LOG_BYTES), path)
 
 
 def parse_btlog(data: bytes, path: str | Path = "<bytes>") -> Btlog:
@@ -414,7 +410,8 @@ def _read_xml(raw: bytes, path: str | Path) -> tuple[str, dict[int, str]]:
     try:
         document = etree.fromstring(raw, parser)
     except etree.XMLSyntaxError as exc:
-        raise FormatError(f"the tree XML in the header is not well-formed (line {exc.lineno}: {exc.msg})",
+        message = str(exc.msg).splitlines()[0] if exc.msg else "syntax error"  # lxml's may run over lines
+        raise FormatError(f"the tree XML in the header is not well-formed (line {exc.lineno}: {message})",
                           path) from None
     names: dict[int, str] = {}
     for tree in document.iter("BehaviorTree"):

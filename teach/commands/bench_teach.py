@@ -7,7 +7,8 @@ Example:
 Learns with the session's own learner and question selector, answers every question from
 the oracle, then replays TEST_DIR: ends with `reproduced K/N` under the strict replay (the
 lenient figure beside it). `-o TREE.xml` writes the tree learned after the questions (the
-one replayed), as `teach learn -o` does: an existing file is replaced, atomically.
+one replayed), as `teach learn -o` does: an existing file is replaced, atomically, but never one
+the command reads (the oracle, a domain, anything in either set).
 
 `--oracle-model` answers each question with the first step of a shortest plan from the
 question's own situation in that model; a question in a situation from which the model's
@@ -42,6 +43,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
     """What this command writes, checked and locked before it runs (teach.lock.claim_outputs)."""
     return [("file", args.output)] if args.output else []
+
+
+def inputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command reads, which no output may replace (teach.protect)."""
+    named = [("tree file", args.oracle), ("domain file", args.oracle_model), ("domain file", args.domain)]
+    return [("set", args.train), ("set", args.test)] + [(what, path) for what, path in named if path]
 
 
 def run(args: argparse.Namespace) -> int:

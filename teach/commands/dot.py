@@ -24,6 +24,11 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
     return [("file", args.output)] if args.output else []
 
 
+def inputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command reads, which no output may replace (teach.protect)."""
+    return [("tree file", args.tree)]
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.render import to_dot
     from teach.bt.xml import read_tree

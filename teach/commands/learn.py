@@ -50,6 +50,12 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
     return [("file", args.output)] + ([("folder", args.generations)] if args.generations else [])
 
 
+def inputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command reads, which no output may replace (teach.protect): the set whole."""
+    source = ("domain file" if args.approach == "pabt" and args.source.is_file() else "set", args.source)
+    return [source] + ([("domain file", args.domain)] if args.domain else [])
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.nodes import size
     from teach.bt.xml import write_tree

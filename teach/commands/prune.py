@@ -32,6 +32,11 @@ def outputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
     return [("file", args.output)]
 
 
+def inputs(args: argparse.Namespace) -> list[tuple[str, Path]]:
+    """What this command reads, which no output may replace (teach.protect)."""
+    return [("tree file", args.tree)] + ([("domain file", args.domain)] if args.domain else [])
+
+
 def run(args: argparse.Namespace) -> int:
     from teach.bt.nodes import action_names, condition_names, size
     from teach.bt.xml import read_tree, write_tree

@@ -89,7 +89,9 @@ def run(args: argparse.Namespace) -> int:
     if args.label_questions < 0:
         raise TeachError("--label-questions must be 0 or more")
     domain = session_domain(settings)
-    if any(line.startswith(AUDIO) for _, line in script.lines):
+    heard = [("audio file", script.path.parent / line[len(AUDIO):].strip())
+             for _, line in script.lines if line.startswith(AUDIO)]
+    if heard:
         from teach.voice.script import heard_script
 
         script = heard_script(script, domain, settings.lang)
@@ -118,6 +120,8 @@ def run(args: argparse.Namespace) -> int:
                              store.journal_path if store.has_journal() else store.demo_dir)
 
     console = Console(highlight=False)
-    with opened_session(settings, fresh=True, domain=domain, origin=origin, before_clearing=replaceable) as manager:
+    reads = [("dialogue", args.dialogue), ("tree file", args.oracle), ("domain file", args.oracle_model), *heard]
+    with opened_session(settings, fresh=True, domain=domain, origin=origin, before_clearing=replaceable,
+                        inputs=[(what, path) for what, path in reads if path is not None]) as manager:
         run_script(script, manager, console, oracle, model_oracle)
     return 0

@@ -60,8 +60,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from teach import messages as m
+    from teach.fsutil import check_output
     from teach.session.settings import Settings
     from teach.session.setup import opened_session
+    from teach.session.store import session_root
     from teach.terminal.app import Terminal
 
     if not args.pace >= 0 or args.pace == float("inf"):  # also refuses nan
@@ -79,9 +81,9 @@ def run(args: argparse.Namespace) -> int:
                         world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
                         facilitator=args.facilitator, groot=args.groot, voice=args.voice, safe=not args.guess)
+    history = args.base / "recordings" / ".teach_history"
+    check_output(history, session_root(args.base))  # read at the first prompt: never a FIFO, folder or link
     with opened_session(settings, resume=bool(args.resume)) as manager:
-        history = args.base / "recordings" / ".teach_history"
-        history.parent.mkdir(parents=True, exist_ok=True)
         listen = None
         if args.listen:
             from teach.voice.listen import Listener

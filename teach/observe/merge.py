@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import os
 import shutil
-import subprocess
 import sys
 from collections.abc import Callable
 from pathlib import Path
+
+from teach.children import run_child
 
 
 def print_note(message: str) -> None:
@@ -22,7 +23,7 @@ def _rerun() -> str:
 
 def is_readable_recording(path: Path) -> bool:
     """Whether rerun loads the whole of a finished recording."""
-    result = subprocess.run([_rerun(), "rrd", "verify", str(path)], capture_output=True, text=True)
+    result = run_child([_rerun(), "rrd", "verify", str(path)])
     return result.returncode == 0
 
 
@@ -49,8 +50,7 @@ def merge_into_place(path: Path, part: Path, earlier: list[Path]) -> None:
     """One recording of the whole session at ``path``: the earlier parts and ``part``, merged."""
     rerun = _rerun()
     merged = path.with_name(path.name + ".merged")
-    result = subprocess.run([rerun, "rrd", "merge", "--continue-on-error", *map(str, earlier),
-                             str(part), "-o", str(merged)], capture_output=True, text=True)
+    result = run_child([rerun, "rrd", "merge", "--continue-on-error", *map(str, earlier), str(part), "-o", str(merged)])
     if result.returncode != 0 or not merged.exists():
         # keep every piece rather than lose one: this part goes beside the earlier recording
         os.replace(part, path.with_name(path.stem + ".resumed.rrd"))

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import os
-import stat
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -12,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from teach.errors import FormatError
+from teach.fsutil import open_regular
 from teach.observe.encode import SHAPE_ENTITIES
 from teach.observe.layout import APPLICATION_ID
 
@@ -207,21 +207,24 @@ _FRAME_ENTITIES = tuple("/" + e for e in SHAPE_ENTITIES.values())
 def read_recording(path: str | Path) -> RecordingContents:
     """Read a ``teach`` recording back with rerun's own reader; damage, and any value missing or of
     the wrong type, is a one-line ``FormatError``: ``FILE: entity at step N: what is wrong``."""
+    path = Path(path)
+    if not os.path.lexists(path):
+        raise FormatError("no such recording file", path)
+    fd = open_regular(path, "recording")  # rerun reads what was checked, through the descriptor
+    try:
+        return _read_checked(path, f"/proc/self/fd/{fd}" if os.path.isdir("/proc/self/fd") else str(path))
+    finally:
+        os.close(fd)
+
+
+def _read_checked(path: Path, opened: str) -> RecordingContents:
+    """``read_recording`` of the file checked as ``path``, read by rerun as ``opened``."""
     from rerun.chunk import RrdReader
 
-    path = Path(path)
-    try:
-        info = os.stat(path)
-    except FileNotFoundError:
-        raise FormatError("no such recording file", path) from None
-    except OSError as exc:
-        raise FormatError(f"cannot read recording: {exc.strerror}", path) from None
-    if not stat.S_ISREG(info.st_mode):
-        raise FormatError("is not a regular file, not a recording", path)
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            reader = RrdReader(path)
+            reader = RrdReader(opened)
             stores = reader.recordings()
             has_blueprint = bool(reader.blueprints())
         if any("no footer" in str(w.message) for w in caught):
@@ -234,7 +237,7 @@ def read_recording(path: str | Path) -> RecordingContents:
             raise FormatError(f"not a teach recording (rerun application {store.application_id!r})", path)
         chunks = reader.stream(store=store).to_chunks()
     except (RuntimeError, ValueError, OSError) as exc:
-        message = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        message = str(exc).replace(opened, str(path)).splitlines()[0] if str(exc) else type(exc).__name__
         raise FormatError(f"damaged rerun recording: {message}", path) from None
     contents = RecordingContents(path, store.recording_id, has_blueprint=has_blueprint)
     rows: list[tuple[bytes, str, dict[str, Any]]] = []

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
@@ -14,6 +14,7 @@ from teach.errors import TeachError
 from teach.lock import session_lock
 from teach.observe.hook import Observer, Observers
 from teach.observe.merge import print_note
+from teach.protect import Input
 from teach.session.journal import Journal
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
@@ -89,14 +90,24 @@ def resumed_settings(settings: Settings, journal: Journal) -> Settings:
                    safe=not journal.guess)
 
 
+def session_inputs(settings: Settings) -> list[Input]:
+    """The files a session reads that are not its own: its domain and the world file beside it."""
+    if settings.domain is None:
+        return []
+    return [("domain file", settings.domain), ("world file", settings.domain.parent / "world.toml")]
+
+
 @contextmanager
 def opened_session(settings: Settings, resume: bool = False, fresh: bool = False, domain: Domain | None = None,
                    origin: str = "", note: Callable[[str], None] = print_note,
-                   before_clearing: Callable[[SessionStore], None] | None = None) -> Iterator[SessionManager]:
+                   before_clearing: Callable[[SessionStore], None] | None = None,
+                   inputs: Sequence[Input] = ()) -> Iterator[SessionManager]:
     """A new or resumed session with its world and its recording, held by this process alone
     from opening to closing. ``fresh`` forgets an earlier session of the same name: the caller
     has read and checked everything the new session needs (``domain`` among it) beforehand,
-    and ``before_clearing`` may still refuse, holding the lock."""
+    and ``before_clearing`` may still refuse, holding the lock. Every path is checked before
+    the first folder is made (``SessionStore.check_paths``; ``inputs``: what else the caller reads)."""
+    SessionStore(settings.base, settings.session, settings.record).check_paths([*session_inputs(settings), *inputs])
     with session_lock(settings.base, settings.session):
         if before_clearing is not None:
             before_clearing(SessionStore(settings.base, settings.session, settings.record))
@@ -110,11 +121,20 @@ def opened_session(settings: Settings, resume: bool = False, fresh: bool = False
 def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, origin: str,
           note: Callable[[str], None]) -> SessionManager:
     store = SessionStore(settings.base, settings.session, settings.record)
+    leftovers = [] if fresh or store.has_journal() else store.startup_leftovers()  # fresh: cleared below
+    if resume and leftovers:  # killed while starting: nothing was taught, so it starts anew
+        note(f"{store.journal_path}: no journal, only what a start that was killed leaves "
+             f"({', '.join(map(str, leftovers))}): nothing was taught; starting session {settings.session} anew")
+        resume = False
+    elif leftovers:
+        note(f"{store.journal_path}: removing what a start of this session that was killed left "
+             f"({', '.join(map(str, leftovers))}; nothing was taught)")
     if resume:
         journal = store.load_journal()
         settings = resumed_settings(settings, journal)
     domain = domain or session_domain(settings)
     settings = _world_that_fits(settings, domain, note)
+    store.remove(leftovers)
     if fresh and not resume:
         store.clear()
     elif not resume and store.has_journal():
@@ -129,7 +149,12 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
         world.ticker = groot = GrootTicker(settings.groot)
         observer.observers.append(HaltBetweenRuns(groot))
     recorder = None
+    started = None
     try:
+        if not resume:  # the journal first: a kill from here on leaves a session --resume explains
+            started = Journal(settings.session, str(domain.path or ""), settings.lang, settings.questions,
+                              settings.world, settings.seed, origin=origin, guess=not settings.safe)
+            store.save_journal(started)
         if store.recording is not None:
             from teach.observe.rerun_writer import RerunLogger
 
@@ -143,13 +168,14 @@ def _open(settings: Settings, resume: bool, fresh: bool, domain: Domain | None, 
             manager = SessionManager.resume(settings, domain, world, observer)
             manager.store.save_journal(manager.journal)  # its first save writes the journal whole: compacted
         else:
-            manager = SessionManager(settings, domain, world, observer)
-            manager.journal.origin = origin
+            manager = SessionManager(settings, domain, world, observer, started)
     except BaseException:
         if recorder is not None:
             recorder.abandon()  # a session that did not open adds nothing to its recording
         world.close()
         store.forget_folders(missing)
+        if started is not None:
+            store.journal_path.unlink(missing_ok=True)
         raise
     if resume:  # only once the journal has been learned again: a failed resume moves nothing
         store.remove_interrupted_writes()

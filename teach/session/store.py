@@ -3,7 +3,9 @@ that reads or writes them: demonstrations, tree generations, the journal, action
 
 from __future__ import annotations
 
+import os
 import shutil
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -11,9 +13,10 @@ from teach import limits
 from teach.bt.nodes import Node
 from teach.demos import Demonstration, read_demonstration, write_demonstration
 from teach.domain import Domain, load_domain
-from teach.errors import FormatError
-from teach.fsutil import append_durably, atomic_write_text, read_bytes, read_text
+from teach.errors import FormatError, TeachError
+from teach.fsutil import append_durably, atomic_write_text, check_output, check_output_folder, read_bytes, read_text
 from teach.generations import last_generation, write_generation
+from teach.protect import Input, Output, refuse_inputs
 from teach.session.journal import DemoLearned, Journal, Saved, effective_events
 
 if TYPE_CHECKING:
@@ -23,8 +26,17 @@ UNDONE = "undone"
 ORPHANED = "orphaned"
 
 
+def session_root(base: Path) -> Path:
+    """The folder below which no part of a session's paths may be a symbolic link: the working
+    folder when ``base`` lies in it, else the one holding ``base``; so ``--base LINK`` (and
+    ``--base LINK/sub``) is refused as a link inside the project would be."""
+    here, absolute = Path(os.path.abspath(os.curdir)), Path(os.path.abspath(base))
+    return here if absolute == here or here in absolute.parents else absolute.parent
+
+
 class SessionStore:
     def __init__(self, base: Path, session: str, record: bool):
+        self.base = base
         self.demo_dir = base / "demos" / session
         self.tree_dir = base / "trees" / session
         self.journal_path = base / "recordings" / f"{session}.journal.json"
@@ -32,6 +44,32 @@ class SessionStore:
         self.run_dir = base / "recordings" / session  # run-NNN.btlog, each run for Groot2
         self._saved: Saved | None = None
         """What this store last wrote to the journal file; None: its next save writes it whole."""
+
+    def outputs(self) -> list[Output]:
+        """Everything the session may write: its folders whole, its journal, its recording and the
+        files a resume merges it through."""
+        files = [self.journal_path]
+        if self.recording is not None:
+            files += [self.recording.with_name(self.recording.name + suffix)
+                      for suffix in ("", ".part", ".crashed", ".merged")]
+            files += [self.recording.with_name(self.recording.stem + suffix) for suffix in (".damaged.rrd",
+                                                                                            ".resumed.rrd")]
+        return [("owned", folder) for folder in (self.demo_dir, self.tree_dir, self.run_dir)] + \
+            [("file", file) for file in files]
+
+    def check_paths(self, inputs: Sequence[Input]) -> None:
+        """Refuse, before anything is created, a session whose files could not be written safely:
+        a symbolic link, a special file or a file where a folder belongs anywhere from ``--base``
+        down (the journal, read back on resume, included), or an input (the domain, its world,
+        a dialogue, an oracle) inside the session's folders or equal to one of its files."""
+        refuse_inputs(self.outputs(), inputs)
+        root = session_root(self.base)
+        for kind, path in self.outputs():
+            if kind == "file":
+                check_output(path, root)
+            else:
+                check_output_folder(path, root)
+                _no_links_inside(path)
 
     def prepare(self, domain: Domain) -> None:
         """Create the session's folders; keep a copy of the domain beside its demonstrations."""
@@ -48,6 +86,30 @@ class SessionStore:
             shutil.rmtree(stale, ignore_errors=True)
         self.journal_path.unlink(missing_ok=True)
         self._saved = None
+
+    def startup_leftovers(self) -> list[Path]:
+        """What a start killed before the session's first journal leaves: its folders holding
+        at most the domain copy, an unfinished recording. Taught data without a journal (a
+        demonstration, a generation, a run) is not a start's, and is refused rather than touched."""
+        found: list[Path] = []
+        for folder, allowed in ((self.demo_dir, {"domain.toml"}), (self.tree_dir, set()), (self.run_dir, set())):
+            if not folder.is_dir():
+                continue
+            extra = sorted(p.name for p in folder.iterdir() if p.name not in allowed and not _interrupted(p.name))
+            if extra:
+                raise TeachError(f"holds {extra[0]}, but the session has no journal: it was not left by a start "
+                                 "that was killed; move it away or choose another session name", folder)
+            found.append(folder)
+        part = self.journal_path.with_name(f"{self.demo_dir.name}.rrd.part")  # recorded or not this time
+        return found + ([part] if part.is_file() else [])
+
+    def remove(self, leftovers: list[Path]) -> None:
+        """Remove what ``startup_leftovers`` found."""
+        for path in leftovers:
+            if path.is_dir():
+                shutil.rmtree(path)
+            else:
+                path.unlink(missing_ok=True)
 
     def exists(self) -> bool:
         """Whether anything of a session of this name is on disk."""
@@ -131,7 +193,7 @@ class SessionStore:
         write_demonstration(path, demo)
 
     def read_demonstration(self, file: str, domain: Domain) -> Demonstration:
-        return read_demonstration(self.demo_dir / file, domain)
+        return read_demonstration(_own(self.demo_dir / file), domain)
 
     def last_generation(self) -> int:
         return last_generation(self.tree_dir)
@@ -151,12 +213,13 @@ class SessionStore:
         copy = self.demo_dir / "domain.toml"
         if not copy.is_file():
             raise FormatError("the session keeps no copy of its domain to add an action to", copy)
-        atomic_write_text(copy, read_text(copy, "domain file", limits.MAX_DOMAIN_BYTES).rstrip("\n") + "\n\n" + block)
+        atomic_write_text(copy, read_text(copy, "domain file", limits.MAX_DOMAIN_BYTES, links=False).rstrip("\n")
+                          + "\n\n" + block)
         return load_domain(copy)
 
     def session_domain(self) -> Domain:
         """The session's own domain copy, with the actions taught by guidance."""
-        return load_domain(self.demo_dir / "domain.toml")
+        return load_domain(_own(self.demo_dir / "domain.toml"))
 
     def write_motion(self, motion: GuidedMotion) -> str:
         """Save a guided motion beside the domain copy; its file name, for the journal."""
@@ -169,7 +232,7 @@ class SessionStore:
     def read_motion(self, file: str, domain: Domain) -> GuidedMotion:
         from teach.sim.guided_skill import load_motion
 
-        return load_motion(self.demo_dir / file, domain)
+        return load_motion(_own(self.demo_dir / file), domain)
 
     # --- the journal -----------------------------------------------------------------------
 
@@ -195,8 +258,31 @@ class SessionStore:
         """The journal, read through the bounded reader and checked against its schema."""
         if not self.journal_path.exists() and not self.journal_path.is_symlink():
             raise FormatError("no such session journal (was the session id right?)", self.journal_path)
-        return Journal.from_bytes(read_bytes(self.journal_path, "session journal", limits.MAX_JSON_BYTES),
+        return Journal.from_bytes(read_bytes(self.journal_path, "session journal", limits.MAX_JSON_BYTES, links=False),
                                   self.journal_path)
+
+
+def _no_links_inside(folder: Path) -> None:
+    """Refuse a symbolic link anywhere in one of the session's folders: all it holds the session
+    wrote itself, and reads back or moves."""
+    for top, folders, files in os.walk(folder):
+        for name in folders + files:
+            if os.path.islink(os.path.join(top, name)):
+                raise FormatError("is a symbolic link: a session's own files are never read or written through "
+                                  "one", Path(top) / name)
+
+
+def _own(path: Path) -> Path:
+    """``path``, a file of the session's own, refused when it is a symbolic link: what a session
+    reads back it wrote itself, never through a link to somewhere else."""
+    if path.is_symlink():
+        raise FormatError("is a symbolic link: a session's own files are never read through one", path)
+    return path
+
+
+def _interrupted(name: str) -> bool:
+    """A temporary file of an atomic write a kill cut short (``.NAME.*.tmp``)."""
+    return name.startswith(".") and name.endswith(".tmp")
 
 
 def _learned_files(journal: Journal) -> set[str]:
