@@ -8,6 +8,11 @@ memory or time.
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
+from teach.errors import FormatError
+
 KIB = 1024
 MIB = 1024 * KIB
 
@@ -45,3 +50,23 @@ MAX_DIALOGUE_LINES = 20_000
 
 MAX_JSON_BYTES = 64 * MIB
 """Largest journal or other JSON file read."""
+
+MAX_NUMBER_DIGITS = 4300
+"""Longest integer (in digits) a TOML or JSON file may write: Python's own limit on converting
+text to an integer, checked before a parser meets it (a learned file's numbers have a few digits)."""
+
+_TOO_MANY = "{" + str(MAX_NUMBER_DIGITS + 1) + ",}"
+_NUMBER_TOKENS = {  # strings (and TOML comments) are passed over; a digit run only counts from its start
+    "json": re.compile(r'"(?:[^"\\]|\\.)*"|(?<![0-9])(?P<digits>[0-9]' + _TOO_MANY + ")", re.DOTALL),
+    "toml": re.compile(r'"""(?:[^\\]|\\.)*?"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'
+                       r"|(?<![0-9_])(?P<digits>[0-9_]" + _TOO_MANY + ")", re.DOTALL),
+}
+
+
+def check_numbers(text: str, path: str | Path, syntax: str) -> None:
+    """Refuse a JSON or TOML (``syntax``) text with an integer longer than ``MAX_NUMBER_DIGITS``
+    outside its strings, with its line, before the parser's own conversion fails on it."""
+    for match in _NUMBER_TOKENS[syntax].finditer(text):
+        if match.group("digits"):
+            line = text.count("\n", 0, match.start()) + 1
+            raise FormatError(f"a number with more than {MAX_NUMBER_DIGITS} digits", path, line)
