@@ -64,6 +64,7 @@ from teach.session.journal import (
     Redone,
     Situated,
     Undone,
+    check_open_actions,
     effective_events,
     parse_state_text,
     redoable,
@@ -1106,6 +1107,7 @@ class SessionManager:
             return
         if run and run not in self.domain.action_names:
             raise FormatError(f"open_run: {run[:40]!r} is not an action of the domain", self.store.journal_path)
+        check_open_actions(self.journal, self.domain, self.store.journal_path)
         steps = [(self._journalled_state(str(state), f"open_steps[{number}]"), int(action), str(words))
                  for number, (state, action, words) in enumerate(self.journal.open_steps)]
         where = self._journalled_state(self.journal.open_state, "open_state")
