@@ -23,7 +23,17 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from conftest import ROOT
-from hostile_corpus import GOOD_DEMO, GOOD_DIALOGUE, GOOD_DOMAIN, GOOD_TREE, corpus, materialise, outputs
+from hostile_corpus import (
+    GOOD_DEMO,
+    GOOD_DIALOGUE,
+    GOOD_DOMAIN,
+    GOOD_TREE,
+    MOTION_SESSION,
+    SESSION_KINDS,
+    corpus,
+    materialise,
+    outputs,
+)
 
 ERROR_LINE = re.compile(r"^teach: (?P<path>.+?)(?::(?P<line>\d+))?: (?P<message>\S[^\n]*)\n$")
 TIMEOUT = 30
@@ -50,6 +60,9 @@ READERS = {
                  ("replay", "{P}", "--world", "offline", "--no-record", "--oracle", "{TREE}")],
 }
 READERS["set"] = READERS["csv"]
+READERS["world"] = [("session", "--domain", "{PBASE}/domain.toml", "--world", "symbolic", "--no-record"),
+                    ("replay", "{DIALOGUE}", "--domain", "{PBASE}/domain.toml", "--world", "symbolic", "--no-record")]
+READERS["journal"] = READERS["motion"] = [("session", "--base", "{PBASE}", "--resume", MOTION_SESSION, "--no-record")]
 READERS["recording"] = [("review", "{P}"), ("review", "{P}", "--step", "3")]
 
 
@@ -100,6 +113,8 @@ def build(tmp_path: Path) -> list[Run]:
     for entry in corpus():
         path = str(inputs / materialise(entry, inputs))
         places = {"P": path}
+        if entry.kind in SESSION_KINDS:  # found by name in a folder of good files: the domain's, the session's
+            places["PBASE"] = str(Path(path).parents[SESSION_KINDS[entry.kind]])
         if entry.kind == "domain":  # `teach table` finds domains by name: DIR/domain.toml, STUDY/participantN.toml
             for key, file in (("PDIR", "domain.toml"), ("PSTUDY", "participant1.toml")):
                 where = inputs / f"as-{file}" / entry.name

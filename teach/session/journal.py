@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from teach import limits
-from teach.domain import EXTERNAL_ACTION, Domain, State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import FormatError
 from teach.fsutil import Types, decode_text, parse_json, validate
 from teach.session.settings import LANGUAGES, WorldKind
@@ -375,9 +375,9 @@ def _check_open_steps(open_steps: list[object], where: Path, first: int = 0) -> 
 
 
 def check_open_actions(journal: Journal, domain: Domain, where: Path) -> None:
-    """On resume: every open step's action is one of the domain's (or an external one, -1)."""
+    """On resume: every open step's action is one of the domain's, an external one (-1) or the goal (0)."""
     for number, (_, action, _) in enumerate(journal.open_steps):
-        if action != EXTERNAL_ACTION and not domain.has_action(action):
+        if action not in (EXTERNAL_ACTION, GOAL_ACTION) and not domain.has_action(action):
             raise FormatError(f"the session journal is damaged: open_steps[{number}]: action {action} is not an "
                               f"action of the domain", where)
 
