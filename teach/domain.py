@@ -190,6 +190,11 @@ class TomlLines:
                 return number
         return start
 
+    def header(self, key: str) -> int | None:
+        """The first table header ``[key]``, ``[[key]]`` or ``[key.…]`` (a top-level key written as a table)."""
+        pattern = re.compile(rf"\[\[?\s*{re.escape(key)}\s*[\].]")
+        return next((n for n, line in enumerate(self.lines, 1) if pattern.match(line.strip())), None)
+
     def find(self, needle: str, after_line: int = 1) -> int | None:
         """The first line at or after ``after_line`` that contains ``needle``."""
         for number in range(max(after_line, 1), len(self.lines) + 1):
@@ -202,8 +207,8 @@ class TomlLines:
         for key in raw:
             if key not in allowed:
                 where = f" in {table}" if table else " at the top level"
-                raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path,
-                                  self.key(key, start))
+                line = self.key(key, start) if start else self.key(key, None) or self.header(key)
+                raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path, line)
 
 
 def parse_toml(text: str, path: Path) -> dict:

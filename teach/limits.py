@@ -56,10 +56,14 @@ MAX_NUMBER_DIGITS = 4300
 text to an integer, checked before a parser meets it (a learned file's numbers have a few digits)."""
 
 _TOO_MANY = "{" + str(MAX_NUMBER_DIGITS + 1) + ",}"
+_TOO_MANY_PREFIXED = "{" + str(MAX_NUMBER_DIGITS * 4 // 5) + ",}"
+"""TOML's 0x, 0o and 0b integers convert without a limit, but printing one that long in decimal
+would pass Python's: 3440 hex digits are about 4140 decimal ones."""
 _NUMBER_TOKENS = {  # strings (and TOML comments) are passed over; a digit run only counts from its start
     "json": re.compile(r'"(?:[^"\\]|\\.)*"|(?<![0-9])(?P<digits>[0-9]' + _TOO_MANY + ")", re.DOTALL),
     "toml": re.compile(r'"""(?:[^\\]|\\.)*?"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'
-                       r"|(?<![0-9_])(?P<digits>[0-9_]" + _TOO_MANY + ")", re.DOTALL),
+                       r"|(?<![0-9A-Za-z_])(?P<digits>[0-9_]" + _TOO_MANY + "|0[xob][0-9A-Fa-f_]"
+                       + _TOO_MANY_PREFIXED + ")", re.DOTALL),
 }
 
 

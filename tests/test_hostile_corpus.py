@@ -113,6 +113,8 @@ def build(tmp_path: Path) -> list[Run]:
     for entry in corpus():
         path = str(inputs / materialise(entry, inputs))
         places = {"P": path}
+        if entry.kind == "csv" and not entry.special:  # the set holding the bad file is read; the error names the file
+            places["P"] = str(Path(path).parent)
         if entry.kind in SESSION_KINDS:  # found by name in a folder of good files: the domain's, the session's
             places["PBASE"] = str(Path(path).parents[SESSION_KINDS[entry.kind]])
         if entry.kind == "domain":  # `teach table` finds domains by name: DIR/domain.toml, STUDY/participantN.toml
