@@ -44,8 +44,7 @@ def _command_modules() -> list[ModuleType]:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="teach", description=DESCRIPTION,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = _Parser(prog="teach", description=DESCRIPTION, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"teach {teach.__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for module in _command_modules():
@@ -60,17 +59,19 @@ def _safe_streams() -> bool:
     """Make printing safe whatever the terminal: text the output encoding cannot hold is written
     as escapes (``PYTHONIOENCODING=ascii``), and closed standard streams are opened on the null
     device, so no file teach opens later takes their place. Whether standard input was closed."""
-    closed = False
-    for fd in (0, 1, 2):
+    closed = sys.stdin is None
+    for fd, name in ((0, "stdin"), (1, "stdout"), (2, "stderr")):
         try:
             os.fstat(fd)
         except OSError:
             closed |= fd == 0
             os.open(os.devnull, os.O_RDWR)  # takes the lowest free descriptor: this one
+        if getattr(sys, name) is None:  # closed when Python started: print() would write elsewhere
+            setattr(sys, name, open(fd, "r" if fd == 0 else "w", encoding="utf-8", closefd=False))
     for stream in (sys.stdout, sys.stderr):
         if isinstance(stream, io.TextIOWrapper):
             stream.reconfigure(errors="backslashreplace")
-    return closed or sys.stdin is None
+    return closed
 
 
 def main(argv: list[str] | None = None) -> int:

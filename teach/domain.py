@@ -207,7 +207,7 @@ class TomlLines:
         for key in raw:
             if key not in allowed:
                 where = f" in {table}" if table else " at the top level"
-                line = self.key(key, start) if start else self.key(key, None) or self.header(key)
+                line = self.key(key, start) or self.header(key)  # a top-level key written as a table
                 raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path, line)
 
 

@@ -17,11 +17,12 @@ from teach.errors import printable
 ENV = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin", "LANG": "C.UTF-8"}
 
 
-def teach(*args: str | bytes, cwd: Path, env: dict[str, str] | None = None, close_stdin: bool = False,
+def teach(*args: str | bytes, cwd: Path, env: dict[str, str] | None = None, close: int | None = None,
           ) -> subprocess.CompletedProcess[bytes]:
+    """``teach ARGS`` in a fresh process; ``close``: a standard stream's descriptor closed before it starts."""
     return subprocess.run([sys.executable, "-m", "teach.cli", *args], cwd=cwd, capture_output=True,
                           stdin=subprocess.DEVNULL, env={**ENV, **(env or {})},
-                          preexec_fn=(lambda: os.close(0)) if close_stdin else None, check=False)
+                          preexec_fn=None if close is None else lambda: os.close(close), check=False)
 
 
 def one_line(done: subprocess.CompletedProcess[bytes]) -> str:
@@ -69,9 +70,14 @@ def test_an_ascii_terminal_gets_escapes_not_a_traceback(tmp_path: Path) -> None:
 
 
 def test_a_closed_standard_input_is_one_line_and_creates_nothing(tmp_path: Path) -> None:
-    err = one_line(teach("session", "--world", "offline", "--no-record", cwd=tmp_path, close_stdin=True))
+    err = one_line(teach("session", "--world", "offline", "--no-record", cwd=tmp_path, close=0))
     assert err.startswith("teach: <stdin>: standard input is closed")
     assert files(tmp_path) == []
+
+
+def test_a_closed_standard_error_keeps_the_error_off_standard_output(tmp_path: Path) -> None:
+    done = teach("show", "missing.xml", cwd=tmp_path, close=2)
+    assert done.returncode == 2 and done.stdout == b""
 
 
 def test_a_history_that_is_a_folder_gives_a_session_without_history_said_once(tmp_path: Path) -> None:

@@ -55,9 +55,9 @@ from teach.world.symbolic import SymbolicWorld
 
 WORLD_FILE = "world.toml"
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_WHEN = re.compile(r"^ *([A-Za-z_][A-Za-z0-9_]*) *(==|!=|<=|>=|<|>) *(-?[0-9]{1,18}) *$")
-"""A derived condition's test: a variable, a comparison and an integer of at most 18 digits
-(ASCII only, so no other script's digits and no parser limit)."""
+_WHEN = re.compile(r"^[ \t]*([A-Za-z_][A-Za-z0-9_]*)[ \t]*(==|!=|<=|>=|<|>)[ \t]*(-?[0-9]{1,18})[ \t]*$")
+"""A derived condition's test: a variable, a comparison and an integer of at most 18 digits, with
+ASCII blanks between (no other script's digits or spaces, no parser limit)."""
 _COMPARE: dict[str, Callable[[int, int], bool]] = {
     "==": operator.eq, "!=": operator.ne, "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge}
 _KEYS = {
