@@ -211,10 +211,17 @@ class TomlLines:
                 raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path, line)
 
 
+def check_numbers(text: str, path: str | Path, syntax: str) -> None:
+    """Refuse a JSON or TOML text with an integer too long to convert (teach.limits), naming its line."""
+    line = limits.too_long_number(text, syntax)
+    if line is not None:
+        raise FormatError(f"a number with more than {limits.MAX_NUMBER_DIGITS} digits", path, line)
+
+
 def parse_toml(text: str, path: Path) -> dict:
     """TOML with bounded nesting and integer size, parse errors as one line naming the line."""
     check_nesting(text, path, "toml")
-    limits.check_numbers(text, path, "toml")
+    check_numbers(text, path, "toml")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -9,9 +9,6 @@ memory or time.
 from __future__ import annotations
 
 import re
-from pathlib import Path
-
-from teach.errors import FormatError
 
 KIB = 1024
 MIB = 1024 * KIB
@@ -67,10 +64,10 @@ _NUMBER_TOKENS = {  # strings (and TOML comments) are passed over; a digit run o
 }
 
 
-def check_numbers(text: str, path: str | Path, syntax: str) -> None:
-    """Refuse a JSON or TOML (``syntax``) text with an integer longer than ``MAX_NUMBER_DIGITS``
-    outside its strings, with its line, before the parser's own conversion fails on it."""
+def too_long_number(text: str, syntax: str) -> int | None:
+    """The line of the first integer longer than ``MAX_NUMBER_DIGITS`` outside the strings of a
+    JSON or TOML (``syntax``) text, or None: checked before a parser's own conversion fails on it."""
     for match in _NUMBER_TOKENS[syntax].finditer(text):
         if match.group("digits"):
-            line = text.count("\n", 0, match.start()) + 1
-            raise FormatError(f"a number with more than {MAX_NUMBER_DIGITS} digits", path, line)
+            return text.count("\n", 0, match.start()) + 1
+    return None

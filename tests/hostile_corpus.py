@@ -656,6 +656,17 @@ def _make_session_kind(entry: Hostile, sub: Path) -> Path:
     return base / "demos" / MOTION_SESSION / "PushBall.motion.json"
 
 
+def _deep_socket(path: Path, folder: Path) -> str:
+    """A socket at a path too long for AF_UNIX (108 bytes), bound through its folder's descriptor."""
+    where = os.open(path.parent, os.O_RDONLY)
+    try:
+        with socket.socket(socket.AF_UNIX) as server:
+            server.bind(f"/proc/self/fd/{where}/{path.name}")
+    finally:
+        os.close(where)
+    return str(path.relative_to(folder))
+
+
 SESSION_KINDS = {"world": 0, "journal": 1, "motion": 2}
 """The kinds that live in a folder of their own, with how many folders up from the file it is
 (the folder of the domain for a world, the session's base folder for a journal or a motion)."""
@@ -777,6 +788,8 @@ def materialise(entry: Hostile, folder: Path) -> str:
         path = target / "b-bad.csv"
     elif entry.kind in SESSION_KINDS:
         path = _make_session_kind(entry, sub)
+        if entry.special == "socket":
+            return _deep_socket(path, folder)
     else:
         path = sub / f"{entry.name}.{_SUFFIX[entry.kind]}"
     if entry.special:

@@ -19,8 +19,7 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 from typing import Any, ClassVar
 
-from teach import limits
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, check_numbers
 from teach.errors import FormatError
 from teach.fsutil import Types, decode_text, parse_json, validate
 from teach.session.settings import LANGUAGES, WorldKind
@@ -303,7 +302,7 @@ class Journal:
         """Parse a journal file's text against its schema; damage is a one-line ``FormatError``
         naming ``where``, the line and the key that is wrong."""
         try:
-            limits.check_numbers(text, where, "json")
+            check_numbers(text, where, "json")
             if text.split("\n", 1)[0].strip() == "{":  # version 1: one document over many lines
                 return cls._checked(parse_json(text, where, "the session journal"), where)
             lines = text.split("\n")

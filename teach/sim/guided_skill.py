@@ -29,9 +29,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from teach import limits
 from teach.bt.nodes import Status
-from teach.domain import Domain, Literal
+from teach.domain import Domain, Literal, check_numbers
 from teach.errors import FormatError, shown
 from teach.fsutil import atomic_write_text, parse_json, read_text
 from teach.learn.recognise import changed_literals
@@ -257,7 +256,7 @@ def save_motion(motion: GuidedMotion, path: str | Path) -> None:
 def load_motion(path: str | Path, domain: Domain) -> GuidedMotion:
     """Read a motion file; every problem is one ``FormatError`` naming the file and line."""
     text = read_text(path, "guided motion file")
-    limits.check_numbers(text, path, "json")
+    check_numbers(text, path, "json")
     return _motion_from_data(parse_json(text, path, "the guided motion file"), text, Path(path), domain)
 
 
