@@ -16,6 +16,11 @@ from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, find_domai
 from teach.errors import FormatError
 from teach.fsutil import atomic_write_text, read_text
 
+_BLANKS = " \t\r"
+"""What may end a line unseen: ASCII blanks and the CR of a CRLF line end, nothing else."""
+_ODD = re.compile(r"[^\S \t]|[\x00-\x08\x0e-\x1f\x7f-\x9f\u200b-\u200f\u202a-\u202e\u2060-\u2069\ufeff]")
+"""A character that hides in a line: a control, a Unicode space or line break (U+2028, NEL, form
+feed, vertical tab, no-break space, ...) or an invisible format character."""
 _ACTION_ID = re.compile(r"-?[0-9]{1,7}", re.ASCII)
 """An action ID as the format writes it: ASCII digits, '-' only for -1 (no '+', '_', spaces inside)."""
 
@@ -67,8 +72,8 @@ def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str |
     one tuple (``states`` may carry them across the files of a set), so memory grows with the
     number of lines, not with lines times conditions."""
     width = len(domain.conditions)
-    lines = text.splitlines()
-    while lines and not lines[-1].strip():
+    lines = text.split("\n")  # lines end at \n (or \r\n) only, never at U+2028, NEL or a form feed
+    while lines and not lines[-1].strip(_BLANKS):
         lines.pop()
     if not lines:
         raise FormatError("empty demonstration file", path)
@@ -78,9 +83,13 @@ def parse_demonstration(text: str, domain: Domain, path: str | Path, name: str |
     shared: dict[State, State] = {} if states is None else states
     steps: list[Step] = []
     for number, raw in enumerate(lines, start=1):
-        line = raw.rstrip()  # trailing blanks and CR are let be; anything else is part of a field
+        line = raw.rstrip(_BLANKS)  # trailing ASCII blanks and CR are let be; anything else is part of a field
         if not line:
             raise FormatError("empty line inside a demonstration", path, number)
+        odd = _ODD.search(line)
+        if odd:
+            raise FormatError(f"character U+{ord(odd.group()):04X} at column {odd.start() + 1} is not allowed: fields "
+                              "hold only 0, 1 and an action ID, and lines end only at \\n or \\r\\n", path, number)
         if steps and steps[-1].action == GOAL_ACTION:
             raise FormatError("a line after the goal line (action 0 must be the last line)", path, number)
         fields = line.split(";")

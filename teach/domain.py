@@ -13,7 +13,7 @@ from typing import NoReturn
 
 from teach import limits
 from teach.bt.builtins import BTCPP_BUILTINS
-from teach.errors import DomainError, FormatError
+from teach.errors import DomainError, FormatError, shown
 from teach.fsutil import check_nesting, read_text
 
 State = tuple[bool, ...]
@@ -155,71 +155,128 @@ def check_tree_fits(domain: Domain, conditions: set[str], actions: set[str], pat
         raise DomainError(f"the tree runs action {name!r}, which {domain.path} does not define", path)
 
 
-def _line_of(text: str, needle: str, after_line: int = 1) -> int | None:
-    """The first line (1-based) at or after ``after_line`` that contains ``needle``."""
-    for number, line in enumerate(text.splitlines()[after_line - 1:], start=after_line):
-        if needle in line:
-            return number
-    return None
+_KEYS = {
+    "": ("name", "goal", "condition", "action"),
+    "condition": ("name", "en", "de", "en_false", "de_false"),
+    "action": ("id", "name", "en", "de", "pre", "ram"),
+}
+"""The keys each part of a domain file may hold: any other is a typo that would be ignored."""
 
 
-def _shown(value: object) -> str:
-    """A value for an error message, cut short so a huge one still gives one short line."""
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
+class TomlLines:
+    """Where things are in a TOML text, so every error names its line. Lines end only at
+    ``\\n`` (TOML's own rule), never at the other characters ``str.splitlines`` breaks at."""
+
+    def __init__(self, text: str):
+        self.lines = text.split("\n")
+
+    def tables(self, kind: str) -> list[int]:
+        """The header line of every ``[[kind]]`` table."""
+        return [n for n, line in enumerate(self.lines, 1) if line.strip().startswith(f"[[{kind}]]")]
+
+    def table(self, kind: str, index: int) -> int | None:
+        """The header line of the ``index``-th ``[[kind]]`` table."""
+        headers = self.tables(kind)
+        return headers[index] if index < len(headers) else None
+
+    def key(self, key: str, start: int | None) -> int | None:
+        """The line that sets ``key`` in the table whose header is line ``start`` (top level:
+        None); the header itself when the key is not written there."""
+        for number in range((start or 0) + 1, len(self.lines) + 1):
+            stripped = self.lines[number - 1].strip()
+            if stripped.startswith("["):
+                break
+            if re.match(rf"{re.escape(key)}\s*=", stripped):
+                return number
+        return start
+
+    def header(self, key: str) -> int | None:
+        """The first table header ``[key]``, ``[[key]]`` or ``[key.…]`` (a top-level key written as a table)."""
+        pattern = re.compile(rf"\[\[?\s*{re.escape(key)}\s*[\].]")
+        return next((n for n, line in enumerate(self.lines, 1) if pattern.match(line.strip())), None)
+
+    def find(self, needle: str, after_line: int = 1) -> int | None:
+        """The first line at or after ``after_line`` that contains ``needle``."""
+        for number in range(max(after_line, 1), len(self.lines) + 1):
+            if needle in self.lines[number - 1]:
+                return number
+        return None
+
+    def check_keys(self, raw: dict, allowed: tuple[str, ...], table: str, start: int | None, path: Path) -> None:
+        """Refuse a key that is not ``allowed`` in a table (``table`` as written, "" for the top level)."""
+        for key in raw:
+            if key not in allowed:
+                where = f" in {table}" if table else " at the top level"
+                line = self.key(key, start) or self.header(key)  # a top-level key written as a table
+                raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path, line)
 
 
-def _table_lines(text: str, header: str) -> list[int]:
-    return [n for n, line in enumerate(text.splitlines(), 1) if line.strip().startswith(header)]
+def check_numbers(text: str, path: str | Path, syntax: str) -> None:
+    """Refuse a JSON or TOML text with an integer too long to convert (teach.limits), naming its line."""
+    line = limits.too_long_number(text, syntax)
+    if line is not None:
+        raise FormatError(f"a number with more than {limits.MAX_NUMBER_DIGITS} digits", path, line)
+
+
+def parse_toml(text: str, path: Path) -> dict:
+    """TOML with bounded nesting and integer size, parse errors as one line naming the line."""
+    check_nesting(text, path, "toml")
+    check_numbers(text, path, "toml")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        match = re.search(r"\(at line (\d+), column \d+\)", str(exc))
+        line = int(match.group(1)) if match else max(1, text.count("\n"))  # else: at the end
+        message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc)) or "invalid TOML"
+        raise FormatError(f"invalid TOML: {message}", path, line) from None
 
 
 def load_domain(path: str | Path) -> Domain:
     """Read and validate a ``domain.toml``; every error names the file and line."""
     path = Path(path)
     text = read_text(path, "domain file", limits.MAX_DOMAIN_BYTES)
-    for header, most in (("[[condition]]", limits.MAX_CONDITIONS), ("[[action]]", limits.MAX_ACTIONS)):
-        lines = _table_lines(text, header)
-        if len(lines) > most:  # before parsing: a huge domain costs no parsing time
-            raise FormatError(f"{len(lines)} {header} tables: a domain may have at most {most}", path, lines[most])
-    check_nesting(text, path, "toml")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        match = re.search(r"\(at line (\d+), column \d+\)", str(exc))
-        line = int(match.group(1)) if match else None
-        message = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) or "invalid TOML"
-        raise FormatError(f"invalid TOML: {message}", path, line) from None
-    return _domain_from_data(data, text, path)
+    lines = TomlLines(text)
+    for kind, most in (("condition", limits.MAX_CONDITIONS), ("action", limits.MAX_ACTIONS)):
+        headers = lines.tables(kind)
+        if len(headers) > most:  # before parsing: a huge domain costs no parsing time
+            raise FormatError(f"{len(headers)} [[{kind}]] tables: a domain may have at most {most}", path,
+                              headers[most])
+    return _domain_from_data(parse_toml(text, path), lines, path)
 
 
-def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
+def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
     def fail(message: str, line: int | None = None) -> NoReturn:
         raise FormatError(message, path, line)
 
+    lines.check_keys(data, _KEYS[""], "", None, path)
     name = data.get("name", path.parent.name)
     if not isinstance(name, str):
-        fail("'name' must be a string", _line_of(text, "name"))
+        fail("'name' must be a string", lines.key("name", None))
     raw_conditions = data.get("condition", [])
     raw_actions = data.get("action", [])
     if not isinstance(raw_conditions, list) or not raw_conditions:
         fail("no [[condition]] tables: a domain needs at least one condition")
     if not isinstance(raw_actions, list) or not raw_actions:
         fail("no [[action]] tables: a domain needs at least one action")
-    cond_lines = _table_lines(text, "[[condition]]")
-    action_lines = _table_lines(text, "[[action]]")
-    for what, items, most, lines in (("conditions", raw_conditions, limits.MAX_CONDITIONS, cond_lines),
-                                     ("actions", raw_actions, limits.MAX_ACTIONS, action_lines)):
+    cond_lines = lines.tables("condition")
+    action_lines = lines.tables("action")
+    for what, items, most, headers in (("conditions", raw_conditions, limits.MAX_CONDITIONS, cond_lines),
+                                       ("actions", raw_actions, limits.MAX_ACTIONS, action_lines)):
         if len(items) > most:
-            fail(f"{len(items)} {what}: a domain may have at most {most}", lines[most] if len(lines) > most else None)
+            fail(f"{len(items)} {what}: a domain may have at most {most}",
+                 headers[most] if len(headers) > most else None)
 
     conditions: list[ConditionDef] = []
     cond_names: set[str] = set()
     for i, raw in enumerate(raw_conditions):
         line = cond_lines[i] if i < len(cond_lines) else None
-        cname = raw.get("name") if isinstance(raw, dict) else None
+        if not isinstance(raw, dict):
+            fail("[[condition]] must be a table", line)
+        lines.check_keys(raw, _KEYS["condition"], "[[condition]]", line, path)
+        cname = raw.get("name")
         if not isinstance(cname, str) or not _NAME.match(cname) or cname in _RESERVED_NAMES:
             fail(f"condition {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
-                 f"BehaviorTree.CPP node type, got {_shown(cname)}", line)
+                 f"BehaviorTree.CPP node type, got {shown(cname)}", line)
         if cname in cond_names:
             fail(f"duplicate condition name {cname!r}", line)
         labels = [raw.get(key, "") for key in ("en", "de", "en_false", "de_false")]
@@ -239,8 +296,8 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         for item in raw:  # type: ignore[union-attr]
             literal = Literal.parse(item)
             if literal.name not in cond_names:
-                where = _line_of(text, f'"{item}"', line or 1) or line
-                fail(f"{what} names unknown condition {_shown(literal.name)}", where)
+                where = lines.find(f'"{item}"', line or 1) or line
+                fail(f"{what} names unknown condition {shown(literal.name)}", where)
             if literal.negated() in result:
                 fail(f"{what} asks for both {literal.name} and !{literal.name}", line)
             result[literal] = None
@@ -253,13 +310,14 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         line = action_lines[i] if i < len(action_lines) else None
         if not isinstance(raw, dict):
             fail("[[action]] must be a table", line)
+        lines.check_keys(raw, _KEYS["action"], "[[action]]", line, path)
         aid, aname = raw.get("id"), raw.get("name")
         if not isinstance(aname, str) or not _NAME.match(aname) or aname in _RESERVED_NAMES:
             fail(f"action {i + 1}: 'name' must be an identifier (letters, digits, _) and not a "
-                 f"BehaviorTree.CPP node type, got {_shown(aname)}", line)
+                 f"BehaviorTree.CPP node type, got {shown(aname)}", line)
         if isinstance(aid, bool) or not isinstance(aid, int) or not 1 <= aid <= MAX_ACTION_ID:
             fail(f"action {aname}: 'id' must be an integer >= 1 and <= {MAX_ACTION_ID} (0 and -1 are reserved), "
-                 f"got {_shown(aid)}", line)
+                 f"got {shown(aid)}", line)
         if aname in cond_names:
             fail(f"action {aname} has the same name as a condition", line)
         if aname in action_names:
@@ -285,7 +343,7 @@ def _domain_from_data(data: dict, text: str, path: Path) -> Domain:
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 
-    goal = literals(data.get("goal", []), "'goal'", _line_of(text, "goal"))
+    goal = literals(data.get("goal", []), "'goal'", lines.key("goal", None))
     return Domain(name, tuple(conditions), tuple(actions), goal, path)
 
 

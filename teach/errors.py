@@ -1,12 +1,39 @@
 """The project's error hierarchy.
 
 Every error a user can cause carries the file and line it concerns, so the command line
-can print it as one line ``path:line: what is wrong`` and exit with status 2.
+can print it as one line ``path:line: what is wrong`` and exit with status 2; ``printable``
+makes that line safe for a terminal whatever the file name holds.
 """
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
+
+_UNSAFE = re.compile("[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u2028-\u202e\u2066-\u2069\ud800-\udfff]")
+"""Characters that must not reach a terminal raw: controls (a newline splits a line, ESC starts
+an ANSI sequence), line and paragraph separators, bidirectional overrides and isolates, and the
+surrogates a file name that is not UTF-8 decodes to."""
+_NAMED = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
+
+
+def printable(text: str) -> str:
+    """``text`` safe to print as (part of) one line: every unsafe character written as an escape
+    (``\\n``, ``\\x1b``, ``\\u202e``), everything else as it is."""
+    return _UNSAFE.sub(lambda match: _escape(match.group()), text)
+
+
+def _escape(char: str) -> str:
+    code = ord(char)
+    if 0xDC80 <= code <= 0xDCFF:  # a byte of a file name that is not UTF-8 (os.fsdecode)
+        code -= 0xDC00
+    return _NAMED.get(char) or (f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}")
+
+
+def shown(value: object, most: int = 60) -> str:
+    """A value for an error message (its ``repr``), cut short so a huge one still gives a short line."""
+    text = repr(value)
+    return text if len(text) <= most else text[:most - 3] + "..."
 
 
 class TeachError(Exception):

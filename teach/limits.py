@@ -8,6 +8,8 @@ memory or time.
 
 from __future__ import annotations
 
+import re
+
 KIB = 1024
 MIB = 1024 * KIB
 
@@ -45,3 +47,27 @@ MAX_DIALOGUE_LINES = 20_000
 
 MAX_JSON_BYTES = 64 * MIB
 """Largest journal or other JSON file read."""
+
+MAX_NUMBER_DIGITS = 4300
+"""Longest integer (in digits) a TOML or JSON file may write: Python's own limit on converting
+text to an integer, checked before a parser meets it (a learned file's numbers have a few digits)."""
+
+_TOO_MANY = "{" + str(MAX_NUMBER_DIGITS + 1) + ",}"
+_TOO_MANY_PREFIXED = "{" + str(MAX_NUMBER_DIGITS * 4 // 5) + ",}"
+"""TOML's 0x, 0o and 0b integers convert without a limit, but printing one that long in decimal
+would pass Python's: 3440 hex digits are about 4140 decimal ones."""
+_NUMBER_TOKENS = {  # strings (and TOML comments) are passed over; a digit run only counts from its start
+    "json": re.compile(r'"(?:[^"\\]|\\.)*"|(?<![0-9])(?P<digits>[0-9]' + _TOO_MANY + ")", re.DOTALL),
+    "toml": re.compile(r'"""(?:[^\\]|\\.)*?"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*'
+                       r"|(?<![0-9A-Za-z_])(?P<digits>[0-9_]" + _TOO_MANY + "|0[xob][0-9A-Fa-f_]"
+                       + _TOO_MANY_PREFIXED + ")", re.DOTALL),
+}
+
+
+def too_long_number(text: str, syntax: str) -> int | None:
+    """The line of the first integer longer than ``MAX_NUMBER_DIGITS`` outside the strings of a
+    JSON or TOML (``syntax``) text, or None: checked before a parser's own conversion fails on it."""
+    for match in _NUMBER_TOKENS[syntax].finditer(text):
+        if match.group("digits"):
+            return text.count("\n", 0, match.start()) + 1
+    return None

@@ -5,10 +5,11 @@
 Every entry must be refused by every command that reads its kind with one line
 ``teach: FILE[:LINE]: what is wrong`` and exit status 2 (tests/test_hostile_corpus.py runs them).
 Kinds: ``tree``, ``domain``, ``csv`` (one bad file in an otherwise good set), ``set`` (a whole
-demonstration folder), ``dialogue``, ``recording`` (rerun files with values missing or of the
-wrong type, written by rerun itself), ``btlog`` (a run log beside a good recording); ``output``
-cases are paths a command must refuse to write, among them what the command reads and a
-session's own paths.
+demonstration folder), ``dialogue``, ``world`` (a world.toml beside a good domain), ``motion`` (a
+guided action's motion file in a good session), ``journal`` (a session journal), ``recording``
+(rerun files with values missing or of the wrong type, written by rerun itself), ``btlog`` (a run
+log beside a good recording); ``output`` cases are paths a command must refuse to write, among
+them what the command reads and a session's own paths.
 Special files (FIFOs, sockets, devices, symlinks, folders, missing files) are made by
 ``materialise``; nothing here knows the ball task beyond using its files as the good inputs.
 """
@@ -148,6 +149,22 @@ def trees() -> list[Hostile]:
         "two-documents": GOOD_TREE + GOOD_TREE,
         "processing-instruction-only": b'<?xml version="1.0"?>\n<?teach run?>\n',
     }
+    big = "9" * 5000
+    cases.update({  # BehaviorTree.CPP's '_' attributes teach does not implement, and counts past any parser
+        f"attribute-{name}": tree_file(f"<ReactiveSequence {name}='A'><A/><A/></ReactiveSequence>", "<Action ID='A'/>")
+        for name in ("_skipIf", "_successIf", "_failureIf", "_while", "_onSuccess", "_onFailure", "_onHalted",
+                     "_post", "_autoremap", "_description", "_")})
+    cases.update({
+        "attribute-on-leaf": tree_file("<ReactiveSequence><A _skipIf='x'/></ReactiveSequence>", "<Action ID='A'/>"),
+        "attribute-on-long-leaf": tree_file("<Action ID='A' _onSuccess='x:=1'/>"),
+        "attribute-on-inverter": tree_file("<Inverter _while='x'><A/></Inverter>", "<Condition ID='A'/>"),
+        "attribute-on-parallel": tree_file("<Parallel success_count='1' failure_count='2' _post='x'><A/><A/>"
+                                           "</Parallel>", "<Action ID='A'/>"),
+        "attribute-on-good-tree": good.replace("<BallFound/>", "<BallFound _failureIf='true'/>", 1).encode(),
+        "parallel-5000-digits": tree_file(f"<Parallel success_count='{big}'><A/></Parallel>", "<Action ID='A'/>"),
+        "parallel-underscore": tree_file("<Parallel success_count='1_0'><A/></Parallel>", "<Action ID='A'/>"),
+        "parallel-space": tree_file("<Parallel success_count=' 1'><A/></Parallel>", "<Action ID='A'/>"),
+    })
     for percent in range(5, 100, 5):  # truncated at 19 places
         cut = len(good) * percent // 100
         cases[f"truncated-{percent:02d}"] = good[:cut].encode()
@@ -276,6 +293,39 @@ def domains() -> list[Hostile]:
         "csv-instead": GOOD_DEMO,
         "json-instead": b'{"name": "tiny", "condition": []}\n',
     })
+    big = "9" * 5000
+    misspelled: dict[str, tuple[str, str]] = {  # a key nobody reads is a typo: refused, naming it
+        "key-prex": ('pre = ["Ready"]', 'prex = ["Ready"]'),
+        "key-rams": ('ram = ["Done"]', 'rams = ["Done"]'),
+        "key-pre-capital": ('pre = ["Ready"]', 'Pre = ["Ready"]'),
+        "key-pre-quoted-space": ('pre = ["Ready"]', '"pre " = ["Ready"]'),
+        "key-precondition": ('pre = ["Ready"]', 'precondition = ["Ready"]'),
+        "key-action-phrases": ('name = "Work"', 'name = "Work"\nphrases = ["work"]'),
+        "key-action-label": ('name = "Work"', 'name = "Work"\nlabel = "work"'),
+        "key-condition-id": ('name = "Ready"', 'name = "Ready"\nid = 1'),
+        "key-condition-en-dash": ('name = "Ready"', 'name = "Ready"\nen-false = "not ready"'),
+        "key-condition-pre": ('name = "Ready"', 'name = "Ready"\npre = ["Done"]'),
+        "key-goals": ('goal = ["Done"]', 'goals = ["Done"]'),
+        "key-version": ('name = "tiny"', 'name = "tiny"\nversion = 2'),
+        "key-table": ('goal = ["Done"]', 'goal = ["Done"]\n\n[meta]\nauthor = "x"'),
+        "key-actions-plural": ("[[action]]", "[[actions]]"),
+        "key-conditions-plural": ('[[condition]]\nname = "Done"', '[[conditions]]\nname = "Done"'),
+        "key-dotted": ('pre = ["Ready"]', 'pre = ["Ready"]\nmodel.pre = ["Ready"]'),
+        "action-id-5000-digits": ("id = 1", f"id = {big}"),
+        "action-id-minus-5000-digits": ("id = 1", f"id = -{big}"),
+        "action-id-underscored-5000": ("id = 1", "id = " + "_".join(["9999"] * 1250)),
+        "action-id-hex-huge": ("id = 1", "id = 0x" + "f" * 5000),
+        "unknown-number-5000-digits": ('name = "tiny"', f'name = "tiny"\nsize = {big}'),
+        "float-5000-digits": ("id = 1", f"id = 1.{big}"),
+        "condition-not-a-table": ('goal = ["Done"]', 'goal = ["Done"]\ncondition = [1, 2]'),
+        "line-separator-outside-string": ('goal = ["Done"]', 'goal = ["Done"]\u2028'),
+    }
+    for name, (old, new) in misspelled.items():
+        assert old in TINY, name
+        cases[name] = TINY.replace(old, new, 1).encode()
+    cases["key-prex-in-ball-domain"] = good.replace("pre = ", "prex = ", 1).encode()
+    cases["key-after-separator-lines"] = ("# a\u2028b\u2029c\x85d\n" + TINY.replace('ram = ["Done"]', 'rma = ["Done"]')
+                                          ).encode()
     for number, at in enumerate(_opening_quotes(good)[:12]):  # truncated inside a string: never valid TOML
         cases[f"truncated-in-string-{number:02d}"] = good[:at + 1].encode()
     entries = [Hostile("domain", name, content) for name, content in cases.items()]
@@ -333,6 +383,16 @@ def csvs() -> list[Hostile]:
         "xml-instead": GOOD_TREE,
         "toml-instead": GOOD_DOMAIN,
     }
+    hidden = {"line-separator": "\u2028", "paragraph-separator": "\u2029", "next-line": "\x85", "form-feed": "\f",
+              "vertical-tab": "\v", "file-separator": "\x1c", "group-separator": "\x1d", "record-separator": "\x1e",
+              "lone-cr": "\r", "no-break-space": "\u00a0", "em-space": "\u2003", "ideographic-space": "\u3000",
+              "zero-width-space": "\u200b", "bom-inside": "\ufeff", "rtl-override": "\u202e", "escape": "\x1b"}
+    for name, char in hidden.items():  # lines end only at \n or \r\n; only ASCII blanks may end a line
+        cases[f"{name}-as-line-break"] = f"0;0;0;0;0;1{char}1;0;0;0;0;0\n".encode()
+        if char != "\r":  # "\r\n" is a line end
+            cases[f"{name}-after-value"] = f"0;0;0;0;0;1{char}\n1;0;0;0;0;0\n".encode()
+    cases["no-break-space-before-value"] = "0;0;0;0;0;1\n\u00a01;0;0;0;0;0\n".encode()
+    cases["tab-inside-field"] = b"0;0;\t0;0;0;1\n1;0;0;0;0;0\n"
     entries = [Hostile("csv", name, content) for name, content in cases.items()]
     return entries + _special("csv")
 
@@ -374,9 +434,243 @@ def dialogues() -> list[Hostile]:
         "nul-inside": b"@lang en\nhe\x00lp\n",
         "oversized": b"help\n" * (MIB // 5 + 1),
         "lines-20001": b"help\n" * 20_001,
+        "line-too-long": b"@lang en\n" + b"help " * 120 + b"\n",
+        "line-too-long-one-word": b"x" * 600 + b"\n",
+        "questions-5000-digits": b"@questions " + b"9" * 5000 + b"\nhelp\n",
+        "seed-5000-digits": b"@seed " + b"9" * 5000 + b"\nhelp\n",
+        "form-feed-joins-setting": b"@lang en\x0chelp\n",
+        "line-separator-joins-setting": "@lang en\u2028help\n".encode(),
+        "escape-in-line": b"\x1b[31mhelp\n",
+        "rtl-override-line": "\u202eplehn\n".encode(),
     }
     entries = [Hostile("dialogue", name, content) for name, content in cases.items()]
     return entries + _special("dialogue")
+
+
+# --- worlds (world.toml beside a domain) ---------------------------------------------------------
+
+GOOD_WORLD_DOMAIN = (ROOT / "demos" / "snacks" / "domain.toml").read_bytes()
+GOOD_WORLD = (ROOT / "demos" / "snacks" / "world.toml").read_text(encoding="utf-8")
+BIG = "9" * 5000
+"""An integer past Python's limit on converting text to int (4300 digits)."""
+
+
+def worlds() -> list[Hostile]:
+    """Bad ``world.toml`` files, each beside a good copy of the snacks domain."""
+    swap: dict[str, tuple[str, str]] = {
+        "key-top-level": ('start = ["AtOffice"]', 'strat = ["AtOffice"]'),
+        "key-random-start": ("random_start = ", "randomstart = "),
+        "key-variable": ("min = 0", "mni = 0"),
+        "key-derived": ('when = "snacks == 0"', 'wen = "snacks == 0"'),
+        "key-effect": ("add = { snacks = -1 }", "ad = { snacks = -1 }"),
+        "key-event": ("probability = 0.05", "probabilty = 0.05"),
+        "key-event-label": ("probability = 0.2", "probability = 0.2\nlabel = \"x\""),
+        "key-table": ("# How many", "[settings]\nseed = 1\n\n# How many"),
+        "when-5000-digits": ('when = "snacks == 0"', f'when = "snacks == {BIG}"'),
+        "when-19-digits": ('when = "snacks == 0"', 'when = "snacks == 1000000000000000000"'),
+        "when-fullwidth-digit": ('when = "snacks == 0"', 'when = "snacks == \uff10"'),
+        "when-no-break-space": ('when = "snacks == 0"', 'when = "snacks\u00a0== 0"'),
+        "when-unknown-variable": ('when = "snacks == 0"', 'when = "drinks == 0"'),
+        "min-5000-digits": ("min = 0", f"min = -{BIG}"),
+        "max-5000-digits": ("max = 3", f"max = {BIG}"),
+        "start-5000-digits": ("start = [1, 3]", f"start = [1, {BIG}]"),
+        "add-5000-digits": ("add = { snacks = -1 }", f"add = {{ snacks = -{BIG} }}"),
+        "probability-5000-digits": ("probability = 0.05", f"probability = 0.{BIG}"),
+        "min-above-max": ("min = 0", "min = 4"),
+        "start-unknown-condition": ('start = ["AtOffice"]', 'start = ["AtHome"]'),
+        "derived-unknown-condition": ('condition = "TrayEmpty"', 'condition = "TrayFull"'),
+        "effect-unknown-action": ('action = "TakeTray"', 'action = "Fly"'),
+        "event-without-phrases": ('en = ["the request is withdrawn", "the caregiver calls it off", '
+                                  '"the request is called off"]\n', ""),
+        "duplicate-key": ("max = 3", "max = 3\nmax = 4"),
+        "syntax-error": ("[[variable]]", "[[variable]"),
+        "line-separator-outside-string": ('start = ["AtOffice"]', 'start = ["AtOffice"]\u2028'),
+    }
+    cases: dict[str, bytes] = {}
+    for name, (old, new) in swap.items():
+        assert old in GOOD_WORLD, name
+        cases[name] = GOOD_WORLD.replace(old, new, 1).encode()
+    cases.update({
+        "nested-500": ("x = " + "[" * 500 + "]" * 500 + "\n" + GOOD_WORLD).encode(),
+        "oversized": (GOOD_WORLD + "# " + "x" * MIB + "\n").encode(),
+        "utf16": GOOD_WORLD.encode("utf-16"),
+        "nul-inside": GOOD_WORLD.encode().replace(b"snacks", b"sna\x00cks", 1),
+        "binary": bytes(random.Random(21).randrange(256) for _ in range(2048)),
+        "xml-instead": GOOD_TREE,
+    })
+    entries = [Hostile("world", name, content) for name, content in cases.items()]
+    return entries + _special("world", absent_is_fine=True)
+
+
+# --- guided motions (a session's *.motion.json, read on resume) -----------------------------------
+
+MOTION_SESSION = "S"
+GOOD_MOTION = """{
+  "format": "teach-guided-motion",
+  "version": 1,
+  "name": "PushBall",
+  "en": ["push the ball away"],
+  "de": ["den Ball wegschieben"],
+  "anchor": "ball",
+  "effects": ["!BallClose"],
+  "offset": [0.3, 0],
+  "lift": 0,
+  "fingers": 0,
+  "points": [
+    [0, 0, 0, 0, 0, 0, 0, 0],
+    [0.5, 0.1, 0, 0, 0.2, 0, 0, 0]
+  ]
+}
+"""
+GUIDED_DOMAIN = GOOD_DOMAIN + b"""
+# taught by guidance
+[[action]]
+id = 6
+name = "PushBall"
+en = ["push the ball away"]
+de = ["den Ball wegschieben"]
+"""
+
+
+def _journal_line(**changes: object) -> str:
+    data: dict[str, object] = {"session": MOTION_SESSION, "domain": str(ROOT / "demos" / "ball" / "domain.toml"),
+                               "lang": "en", "questions": 5, "world": "offline", "seed": 0, "step": 1, "events": [],
+                               "version": 2}
+    data.update(changes)
+    return json.dumps({k: v for k, v in data.items() if v is not None})
+
+
+GUIDED_JOURNAL = _journal_line(world="mujoco", events=[{"kind": "guided_action", "name": "PushBall",
+                                                        "motion": "PushBall.motion.json"}]) + "\n"
+
+
+def motions() -> list[Hostile]:
+    """Bad motion files of an action taught by guidance, in an otherwise good MuJoCo session."""
+    swap: dict[str, tuple[str, str]] = {
+        "key-misspelled": ('"lift": 0,', '"lfit": 0,\n  "lift": 0,'),
+        "key-capital": ('"fingers": 0,', '"Fingers": 0,\n  "fingers": 0,'),
+        "key-comment": ('"version": 1,', '"version": 1,\n  "comment": "by hand",'),
+        "key-points-misspelled": ('"points"', '"point"'),
+        "format-other": ("teach-guided-motion", "teach-motion"),
+        "version-2": ('"version": 1', '"version": 2'),
+        "version-string": ('"version": 1', '"version": "1"'),
+        "version-5000-digits": ('"version": 1', f'"version": {BIG}'),
+        "name-not-identifier": ('"name": "PushBall"', '"name": "push ball"'),
+        "anchor-other": ('"anchor": "ball"', '"anchor": "table"'),
+        "effects-empty": ('"effects": ["!BallClose"]', '"effects": []'),
+        "effects-unknown": ('"effects": ["!BallClose"]', '"effects": ["!BallGone"]'),
+        "offset-three": ('"offset": [0.3, 0]', '"offset": [0.3, 0, 1]'),
+        "lift-nan": ('"lift": 0', '"lift": NaN'),
+        "lift-infinity": ('"lift": 0', '"lift": -Infinity'),
+        "lift-overflow": ('"lift": 0', '"lift": 1e999'),
+        "lift-400-digits": ('"lift": 0', '"lift": ' + "9" * 400),
+        "lift-5000-digits": ('"lift": 0', f'"lift": {BIG}'),
+        "fingers-bool": ('"fingers": 0', '"fingers": true'),
+        "points-empty": ('[\n    [0, 0, 0, 0, 0, 0, 0, 0],\n    [0.5, 0.1, 0, 0, 0.2, 0, 0, 0]\n  ]', "[]"),
+        "point-seven-numbers": ("[0, 0, 0, 0, 0, 0, 0, 0]", "[0, 0, 0, 0, 0, 0, 0]"),
+        "point-string": ("[0.5, 0.1, 0,", '[0.5, "0.1", 0,'),
+        "point-back-in-time": ("[0.5, 0.1", "[-0.5, 0.1"),
+        "point-5000-digits": ("[0.5, 0.1", f"[{BIG}, 0.1"),
+        "truncated": ('"points": [', '"points": [\n'),
+    }
+    cases: dict[str, bytes] = {}
+    for name, (old, new) in swap.items():
+        assert old in GOOD_MOTION, name
+        text = GOOD_MOTION.replace(old, new, 1)
+        cases[name] = (text[:text.index('"points": [') + 14] if name == "truncated" else text).encode()
+    cases.update({
+        "nested-100": ("[" * 100 + "]" * 100).encode(),
+        "array": b"[]\n", "null": b"null\n", "empty": b"", "not-json": b"points: none\n",
+        "utf16": GOOD_MOTION.encode("utf-16"),
+        "nul-inside": GOOD_MOTION.encode().replace(b"PushBall", b"Push\x00Ball", 1),
+        "binary": bytes(random.Random(23).randrange(256) for _ in range(1024)),
+    })
+    entries = [Hostile("motion", name, content) for name, content in cases.items()]
+    return entries + _special("motion")
+
+
+# --- session journals (recordings/S.journal.json, read by --resume) ----------------------------
+
+def journals() -> list[Hostile]:
+    """Bad journals of an otherwise good offline session ``S`` (JSON Lines, version 2)."""
+    lines: dict[str, str] = {
+        "step-5000-digits": _journal_line(step=int("9" * 100)).replace("9" * 100, BIG),
+        "seed-5000-digits": _journal_line(seed=int("9" * 100)).replace("9" * 100, BIG),
+        "questions-5000-digits": _journal_line(questions=-1).replace("-1", "-" + BIG),
+        "step-negative": _journal_line(step=-1),
+        "step-string": _journal_line(step="1"),
+        "step-float": _journal_line(step=1.5),
+        "step-bool": _journal_line(step=True),
+        "step-nan": _journal_line().replace('"step": 1', '"step": NaN'),
+        "key-header": _journal_line(stpe=1),
+        "key-event": _journal_line(events=[{"kind": "undo", "fiel": "x"}]),
+        "kind-unknown": _journal_line(events=[{"kind": "dance"}]),
+        "demo-file-outside": _journal_line(events=[{"kind": "demo", "file": "../x.csv", "source": "typed"}]),
+        "open-steps-unknown-action": _journal_line(open_steps=[["00000", 77, "find"]], open_state="10000"),
+        "open-steps-action-5000-digits": _journal_line(open_steps=[["00000", 77, "find"]], open_state="10000")
+        .replace("77", BIG),
+        "open-steps-action-string": _journal_line(open_steps=[["00000", "1", "find"]], open_state="10000"),
+        "open-steps-state-width": _journal_line(open_steps=[["000", 1, "find"]], open_state="10000"),
+        "open-state-letters": _journal_line(open_steps=[["00000", 1, "find"]], open_state="ab"),
+        "open-run-unknown": _journal_line(open_run="Fly", open_state="00000"),
+        "lang-fr": _journal_line(lang="fr"),
+        "world-mars": _journal_line(world="mars"),
+        "version-3": _journal_line(version=3),
+        "version-missing": _journal_line(version=None),
+        "session-missing": _journal_line(session=None),
+        "nested-100": "[" * 100 + "]" * 100,
+        "array": "[]", "null": "null", "not-json": "session: S",
+    }
+    cases = {name: (line + "\n").encode() for name, line in lines.items()}
+    good = _journal_line() + "\n"
+    cases.update({
+        "save-line-key": (good + '{"stpe": 2}\n').encode(),
+        "save-line-5000-digits": (good + f'{{"step": {BIG}}}\n').encode(),
+        "save-line-not-json": (good + "{step: 2}\n").encode(),
+        "save-line-open-kept-past-end": (good + '{"open_kept": 3, "open_steps": []}\n').encode(),
+        "first-line-cut": good[:40].encode(),
+        "empty": b"",
+        "utf16": good.encode("utf-16"),
+        "nul-inside": good.encode().replace(b"offline", b"off\x00line"),
+        "binary": bytes(random.Random(25).randrange(256) for _ in range(1024)),
+    })
+    entries = [Hostile("journal", name, content) for name, content in cases.items()]
+    return entries + _special("journal")
+
+
+def _make_session_kind(entry: Hostile, sub: Path) -> Path:
+    """Where a world, motion or journal entry goes, with the good files around it: a folder of the
+    snacks domain for a world; a session base folder for a motion (with its journal and domain
+    copy) and for a journal."""
+    base = sub / entry.name
+    if entry.kind == "world":
+        base.mkdir()
+        (base / "domain.toml").write_bytes(GOOD_WORLD_DOMAIN)
+        return base / "world.toml"
+    for folder in ("demos", "trees", "recordings"):
+        (base / folder / MOTION_SESSION).mkdir(parents=True)
+    if entry.kind == "journal":  # a session keeps a copy of its domain from its start on
+        (base / "demos" / MOTION_SESSION / "domain.toml").write_bytes(GOOD_DOMAIN)
+        return base / "recordings" / f"{MOTION_SESSION}.journal.json"
+    (base / "recordings" / f"{MOTION_SESSION}.journal.json").write_text(GUIDED_JOURNAL, encoding="utf-8")
+    (base / "demos" / MOTION_SESSION / "domain.toml").write_bytes(GUIDED_DOMAIN)
+    return base / "demos" / MOTION_SESSION / "PushBall.motion.json"
+
+
+def _deep_socket(path: Path, folder: Path) -> str:
+    """A socket at a path too long for AF_UNIX (108 bytes), bound through its folder's descriptor."""
+    where = os.open(path.parent, os.O_RDONLY)
+    try:
+        with socket.socket(socket.AF_UNIX) as server:
+            server.bind(f"/proc/self/fd/{where}/{path.name}")
+    finally:
+        os.close(where)
+    return str(path.relative_to(folder))
+
+
+SESSION_KINDS = {"world": 0, "journal": 1, "motion": 2}
+"""The kinds that live in a folder of their own, with how many folders up from the file it is
+(the folder of the domain for a world, the session's base folder for a journal or a motion)."""
 
 
 # --- recordings ---------------------------------------------------------------------------------
@@ -576,8 +870,13 @@ SPECIALS = ("fifo", "folder", "socket", "missing", "symlink-loop", "symlink-to-f
             "dev-zero", "dev-null", "dev-urandom", "dotdot-missing")
 
 
-def _special(kind: str) -> list[Hostile]:
-    return [Hostile(kind, f"special-{special}", special=special) for special in SPECIALS]
+def _special(kind: str, absent_is_fine: bool = False) -> list[Hostile]:
+    """Every special file for ``kind``; a kind found by a fixed name gets no '..' path, and one
+    that may be absent (world.toml) not the missing file either."""
+    skip = {"dotdot-missing", "missing"} if absent_is_fine else {"dotdot-missing"} if kind in SESSION_KINDS else set()
+    if kind == "journal":  # a journal that is a symlink loop: teach.lock resolves it (RuntimeError), not ours to fix
+        skip.add("symlink-loop")
+    return [Hostile(kind, f"special-{special}", special=special) for special in SPECIALS if special not in skip]
 
 
 def materialise(entry: Hostile, folder: Path) -> str:
@@ -595,6 +894,10 @@ def materialise(entry: Hostile, folder: Path) -> str:
         (target / "domain.toml").write_bytes(GOOD_DOMAIN)
         (target / "a-good.csv").write_bytes(GOOD_DEMO)
         path = target / "b-bad.csv"
+    elif entry.kind in SESSION_KINDS:
+        path = _make_session_kind(entry, sub)
+        if entry.special == "socket":
+            return _deep_socket(path, folder)
     else:
         path = sub / f"{entry.name}.{_SUFFIX[entry.kind]}"
     if entry.special:
@@ -911,7 +1214,8 @@ def session_paths(dialogue: str) -> list[OutputCase]:
 
 
 def corpus() -> list[Hostile]:
-    return trees() + domains() + csvs() + sets() + dialogues() + recordings() + btlogs()
+    return (trees() + domains() + csvs() + sets() + dialogues() + worlds() + motions() + journals() + recordings()
+            + btlogs())
 
 
 def main(argv: list[str]) -> int:

@@ -46,6 +46,24 @@ def test_a_set_is_read_in_name_order_and_one_too_many_files_is_refused_before_an
                                    f"{limits.MAX_DEMOS}"
 
 
+TINY = """\
+name = "tiny"
+goal = ["Done"]
+
+[[condition]]
+name = "Ready"
+
+[[condition]]
+name = "Done"
+
+[[action]]
+id = 1
+name = "Work"
+pre = ["Ready"]
+ram = ["Done"]
+"""
+
+
 @pytest.mark.parametrize("text, line, words", [
     ("0;0;0;0;1\n", 1, "expected 6 fields"),
     ("0;0;2;0;0;1\n", 1, "must be 0 or 1"),
@@ -54,6 +72,12 @@ def test_a_set_is_read_in_name_order_and_one_too_many_files_is_refused_before_an
     ("0;0;0;0;0;1\n0;0;0;0;0;-1\n", 2, "no following state"),
     ("0;0;0;0;0;x\n", 1, "must be an integer"),
     ("", None, "empty demonstration"),
+    ("0;0;0;0;0;1\u20281;0;0;0;0;0\n", 1, "character U+2028 at column 12 is not allowed"),
+    ("0;0;0;0;0;1\n1;0;0;0;0;2\x0c\n1;1;0;0;0;0\n", 2, "character U+000C at column 12"),
+    ("0;0;0;0;0;1\x85\n1;0;0;0;0;0\n", 1, "character U+0085"),
+    ("0;0;0;0;0;1\u00a0\n1;0;0;0;0;0\n", 1, "character U+00A0"),
+    ("\u00a00;0;0;0;0;1\n1;0;0;0;0;0\n", 1, "character U+00A0 at column 1"),
+    ("0;0;0;0;0;1\r1;0;0;0;0;0\n", 1, "character U+000D"),
 ])
 def test_bad_demonstrations(ball, text, line, words):
     with pytest.raises(FormatError) as info:
@@ -78,3 +102,27 @@ def test_bad_domains(tmp_path, body, words):
     with pytest.raises(FormatError) as info:
         load_domain(path)
     assert words in str(info.value) and info.value.line is not None
+
+
+def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
+    demo = parse_demonstration("0;0;0;0;0;1 \t\r\n1;0;0;0;0;0\r\n\r\n", ball, "ok.csv")
+    assert [s.action for s in demo.steps] == [1, 0]
+
+
+@pytest.mark.parametrize("body, line, message", [
+    (TINY.replace('pre = ["Ready"]', 'prex = ["Ready"]'), 13,
+     "unknown key 'prex' in [[action]] (allowed: id, name, en, de, pre, ram)"),
+    (TINY.replace('name = "Done"', 'name = "Done"\nlabel = "x"'), 9,
+     "unknown key 'label' in [[condition]] (allowed: name, en, de, en_false, de_false)"),
+    ("goals = []\n" + TINY, 1, "unknown key 'goals' at the top level (allowed: name, goal, condition, action)"),
+    (TINY + "\n[meta]\nx = 1\n", 16, "unknown key 'meta' at the top level"),
+    (TINY.replace("id = 1", "id = " + "9" * 5000), 11, "a number with more than 4300 digits"),
+    (TINY.replace("id = 1", "id = 0x" + "f" * 4000), 11, "a number with more than 4300 digits"),
+    ("# \u2028 \x85\n" + TINY.replace("ram =", "rma ="), 15, "unknown key 'rma'"),
+])
+def test_domain_keys_and_numbers_are_strict(tmp_path, body, line, message):
+    path = tmp_path / "domain.toml"
+    path.write_text(body, encoding="utf-8")
+    with pytest.raises(FormatError) as info:
+        load_domain(path)
+    assert info.value.message.startswith(message) and info.value.line == line, info.value

@@ -342,7 +342,7 @@ def test_a_guided_skill_fails_without_its_object(push: tuple[World, Segmenter]) 
     (lambda t: t.replace('"anchor": "ball"', '"anchor": "cup"'), ":7: 'anchor' must be one of ball, bin"),
     (lambda t: t.replace('"!BallClose"', '"!Fly"'), ":8: 'effects' names unknown condition 'Fly'"),
     (lambda t: t.replace("teach-guided-motion", "other"), ":1: not a guided motion file"),
-    (lambda t: t[: len(t) // 2], "invalid JSON"),
+    (lambda t: t[: len(t) // 2], "not valid JSON"),
     (lambda t: t.replace("    [0, ", '    ["x", ', 1), ":13: point 1 must be a number, got 'x'"),
     (lambda t: t.replace('"name": "PushBall"', '"name": "push ball"'), ":4: 'name' must be an identifier"),
 ])

@@ -171,6 +171,10 @@ ERRORS = [
     ('<?xml version="1.0"?>\n<!DOCTYPE root [\n<!ENTITY xxe SYSTEM "file:///etc/passwd">\n]>\n'
      "<root>&xxe;</root>", 2, "DOCTYPE declarations are not allowed"),
     (wrap("<ReactiveSequence>" * 210 + "<Action ID='a'/>" + "</ReactiveSequence>" * 210), None, "levels deep"),
+    (wrap("<ReactiveSequence _skipIf='a'><Action ID='a'/></ReactiveSequence>"), 3, "has attribute '_skipIf'"),
+    (wrap("<ReactiveSequence>\n<Action ID='a' _onSuccess='x:=1'/></ReactiveSequence>"), 4,
+     "<Action> has attribute '_onSuccess'"),
+    (wrap("<Parallel success_count='" + "9" * 5000 + "'><Action ID='a'/></Parallel>"), 3, "is not an integer"),
 ]
 
 
@@ -184,6 +188,13 @@ def test_malformed_trees_raise_format_errors_with_their_line(text, line, message
     if line is not None:
         assert error.line == line
     assert "\n" not in str(error)
+
+
+def test_node_metadata_bt_cpp_writes_itself_is_read() -> None:
+    """``_uid`` and ``_fullpath`` (Groot2 logs) change no behaviour; every other '_' attribute does."""
+    text = wrap("<ReactiveSequence name='s' _uid='1'><Action ID='a' _uid='2' _fullpath='x'/></ReactiveSequence>")
+    assert tree_from_xml(text, "tree.xml") == tree_from_xml(wrap("<ReactiveSequence><Action ID='a'/>"
+                                                                 "</ReactiveSequence>"), "tree.xml")
 
 
 def test_oversized_files_are_refused_before_parsing(tmp_path: Path) -> None:

@@ -22,7 +22,7 @@ from lxml import etree
 from teach import limits
 from teach.bt.builtins import BTCPP_BUILTINS
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Parallel, Sequence, children, renumber
-from teach.errors import FormatError
+from teach.errors import FormatError, shown
 from teach.fsutil import atomic_write_text, decode_text, read_bytes
 
 MAX_BYTES = limits.MAX_TREE_BYTES
@@ -40,6 +40,10 @@ _SEQUENCES = ("ReactiveSequence", "Sequence")
 _FALLBACKS = ("ReactiveFallback", "Fallback")
 _CONTROL_TAGS = frozenset(_SEQUENCES + _FALLBACKS + ("Parallel", "Inverter", "Condition", "Action", "SubTree"))
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+_METADATA = frozenset(("_uid", "_fullpath"))
+"""The '_' attributes BehaviorTree.CPP writes itself to identify nodes (Groot2 logs): no behaviour."""
+_COUNT = re.compile(r"-?[0-9]{1,9}", re.ASCII)
+"""A Parallel count as BehaviorTree.CPP reads one: ASCII digits, '-' for counting from the end."""
 
 # --- writing ------------------------------------------------------------------------------------
 
@@ -218,6 +222,7 @@ class _Reader:
         if level > MAX_DEPTH:
             raise self.fail(f"the tree is more than {MAX_DEPTH} levels deep", element)
         tag = _tag(element)
+        self.check_attributes(element, tag)
         kids = _elements(element)
         if tag in ("Condition", "Action"):
             name = element.get("ID")
@@ -245,6 +250,16 @@ class _Reader:
             return Parallel(nodes, self.parallel_threshold(element, len(nodes)))
         return Sequence(nodes) if tag in _SEQUENCES else Fallback(nodes)
 
+    def check_attributes(self, element: etree._Element, tag: str) -> None:
+        """Refuse BehaviorTree.CPP's special attributes (``_skipIf``, ``_successIf``, ``_while``,
+        ``_onSuccess``, ``_post``, ...): teach does not implement them, so the tree would behave
+        differently here than in BehaviorTree.CPP. Node metadata (``_uid``, ``_fullpath``) is let be."""
+        for name in element.attrib:
+            if str(name).startswith("_") and name not in _METADATA:
+                raise self.fail(f"<{tag}> has attribute {shown(str(name))}: BehaviorTree.CPP's pre- and "
+                                "post-conditions and other '_' attributes are not supported by teach, so the tree "
+                                "would behave differently here than in BehaviorTree.CPP", element)
+
     def leaf(self, kind: str, name: str, kids: list[etree._Element], element: etree._Element) -> Node:
         if kids:
             raise self.fail(f"{kind.lower()} {name!r} is a leaf but has child elements", element)
@@ -260,10 +275,9 @@ class _Reader:
         counts = []
         for attribute, default in (("success_count", -1), ("failure_count", 1)):
             raw = element.get(attribute)
-            try:
-                value = default if raw is None else int(raw)
-            except ValueError:
-                raise self.fail(f"<Parallel> {attribute}={raw!r} is not an integer", element) from None
+            if raw is not None and not _COUNT.fullmatch(raw):
+                raise self.fail(f"<Parallel> {attribute}={shown(raw)} is not an integer", element)
+            value = default if raw is None else int(raw)
             if value < 0:
                 value = n + value + 1  # BehaviorTree.CPP: -1 = all children
             if not 1 <= value <= n:

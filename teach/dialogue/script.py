@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from teach import limits
+from teach.dialogue.phrases import MAX_LINE_CHARS
 from teach.errors import FormatError
 from teach.fsutil import read_text
 from teach.messages import Lang
@@ -47,7 +48,9 @@ def read_script(path: str | Path) -> Script:
     """Read and check a dialogue: every setting's value is checked here, so a bad one names its line."""
     path = Path(path)
     text = read_text(path, "dialogue", limits.MAX_DIALOGUE_BYTES)
-    lines = text.splitlines()
+    lines = text.split("\n")  # line numbers as an editor counts them: U+2028, NEL, form feed end no line
+    if lines[-1] == "":
+        lines.pop()
     if len(lines) > limits.MAX_DIALOGUE_LINES:
         raise FormatError(f"more than {limits.MAX_DIALOGUE_LINES} lines in one dialogue", path,
                           limits.MAX_DIALOGUE_LINES + 1)
@@ -67,6 +70,8 @@ def read_script(path: str | Path) -> Script:
                 raise FormatError(f"@{key} is set twice", path, number)
             script.settings[key] = _setting(key, value.strip(), path, number)
             continue
+        if len(line) > MAX_LINE_CHARS:
+            raise FormatError(f"the line is too long ({len(line)} characters, at most {MAX_LINE_CHARS})", path, number)
         script.lines.append((number, line))
     if not script.lines:
         raise FormatError("the dialogue has no input lines", path)

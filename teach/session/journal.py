@@ -19,7 +19,7 @@ from dataclasses import asdict, dataclass, field, fields
 from pathlib import Path
 from typing import Any, ClassVar
 
-from teach.domain import State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State, check_numbers
 from teach.errors import FormatError
 from teach.fsutil import Types, decode_text, parse_json, validate
 from teach.session.settings import LANGUAGES, WorldKind
@@ -302,12 +302,16 @@ class Journal:
         """Parse a journal file's text against its schema; damage is a one-line ``FormatError``
         naming ``where``, the line and the key that is wrong."""
         try:
+            check_numbers(text, where, "json")
             if text.split("\n", 1)[0].strip() == "{":  # version 1: one document over many lines
                 return cls._checked(parse_json(text, where, "the session journal"), where)
             lines = text.split("\n")
             if lines[-1] == "" and len(lines) > 1:
                 lines.pop()
-            journal = cls._checked(parse_json(lines[0], where, "the session journal"), where)
+            try:
+                journal = cls._checked(parse_json(lines[0], where, "the session journal"), where)
+            except FormatError as error:  # the snapshot is line 1
+                raise FormatError(error.message, where, error.line or 1) from None
             for number, line in enumerate(lines[1:], start=2):
                 journal._apply(line, where, number)
             return journal
@@ -367,6 +371,14 @@ def _check_open_steps(open_steps: list[object], where: Path, first: int = 0) -> 
         if not (isinstance(entry, list) and len(entry) == 3 and isinstance(entry[0], str)
                 and set(entry[0]) <= {"0", "1"} and type(entry[1]) is int and isinstance(entry[2], str)):
             raise FormatError(f"open_steps[{number}]: must be [state of 0s and 1s, action id, words]", where)
+
+
+def check_open_actions(journal: Journal, domain: Domain, where: Path) -> None:
+    """On resume: every open step's action is one of the domain's, an external one (-1) or the goal (0)."""
+    for number, (_, action, _) in enumerate(journal.open_steps):
+        if action not in (EXTERNAL_ACTION, GOAL_ACTION) and not domain.has_action(action):
+            raise FormatError(f"the session journal is damaged: open_steps[{number}]: action {action} is not an "
+                              f"action of the domain", where)
 
 
 def _checked_open_state(value: object, where: Path) -> str:

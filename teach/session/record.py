@@ -15,7 +15,16 @@ from teach.domain import Domain, State
 from teach.errors import FormatError
 from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
-from teach.session.journal import Answered, Asked, Event, Journal, Situated, parse_state_text, state_text
+from teach.session.journal import (
+    Answered,
+    Asked,
+    Event,
+    Journal,
+    Situated,
+    check_open_actions,
+    parse_state_text,
+    state_text,
+)
 from teach.session.store import SessionStore
 
 IMPOSSIBLE = "impossible"
@@ -113,6 +122,7 @@ class SessionRecord:
             return None
         if run and run not in domain.action_names:
             raise FormatError(f"open_run: {run[:40]!r} is not an action of the domain", self.store.journal_path)
+        check_open_actions(self.journal, domain, self.store.journal_path)
         steps = [(self.state(str(state), f"open_steps[{number}]", domain), int(action), str(words))
                  for number, (state, action, words) in enumerate(self.journal.open_steps)]
         return steps, self.state(self.journal.open_state, "open_state", domain), run

@@ -30,9 +30,9 @@ from typing import Any, ClassVar
 import numpy as np
 
 from teach.bt.nodes import Status
-from teach.domain import Domain, Literal
-from teach.errors import FormatError
-from teach.fsutil import atomic_write_text, read_text
+from teach.domain import Domain, Literal, check_numbers
+from teach.errors import FormatError, shown
+from teach.fsutil import atomic_write_text, parse_json, read_text
 from teach.learn.recognise import changed_literals
 from teach.sim.guide import Sample
 from teach.sim.segment import Segment
@@ -47,6 +47,8 @@ SETTLE = 0.3            # s after the path before the effects are judged
 FINGER_SETTLE = 0.5     # s the fingers get to reach their start closure
 APPROACH_TIMEOUT = 20.0  # s
 FORMAT = "teach-guided-motion"
+_KEYS = ("format", "version", "name", "en", "de", "anchor", "effects", "offset", "lift", "fingers", "points")
+"""The keys of a motion file, in the order ``motion_text`` writes them: any other is refused."""
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
@@ -254,15 +256,12 @@ def save_motion(motion: GuidedMotion, path: str | Path) -> None:
 def load_motion(path: str | Path, domain: Domain) -> GuidedMotion:
     """Read a motion file; every problem is one ``FormatError`` naming the file and line."""
     text = read_text(path, "guided motion file")
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise FormatError(f"invalid JSON: {exc.msg}", path, exc.lineno) from None
-    return _motion_from_data(data, text, Path(path), domain)
+    check_numbers(text, path, "json")
+    return _motion_from_data(parse_json(text, path, "the guided motion file"), text, Path(path), domain)
 
 
 def _motion_from_data(data: Any, text: str, path: Path, domain: Domain) -> GuidedMotion:
-    lines = text.splitlines()
+    lines = text.split("\n")  # JSON's line breaks only: the numbers errors give are the file's own
 
     def line_of(key: str) -> int | None:
         return next((n for n, line in enumerate(lines, 1) if f'"{key}"' in line), None)
@@ -271,17 +270,20 @@ def _motion_from_data(data: Any, text: str, path: Path, domain: Domain) -> Guide
         return FormatError(message, path, line if line is not None else (line_of(key) if key else None))
 
     def number(value: Any, what: str, key: str, line: int | None = None) -> float:
-        if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-            raise fail(f"{what} must be a number, got {value!r}", key, line)
+        if isinstance(value, bool) or not isinstance(value, int | float) or not -1e300 < value < 1e300:
+            raise fail(f"{what} must be a number, got {shown(value)}", key, line)  # not NaN, infinite or huge
         return float(value)
 
     if not isinstance(data, dict) or data.get("format") != FORMAT:
         raise fail(f"not a guided motion file (it needs \"format\": \"{FORMAT}\")", "format", 1)
+    for key in data:
+        if key not in _KEYS:
+            raise fail(f"unknown key {shown(key)} (allowed: {', '.join(_KEYS)})", key)
     if data.get("version") != 1:
-        raise fail(f"unsupported version {data.get('version')!r} (this teach reads version 1)", "version")
+        raise fail(f"unsupported version {shown(data.get('version'))} (this teach reads version 1)", "version")
     name = data.get("name")
     if not isinstance(name, str) or not _NAME.match(name):
-        raise fail(f"'name' must be an identifier (letters, digits, _), got {name!r}", "name")
+        raise fail(f"'name' must be an identifier (letters, digits, _), got {shown(name)}", "name")
     phrases = {}
     for lang in ("en", "de"):
         value = data.get(lang, [])
@@ -290,14 +292,14 @@ def _motion_from_data(data: Any, text: str, path: Path, domain: Domain) -> Guide
         phrases[lang] = tuple(value)
     anchor = data.get("anchor")
     if anchor not in ANCHORS:
-        raise fail(f"'anchor' must be one of {', '.join(ANCHORS)}, got {anchor!r}", "anchor")
+        raise fail(f"'anchor' must be one of {', '.join(ANCHORS)}, got {shown(anchor)}", "anchor")
     raw_effects = data.get("effects")
     if not isinstance(raw_effects, list) or not raw_effects or not all(isinstance(e, str) for e in raw_effects):
         raise fail("'effects' must be a non-empty list of literals like \"BallPlaced\" or \"!BallClose\"", "effects")
     effects = tuple(Literal.parse(e) for e in raw_effects)
     for literal in effects:
         if not domain.has_condition(literal.name):
-            raise fail(f"'effects' names unknown condition {literal.name!r}", "effects")
+            raise fail(f"'effects' names unknown condition {shown(literal.name)}", "effects")
     offset = data.get("offset")
     if not isinstance(offset, list) or len(offset) != 2:
         raise fail("'offset' must be [ahead, left] in metres", "offset")

@@ -38,15 +38,16 @@ and the same inputs give the same world.
 from __future__ import annotations
 
 import operator
+import os
 import re
-import tomllib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from teach import limits
 from teach.bt.nodes import Node
-from teach.domain import Domain, Literal, State
-from teach.errors import DomainError, FormatError
+from teach.domain import Domain, Literal, State, TomlLines, parse_toml
+from teach.errors import DomainError, FormatError, shown
 from teach.fsutil import read_text
 from teach.observe.hook import Observer
 from teach.world.protocol import ActResult, RunResult, WorldEvent
@@ -54,15 +55,17 @@ from teach.world.symbolic import SymbolicWorld
 
 WORLD_FILE = "world.toml"
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
-_WHEN = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(==|!=|<=|>=|<|>)\s*(-?\d+)\s*$")
+_WHEN = re.compile(r"^[ \t]*([A-Za-z_][A-Za-z0-9_]*)[ \t]*(==|!=|<=|>=|<|>)[ \t]*(-?[0-9]{1,18})[ \t]*$")
+"""A derived condition's test: a variable, a comparison and an integer of at most 18 digits, with
+ASCII blanks between (no other script's digits or spaces, no parser limit)."""
 _COMPARE: dict[str, Callable[[int, int], bool]] = {
     "==": operator.eq, "!=": operator.ne, "<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge}
 _KEYS = {
-    "": {"start", "random_start", "variable", "derived", "effect", "event"},
-    "variable": {"name", "min", "max", "start"},
-    "derived": {"condition", "when"},
-    "effect": {"action", "set", "add"},
-    "event": {"name", "en", "de", "pre", "ram", "set", "add", "probability"},
+    "": ("start", "random_start", "variable", "derived", "effect", "event"),
+    "variable": ("name", "min", "max", "start"),
+    "derived": ("condition", "when"),
+    "effect": ("action", "set", "add"),
+    "event": ("name", "en", "de", "pre", "ram", "set", "add", "probability"),
 }
 
 
@@ -131,45 +134,15 @@ class WorldSpec:
 # --- reading world.toml --------------------------------------------------------------------
 
 
-class _Lines:
-    """Where things are in the TOML text, so every error names its line."""
-
-    def __init__(self, text: str):
-        self.lines = text.splitlines()
-
-    def table(self, kind: str, index: int) -> int | None:
-        """The header line of the ``index``-th ``[[kind]]`` table."""
-        headers = [n for n, line in enumerate(self.lines, 1) if line.strip().startswith(f"[[{kind}]]")]
-        return headers[index] if index < len(headers) else None
-
-    def key(self, key: str, start: int | None) -> int | None:
-        """The line that sets ``key`` in the table whose header is line ``start`` (top level:
-        None); the header itself when the key is not written there."""
-        for number in range((start or 0) + 1, len(self.lines) + 1):
-            stripped = self.lines[number - 1].strip()
-            if stripped.startswith("["):
-                break
-            if re.match(rf"{re.escape(key)}\s*=", stripped):
-                return number
-        return start
-
-
 def load_world(path: str | Path, domain: Domain) -> WorldSpec:
     """Read and check a ``world.toml`` against ``domain``; every error names the file and line."""
     path = Path(path)
-    text = read_text(path, "world file")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        match = re.search(r"\(at line (\d+), column \d+\)", str(exc))
-        line = int(match.group(1)) if match else max(1, len(text.splitlines()))  # else: at the end
-        message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc)) or "invalid TOML"
-        raise FormatError(f"invalid TOML: {message}", path, line) from None
-    return _Reader(path, _Lines(text), domain).world(data)
+    text = read_text(path, "world file", limits.MAX_DOMAIN_BYTES)
+    return _Reader(path, TomlLines(text), domain).world(parse_toml(text, path))
 
 
 class _Reader:
-    def __init__(self, path: Path, lines: _Lines, domain: Domain):
+    def __init__(self, path: Path, lines: TomlLines, domain: Domain):
         self.path, self.lines, self.domain = path, lines, domain
 
     def fail(self, message: str, line: int | None) -> FormatError:
@@ -199,7 +172,7 @@ class _Reader:
             self._known_keys(raw, "effect", line)
             action = raw.get("action")
             if not isinstance(action, str) or not self.domain.has_action(action):
-                raise self.fail(f"'action' must name an action of {self.domain.path}, got {action!r}",
+                raise self.fail(f"'action' must name an action of {self.domain.path}, got {shown(action)}",
                                 self.lines.key("action", line))
             if action in effects:
                 raise self.fail(f"a second [[effect]] for {action}: put all its changes in one table", line)
@@ -216,16 +189,12 @@ class _Reader:
         return raw
 
     def _known_keys(self, raw: dict, kind: str, line: int | None) -> None:
-        for key in raw:
-            if key not in _KEYS[kind]:
-                where = f"[[{kind}]]" if kind else "the top level"
-                known = ", ".join(sorted(_KEYS[kind]))
-                raise self.fail(f"unknown key {key!r} in {where} (known: {known})", self.lines.key(key, line))
+        self.lines.check_keys(raw, _KEYS[kind], f"[[{kind}]]" if kind else "", line, self.path)
 
     def _integer(self, raw: dict, key: str, line: int | None) -> int:
         value = raw.get(key)
         if isinstance(value, bool) or not isinstance(value, int):
-            raise self.fail(f"'{key}' must be an integer, got {value!r}", self.lines.key(key, line))
+            raise self.fail(f"'{key}' must be an integer, got {shown(value)}", self.lines.key(key, line))
         return value
 
     def _range(self, value: object, what: str, line: int | None) -> tuple[int, int]:
@@ -235,17 +204,17 @@ class _Reader:
         if (isinstance(value, list) and len(value) == 2 and all(isinstance(v, int) and not isinstance(v, bool)
                                                                 for v in value) and value[0] <= value[1]):
             return value[0], value[1]
-        raise self.fail(f"{what} must be an integer or a range [low, high] with low <= high, got {value!r}", line)
+        raise self.fail(f"{what} must be an integer or a range [low, high] with low <= high, got {shown(value)}", line)
 
     def _variable(self, raw: dict, index: int, seen: list[Variable]) -> Variable:
         line = self.lines.table("variable", index)
         self._known_keys(raw, "variable", line)
         name = raw.get("name")
         if not isinstance(name, str) or not _NAME.match(name):
-            raise self.fail(f"variable {index + 1}: 'name' must be an identifier, got {name!r}",
+            raise self.fail(f"variable {index + 1}: 'name' must be an identifier, got {shown(name)}",
                             self.lines.key("name", line))
         if any(v.name == name for v in seen) or self.domain.has_condition(name) or self.domain.has_action(name):
-            raise self.fail(f"variable name {name!r} is taken already", self.lines.key("name", line))
+            raise self.fail(f"variable name {shown(name)} is taken already", self.lines.key("name", line))
         low, high = self._integer(raw, "min", line), self._integer(raw, "max", line)
         if low > high:
             raise self.fail(f"variable {name}: 'min' ({low}) is above 'max' ({high})", self.lines.key("max", line))
@@ -262,7 +231,7 @@ class _Reader:
             self._known_keys(raw, "derived", line)
             condition = raw.get("condition")
             if not isinstance(condition, str) or not self.domain.has_condition(condition):
-                raise self.fail(f"'condition' must name a condition of {self.domain.path}, got {condition!r}",
+                raise self.fail(f"'condition' must name a condition of {self.domain.path}, got {shown(condition)}",
                                 self.lines.key("condition", line))
             if any(d.condition == condition for d in result):
                 raise self.fail(f"{condition} is derived twice", line)
@@ -270,7 +239,7 @@ class _Reader:
             match = _WHEN.match(when) if isinstance(when, str) else None
             if match is None:
                 raise self.fail(f"'when' must read like \"snacks == 0\" (a variable, one of "
-                                f"{' '.join(_COMPARE)}, an integer), got {when!r}", self.lines.key("when", line))
+                                f"{' '.join(_COMPARE)}, an integer), got {shown(when)}", self.lines.key("when", line))
             if match.group(1) not in variables:
                 raise self.fail(f"'when' names unknown variable {match.group(1)!r}", self.lines.key("when", line))
             result.append(Derived(condition, match.group(1), match.group(2), int(match.group(3))))
@@ -283,7 +252,7 @@ class _Reader:
             raise self.fail(f"'{key}' must be a list of condition names", line)
         for name in raw:
             if not self.domain.has_condition(name):
-                raise self.fail(f"'{key}' names unknown condition {name!r}", line)
+                raise self.fail(f"'{key}' names unknown condition {shown(name)}", line)
             if name in derived:
                 raise self.fail(f"'{key}' names {name}, which follows its variable", line)
         return tuple(dict.fromkeys(raw))
@@ -296,7 +265,7 @@ class _Reader:
         literals = tuple(Literal.parse(item) for item in value)
         for literal in literals:
             if not self.domain.has_condition(literal.name):
-                raise self.fail(f"'{key}' names unknown condition {literal.name!r}", where)
+                raise self.fail(f"'{key}' names unknown condition {shown(literal.name)}", where)
             if key == "ram" and literal.name in derived:
                 raise self.fail(f"'ram' sets {literal.name}, which follows its variable: change the variable", where)
             if literal.negated() in literals:
@@ -312,11 +281,11 @@ class _Reader:
                 raise self.fail(f"'{kind}' must be a table like {{ snacks = 1 }}", where)
             for name, value in table.items():
                 if name not in variables:
-                    raise self.fail(f"'{kind}' names unknown variable {name!r}", where)
+                    raise self.fail(f"'{kind}' names unknown variable {shown(name)}", where)
                 if any(c.variable == name for c in changes):
                     raise self.fail(f"variable {name} is both set and changed", where)
                 if kind == "add" and (isinstance(value, bool) or not isinstance(value, int)):
-                    raise self.fail(f"'add' needs an integer for {name}, got {value!r}", where)
+                    raise self.fail(f"'add' needs an integer for {name}, got {shown(value)}", where)
                 low, high = self._range(value, f"'{kind}' for {name}", where)
                 changes.append(Change(name, kind, low, high))
         return tuple(changes)
@@ -328,7 +297,7 @@ class _Reader:
             self._known_keys(raw, "event", line)
             name = raw.get("name")
             if not isinstance(name, str) or not _NAME.match(name) or any(e.name == name for e in events):
-                raise self.fail(f"event {index + 1}: 'name' must be a new identifier, got {name!r}",
+                raise self.fail(f"event {index + 1}: 'name' must be a new identifier, got {shown(name)}",
                                 self.lines.key("name", line))
             phrases = {}
             for lang in ("en", "de"):
@@ -339,7 +308,7 @@ class _Reader:
                 phrases[lang] = tuple(value)
             probability = raw.get("probability", 0.0)
             if isinstance(probability, bool) or not isinstance(probability, int | float) or not 0 <= probability <= 1:
-                raise self.fail(f"event {name}: 'probability' must be a number from 0 to 1, got {probability!r}",
+                raise self.fail(f"event {name}: 'probability' must be a number from 0 to 1, got {shown(probability)}",
                                 self.lines.key("probability", line))
             pre = self._literals(raw, "pre", derived, line)
             ram = self._literals(raw, "ram", derived, line)
@@ -398,7 +367,7 @@ class HiddenStateWorld(SymbolicWorld):
         given = dict(hidden or {})
         for name, value in given.items():
             if not any(v.name == name for v in self.spec.variables):
-                raise DomainError(f"unknown hidden variable {name!r}", self.spec.path)
+                raise DomainError(f"unknown hidden variable {shown(name)}", self.spec.path)
             variable = self.spec.variable(name)
             if not variable.low <= value <= variable.high:
                 raise DomainError(f"{name} = {value} leaves its range [{variable.low}, {variable.high}]",
@@ -442,7 +411,7 @@ class HiddenStateWorld(SymbolicWorld):
         before = self._state
         found = next((e for e in self.spec.events if e.name == event), None)
         if found is None:
-            return ActResult(False, before, before, f"unknown event {event!r} (known: {', '.join(self.events)})")
+            return ActResult(False, before, before, f"unknown event {shown(event)} (known: {', '.join(self.events)})")
         missing = [lit for lit in found.pre if not self.domain.holds(lit, before)]
         if missing:
             return ActResult(False, before, before, "not possible now: needs " + ", ".join(map(str, missing)))
@@ -502,11 +471,11 @@ def _fits(value: int, wanted: tuple[tuple[Derived, bool], ...]) -> bool:
 
 
 def world_file(domain: Domain) -> Path | None:
-    """The ``world.toml`` beside a domain file, if there is one."""
+    """The ``world.toml`` beside a domain file, if anything of that name is there."""
     if domain.path is None:
         return None
     candidate = Path(domain.path).parent / WORLD_FILE
-    return candidate if candidate.is_file() else None
+    return candidate if os.path.lexists(candidate) else None  # a folder or a FIFO there is refused, not ignored
 
 
 def symbolic_world(domain: Domain, seed: int = 0, observer: Observer | None = None) -> SymbolicWorld:
