@@ -33,7 +33,7 @@ goal holds; where nothing applies it returns FAILURE.
 
 from __future__ import annotations
 
-from collections.abc import KeysView
+from collections.abc import Callable, KeysView
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -47,6 +47,7 @@ from teach.learn.action_model import ActionModel, Lit, literals_of
 from teach.learn.backchain import PlanView, Role, literal_node, plan
 from teach.learn.bits import mask_state, state_mask
 from teach.learn.goal import GoalLearner
+from teach.learn.invariants import Invariants
 
 Answer = str | None
 """An action name, or None: the task is done here (the tree must return SUCCESS)."""
@@ -130,7 +131,9 @@ class _Exception:
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
-    def __init__(self, domain: Domain, safe: bool = True):
+    def __init__(self, domain: Domain, safe: bool = True, can_happen: Callable[[State], bool] | None = None):
+        """``can_happen``: the world's word on which states it can be in (``TeachingWorld.can_happen``);
+        no question is asked about another (``teach.learn.invariants``)."""
         self.domain = domain
         self.names = domain.condition_names
         self._n = len(self.names)
@@ -155,7 +158,7 @@ class Learner:
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
-        self.impossible: dict[int, str] = {}
+        self.invariants = Invariants(self._n, can_happen)
         self._refused: dict[str | None, list[tuple[frozenset[Lit], str]]] = {}
         """Groups of literals the teacher said no to, per action (None: the goal), with the source."""
         self._replan()
@@ -315,9 +318,20 @@ class Learner:
         return self.teach_step(state, answer, source)
 
     def rule_out(self, state: State, source: str) -> None:
-        """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
-        and changes no tree; a group question about it is then asked in halves)."""
-        self.impossible[self._checked_mask(state, source)] = source
+        """The teacher said ``state`` cannot happen: nothing is asked about it again, nor about a state
+        sharing the reason the data shows for it (``teach.learn.invariants``). It costs nothing
+        and changes no tree; a group question about it is then asked in halves."""
+        self.invariants.rule_out(self._checked_mask(state, source), source,
+                                 lambda care, value: self._columns.firing(care, value) != 0)
+
+    @property
+    def impossible(self) -> dict[int, str]:
+        """The states (bitmasks) the teacher said cannot happen, with the answer's source."""
+        return self.invariants.impossible
+
+    def possible(self, mask: int) -> bool:
+        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``)."""
+        return self.invariants.possible(mask)
 
     def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
         """The groups of unsure literals worth asking about next, best first: all of them and then
@@ -446,6 +460,7 @@ class Learner:
         """Record a label; True if it starts (or extends) a conflict."""
         situation = self._situations.get(mask)
         if situation is None:
+            self.invariants.saw(mask)
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
             self._situations_view = None
             self._columns.add(mask, frozenset({answer}))

@@ -143,7 +143,7 @@ class SessionManager:
         self.lang = settings.lang
         self.store = SessionStore(settings.base, settings.session, settings.record)
         self.phrases = PhraseBook(domain, world.events)
-        self.learning = Learning(domain, self.store, self.observer, settings.safe)
+        self.learning = Learning(domain, self.store, self.observer, settings.safe, world.can_happen)
         self.budget = QuestionBudget(settings.questions)
         self.pending: Question | None = None
         self.model_repair: ModelRepair | None = None
