@@ -48,6 +48,7 @@ from teach.learn.backchain import PlanView, Role, literal_node, plan
 from teach.learn.bits import mask_state, state_mask
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
+from teach.learn.regress import PlanWithRules, rule_nodes, with_rules
 
 Answer = str | None
 """An action name, or None: the task is done here (the tree must return SUCCESS)."""
@@ -153,8 +154,8 @@ class Learner:
         self._view: PlanView | None = None
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
-        self._compiled: CompiledTree | None = None
-        self._counted: tuple[CompiledTree, int] | None = None
+        self._compiled: CompiledTree | PlanWithRules | None = None
+        self._counted: tuple[CompiledTree | PlanWithRules, int] | None = None
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
@@ -551,7 +552,7 @@ class Learner:
                 if found:
                     achievers[(index, value)] = found
         return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
-                        self._weak)
+                        self._weak, regression=self.safe)
 
     def _rank(self, literal: Lit) -> tuple[int, int]:
         """Literals the demonstrations establish early come first (-1: never established); the
@@ -563,6 +564,8 @@ class Learner:
         self._view = self._current_view()
         self._plan, self._roles = plan(self._view, self.names)
         self._compiled = compile_tree(self._plan, self.names) if self._plan is not None else None
+        if self._compiled is not None and self._view.regression:
+            self._compiled = with_rules(self._view, self._compiled, self._n)
         self._tree = None
 
     def _plan_output(self, mask: int) -> Answer | str:
@@ -727,7 +730,7 @@ class Learner:
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
         if self._plan is not None:
-            kids.append(self._plan)
+            kids.append(self._plan_node())
         if not kids:
             first = Condition(self.names[0])
             root: Node = Sequence((first, Inverter(Condition(self.names[0]))))
@@ -738,6 +741,18 @@ class Learner:
         self._root_uid = root.uid if len(kids) > 1 else -1
         return root
 
+    def _plan_node(self) -> Node:
+        """The plan, followed by its regressed rules if it has any (``teach.learn.regress``); built
+        once per plan, so assembling the tree after an update costs nothing more."""
+        assert self._plan is not None
+        both = self._compiled
+        if not isinstance(both, PlanWithRules) or not both.rules:
+            return self._plan
+        if both.node is None:
+            both.node = Fallback((self._plan, *rule_nodes(both.rules, self.names, self._roles)))
+            self._roles[both.node.uid] = Role("regression")
+        return both.node
+
     # --- explanations -------------------------------------------------------------------------
 
     def _explain_role(self, uid: int, role: Role) -> Explanation:
@@ -745,6 +760,9 @@ class Learner:
         if role.kind == "goal-sequence":
             return Explanation(uid, role.kind, "the goal: every goal literal in turn, each achieved if it does "
                                "not hold yet")
+        if role.kind == "regression":
+            return Explanation(uid, role.kind, "the plan, then the ways to the goal it does not take: the goal "
+                               "worked back through the actions, one rule per step")
         assert role.literal is not None and literal is not None
         if role.kind == "goal":
             holding = [src for e in self.goal.goal_states.values() for src in e.sources][:5]
@@ -757,6 +775,9 @@ class Learner:
                                f"makes it hold", None, literal)
         assert role.action is not None
         knowledge = self.model[role.action]
+        if role.kind == "subgoal":
+            return Explanation(uid, role.kind, f"{literal} with {role.action}: the goal still needs it after "
+                               f"{role.action}", role.action, literal)
         if role.kind == "precondition":
             applied = knowledge.applied
             return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "
