@@ -180,3 +180,14 @@ def test_a_session_asks_only_about_states_its_world_can_be_in(tmp_path: Path):
 def test_a_world_of_conditions_only_can_be_in_every_state(ball, world):
     made = SymbolicWorld(ball) if world == "symbolic" else OfflineWorld(ball)
     assert all(made.can_happen(s) for s in every_state(len(ball.conditions)))
+
+
+def test_only_states_whose_every_two_literals_were_seen_together_pass_in_a_large_domain():
+    invariants = Invariants(3)
+    for mask in (0b001, 0b010):  # the ferry is at one of two places: never both, never neither
+        invariants.saw(mask)
+    assert invariants.pairs_seen(0b001) and invariants.pairs_seen(0b101 & 0b001)
+    assert not invariants.pairs_seen(0b011)  # at both places: never seen together
+    assert not invariants.pairs_seen(0b111)
+    invariants.saw(0b011)
+    assert invariants.pairs_seen(0b011)

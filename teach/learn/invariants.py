@@ -50,6 +50,11 @@ class Invariants:
         self.impossible: dict[int, str] = {}
         """States the teacher said cannot happen, with the answer's source."""
         self.nogoods: list[Nogood] = []
+        full = (1 << width) - 1
+        self._with_true = [[0, 0] for _ in range(width)]
+        """Per condition i and value v (0: false, 1: true): the conditions seen true together with it."""
+        self._with_false = [[0, 0] for _ in range(width)]
+        self._full = full
 
     def rule_out(self, mask: int, source: str, seen: Seen) -> None:
         """The teacher said ``mask`` cannot happen: remember it, and the pairs of its literals never
@@ -66,6 +71,22 @@ class Invariants:
         reason that holds in it (that reason was the wrong one)."""
         self.impossible.pop(mask, None)
         self.nogoods = [nogood for nogood in self.nogoods if not nogood.holds_in(mask)]
+        false = ~mask & self._full
+        for index in range(self.width):
+            value = mask >> index & 1
+            self._with_true[index][value] |= mask
+            self._with_false[index][value] |= false
+
+    def pairs_seen(self, mask: int) -> bool:
+        """Whether every two literals of ``mask`` held together in some situation seen: a state
+        the demonstrations show nothing against (in a planning domain a state one condition away
+        from a seen one mostly cannot happen: a ferry at two places)."""
+        false = ~mask & self._full
+        for index in range(self.width):
+            value = mask >> index & 1
+            if mask & ~self._with_true[index][value] or false & ~self._with_false[index][value]:
+                return False
+        return True
 
     def possible(self, mask: int) -> bool:
         """Whether a question may be about ``mask``: not said to be impossible, not sharing the reason

@@ -48,7 +48,7 @@ from teach.learn.backchain import PlanView, Role, literal_node, plan
 from teach.learn.bits import mask_state, state_mask
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
-from teach.learn.regress import PlanWithRules, rule_nodes, with_rules
+from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
 
 Answer = str | None
 """An action name, or None: the task is done here (the tree must return SUCCESS)."""
@@ -331,7 +331,11 @@ class Learner:
         return self.invariants.impossible
 
     def possible(self, mask: int) -> bool:
-        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``)."""
+        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``): in a
+        domain too large to ask about every state, also only where the demonstrations showed every
+        two of its literals together."""
+        if self._n > SMALL_DOMAIN and not self.invariants.pairs_seen(mask):
+            return False
         return self.invariants.possible(mask)
 
     def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
