@@ -186,8 +186,9 @@ def test_only_states_whose_every_two_literals_were_seen_together_pass_in_a_large
     invariants = Invariants(3)
     for mask in (0b001, 0b010):  # the ferry is at one of two places: never both, never neither
         invariants.saw(mask)
-    assert invariants.pairs_seen(0b001) and invariants.pairs_seen(0b101 & 0b001)
+    assert invariants.pairs_seen(0b001) and invariants.pairs_seen(0b010)
     assert not invariants.pairs_seen(0b011)  # at both places: never seen together
+    assert not invariants.pairs_seen(0b000)  # at neither
     assert not invariants.pairs_seen(0b111)
     invariants.saw(0b011)
     assert invariants.pairs_seen(0b011)
