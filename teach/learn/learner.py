@@ -331,9 +331,13 @@ class Learner:
         return self.invariants.impossible
 
     def possible(self, mask: int) -> bool:
-        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``): in a
-        domain too large to ask about every state, also only where the demonstrations showed every
-        two of its literals together."""
+        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``)."""
+        return self.invariants.possible(mask)
+
+    def possible_when_made(self, mask: int) -> bool:
+        """``possible``, for a state made by changing conditions of a shown one: in a domain too
+        large to ask about every state, also only where the demonstrations showed every two of
+        its literals together (such a state mostly cannot happen there: a ferry at two places)."""
         if self._n > SMALL_DOMAIN and not self.invariants.pairs_seen(mask):
             return False
         return self.invariants.possible(mask)

@@ -82,7 +82,7 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
             probed += 1
             if probed > MAX_PROBED:
                 return
-            if does(probe) == "nothing":
+            if learner.possible_when_made(learner.state_mask(probe)) and does(probe) == "nothing":
                 yield SituationQuestion(probe, "gap", tree_does="nothing")
 
 
@@ -169,7 +169,7 @@ def _group_question(learner: Learner, does: Callable[[State], str], skip: set[St
     flips = {index for index, _value in literals}
     for base in bases:
         probe = tuple(not v if i in flips else v for i, v in enumerate(base))
-        if probe in learner.situations or probe in skip or not learner.possible(learner.state_mask(probe)):
+        if probe in learner.situations or probe in skip or not learner.possible_when_made(learner.state_mask(probe)):
             continue
         return may_i(learner, probe, action, literals, does(probe))
     return None

@@ -88,7 +88,7 @@ def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
                     return
                 seen.add(probe)
                 reached.append(probe)
-                if not learner.possible(learner.state_mask(probe)):
+                if not learner.possible_when_made(learner.state_mask(probe)):
                     continue
                 now = does(probe)
                 if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
