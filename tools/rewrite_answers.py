@@ -11,18 +11,30 @@ do X here?" where that behaviour does X there (and to "is the task done here?" w
 done), otherwise what it does there. The dialogue is rewritten in place (atomically) with the
 old answer lines removed and the new ones after the line that made the robot ask; comments and
 settings stay. ``--check`` only says whether the answers are current (exit 1 if not).
+
+    .venv/bin/python tools/rewrite_answers.py DIALOGUE --before ../main
+
+``--before CHECKOUT``: the answers were written for the questions of the code in CHECKOUT (a
+checkout of an earlier commit, safe learner), not for the guessing learner: the first replay
+runs there, in a child process, so a change of the questions can be answered anew.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
+import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 from rich.console import Console
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+CODE = Path(os.environ.get("TEACH_CODE", ROOT))
+"""Whose ``teach`` is imported: this checkout's, or (in the child of ``--before``) the earlier one's."""
+sys.path.insert(0, str(CODE))
 
 from teach.dialogue.oracle import SKIP, Oracle, oracle_from_tree  # noqa: E402
 from teach.dialogue.script import Script, read_script  # noqa: E402
@@ -43,10 +55,11 @@ def settings_of(script: Script, path: Path, base: Path, safe: bool) -> Settings:
                     base=base, record=False, safe=safe)
 
 
-def answer_lines(script: Script, path: Path, base: Path) -> set[int]:
-    """The file lines the learner before issue 18 took as answers (the guessing learner)."""
+def answer_lines(script: Script, path: Path, base: Path, safe: bool = False) -> set[int]:
+    """The file lines the code in use takes as answers: with the guessing learner (``safe`` False),
+    the one the answers were written for before issue 18."""
     taken: set[int] = set()
-    settings = settings_of(script, path, base / "old", safe=False)
+    settings = settings_of(script, path, base / "old", safe=safe)
     with opened_session(settings, fresh=True, domain=session_domain(settings)) as manager:
         _quiet(manager)
         for number, line in script.lines:
@@ -90,6 +103,14 @@ def new_answers(script: Script, path: Path, base: Path, dropped: set[int]) -> di
     return answers
 
 
+def answer_lines_before(dialogue: Path, checkout: Path) -> set[int]:
+    """The file lines the code in ``checkout`` takes as answers (safe learner), found in a child
+    process that imports that checkout's ``teach``."""
+    child = subprocess.run([sys.executable, __file__, str(dialogue), "--print-taken"], capture_output=True,
+                           text=True, check=True, env={**os.environ, "TEACH_CODE": str(checkout.resolve())})
+    return set(json.loads(child.stdout))
+
+
 def _quiet(manager: SessionManager) -> None:
     manager.live = None
     manager.greet()
@@ -99,13 +120,20 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dialogue", type=Path)
     parser.add_argument("--check", action="store_true", help="only say whether the answers are current")
+    parser.add_argument("--before", type=Path, metavar="CHECKOUT",
+                        help="the answers were written for the code in this checkout (safe learner)")
+    parser.add_argument("--print-taken", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
-    import tempfile
-
     script = read_script(args.dialogue)
     with tempfile.TemporaryDirectory() as scratch:
         base = Path(scratch)
-        dropped = answer_lines(script, args.dialogue, base)
+        if args.print_taken:
+            print(json.dumps(sorted(answer_lines(script, args.dialogue, base, safe=True))))
+            return 0
+        if args.before is not None:
+            dropped = answer_lines_before(args.dialogue, args.before)
+        else:
+            dropped = answer_lines(script, args.dialogue, base)
         answers = new_answers(script, args.dialogue, base, dropped)
     text = args.dialogue.read_text(encoding="utf-8").splitlines()
     out: list[str] = []

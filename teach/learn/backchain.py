@@ -10,6 +10,10 @@ literal being achieved is left out: inside its Fallback the literal is false alr
 The learner passes every precondition it has not ruled out (the assumed ones first), so each
 action runs only where all of them hold: the order is a guess, the checks are not.
 
+With ``regression`` (the safe learner) the plan is followed by the rules regressed from the
+goal through the same model (``teach.learn.regress``), for the states where achieving the goal
+literals one at a time finds no action.
+
 Optionally a *weak last resort* ends each Fallback: the first achiever again with none of its
 preconditions, so where a precondition can neither be checked true nor achieved the robot
 still tries the action that was shown for this literal instead of giving up.
@@ -38,13 +42,15 @@ class PlanView:
     preconditions: tuple[tuple[str, tuple[Lit, ...]], ...]
     achievers: tuple[tuple[Lit, tuple[str, ...]], ...]
     weak_last_resort: bool = True
+    regression: bool = False
 
 
 @dataclass(frozen=True)
 class Role:
     """Why a node of the plan exists: ``kind`` is one of goal, achieve, precondition,
-    achiever, last-resort, goal-sequence; ``literal`` the literal it checks or achieves,
-    ``action`` the action involved."""
+    achiever, last-resort, goal-sequence, and for the regressed rules (``teach.learn.regress``)
+    regression (the plan and the rules), rule, subgoal; ``literal`` the literal it checks or
+    achieves, ``action`` the action involved."""
 
     kind: str
     literal: Lit | None = None

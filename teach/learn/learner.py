@@ -33,7 +33,7 @@ goal holds; where nothing applies it returns FAILURE.
 
 from __future__ import annotations
 
-from collections.abc import KeysView
+from collections.abc import Callable, KeysView
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -47,6 +47,8 @@ from teach.learn.action_model import ActionModel, Lit, literals_of
 from teach.learn.backchain import PlanView, Role, literal_node, plan
 from teach.learn.bits import mask_state, state_mask
 from teach.learn.goal import GoalLearner
+from teach.learn.invariants import Invariants
+from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
 
 Answer = str | None
 """An action name, or None: the task is done here (the tree must return SUCCESS)."""
@@ -130,7 +132,9 @@ class _Exception:
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
-    def __init__(self, domain: Domain, safe: bool = True):
+    def __init__(self, domain: Domain, safe: bool = True, can_happen: Callable[[State], bool] | None = None):
+        """``can_happen``: the world's word on which states it can be in (``TeachingWorld.can_happen``);
+        no question is asked about another (``teach.learn.invariants``)."""
         self.domain = domain
         self.names = domain.condition_names
         self._n = len(self.names)
@@ -150,12 +154,12 @@ class Learner:
         self._view: PlanView | None = None
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
-        self._compiled: CompiledTree | None = None
-        self._counted: tuple[CompiledTree, int] | None = None
+        self._compiled: CompiledTree | PlanWithRules | None = None
+        self._counted: tuple[CompiledTree | PlanWithRules, int] | None = None
         self._exceptions: list[_Exception] = []
         self._tree: Node | None = None
         self._root_uid = 0
-        self.impossible: dict[int, str] = {}
+        self.invariants = Invariants(self._n, can_happen)
         self._refused: dict[str | None, list[tuple[frozenset[Lit], str]]] = {}
         """Groups of literals the teacher said no to, per action (None: the goal), with the source."""
         self._replan()
@@ -315,9 +319,28 @@ class Learner:
         return self.teach_step(state, answer, source)
 
     def rule_out(self, state: State, source: str) -> None:
-        """The teacher said ``state`` cannot happen: nothing is asked about it again (it costs nothing
-        and changes no tree; a group question about it is then asked in halves)."""
-        self.impossible[self._checked_mask(state, source)] = source
+        """The teacher said ``state`` cannot happen: nothing is asked about it again, nor about a state
+        sharing the reason the data shows for it (``teach.learn.invariants``). It costs nothing
+        and changes no tree; a group question about it is then asked in halves."""
+        self.invariants.rule_out(self._checked_mask(state, source), source,
+                                 lambda care, value: self._columns.firing(care, value) != 0)
+
+    @property
+    def impossible(self) -> dict[int, str]:
+        """The states (bitmasks) the teacher said cannot happen, with the answer's source."""
+        return self.invariants.impossible
+
+    def possible(self, mask: int) -> bool:
+        """Whether a question may be about the state ``mask`` (``teach.learn.invariants``)."""
+        return self.invariants.possible(mask)
+
+    def possible_when_made(self, mask: int) -> bool:
+        """``possible``, for a state made by changing conditions of a shown one: in a domain too
+        large to ask about every state, also only where the demonstrations showed every two of
+        its literals together (such a state mostly cannot happen there: a ferry at two places)."""
+        if self._n > SMALL_DOMAIN and not self.invariants.pairs_seen(mask):
+            return False
+        return self.invariants.possible(mask)
 
     def untested(self, action: str | None, literals: list[Lit]) -> list[list[Lit]]:
         """The groups of unsure literals worth asking about next, best first: all of them and then
@@ -446,6 +469,7 @@ class Learner:
         """Record a label; True if it starts (or extends) a conflict."""
         situation = self._situations.get(mask)
         if situation is None:
+            self.invariants.saw(mask)
             self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
             self._situations_view = None
             self._columns.add(mask, frozenset({answer}))
@@ -536,7 +560,7 @@ class Learner:
                 if found:
                     achievers[(index, value)] = found
         return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
-                        self._weak)
+                        self._weak, regression=self.safe)
 
     def _rank(self, literal: Lit) -> tuple[int, int]:
         """Literals the demonstrations establish early come first (-1: never established); the
@@ -548,6 +572,8 @@ class Learner:
         self._view = self._current_view()
         self._plan, self._roles = plan(self._view, self.names)
         self._compiled = compile_tree(self._plan, self.names) if self._plan is not None else None
+        if self._compiled is not None and self._view.regression:
+            self._compiled = with_rules(self._view, self._compiled, self._n)
         self._tree = None
 
     def _plan_output(self, mask: int) -> Answer | str:
@@ -712,7 +738,7 @@ class Learner:
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
         if self._plan is not None:
-            kids.append(self._plan)
+            kids.append(self._plan_node())
         if not kids:
             first = Condition(self.names[0])
             root: Node = Sequence((first, Inverter(Condition(self.names[0]))))
@@ -723,6 +749,18 @@ class Learner:
         self._root_uid = root.uid if len(kids) > 1 else -1
         return root
 
+    def _plan_node(self) -> Node:
+        """The plan, followed by its regressed rules if it has any (``teach.learn.regress``); built
+        once per plan, so assembling the tree after an update costs nothing more."""
+        assert self._plan is not None
+        both = self._compiled
+        if not isinstance(both, PlanWithRules) or not both.rules:
+            return self._plan
+        if both.node is None:
+            both.node = Fallback((self._plan, *rule_nodes(both.rules, self.names, self._roles)))
+            self._roles[both.node.uid] = Role("regression")
+        return both.node
+
     # --- explanations -------------------------------------------------------------------------
 
     def _explain_role(self, uid: int, role: Role) -> Explanation:
@@ -730,6 +768,9 @@ class Learner:
         if role.kind == "goal-sequence":
             return Explanation(uid, role.kind, "the goal: every goal literal in turn, each achieved if it does "
                                "not hold yet")
+        if role.kind == "regression":
+            return Explanation(uid, role.kind, "the plan, then the ways to the goal it does not take: the goal "
+                               "worked back through the actions, one rule per step")
         assert role.literal is not None and literal is not None
         if role.kind == "goal":
             holding = [src for e in self.goal.goal_states.values() for src in e.sources][:5]
@@ -742,6 +783,9 @@ class Learner:
                                f"makes it hold", None, literal)
         assert role.action is not None
         knowledge = self.model[role.action]
+        if role.kind == "subgoal":
+            return Explanation(uid, role.kind, f"{literal} with {role.action}: the goal still needs it after "
+                               f"{role.action}", role.action, literal)
         if role.kind == "precondition":
             applied = knowledge.applied
             return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "

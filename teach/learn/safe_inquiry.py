@@ -82,7 +82,7 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
             probed += 1
             if probed > MAX_PROBED:
                 return
-            if does(probe) == "nothing":
+            if learner.possible_when_made(learner.state_mask(probe)) and does(probe) == "nothing":
                 yield SituationQuestion(probe, "gap", tree_does="nothing")
 
 
@@ -113,7 +113,7 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
         groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
     bases = _bases(learner)
     small = 1 << width <= MAX_PROBED
-    probes = list(range(1 << width)) if small else predicted(learner)
+    probes = [mask for mask in (range(1 << width) if small else predicted(learner)) if learner.possible(mask)]
     done_true, done_false = literal_masks(goal.required()) if goal.known else (0, 0)
     stuck = [mask for mask in probes
              if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
@@ -169,7 +169,7 @@ def _group_question(learner: Learner, does: Callable[[State], str], skip: set[St
     flips = {index for index, _value in literals}
     for base in bases:
         probe = tuple(not v if i in flips else v for i, v in enumerate(base))
-        if probe in learner.situations or probe in skip:
+        if probe in learner.situations or probe in skip or not learner.possible_when_made(learner.state_mask(probe)):
             continue
         return may_i(learner, probe, action, literals, does(probe))
     return None

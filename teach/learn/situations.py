@@ -32,18 +32,22 @@ class SituationQuestion:
 
 
 def not_to_ask(learner: Learner, asked: Iterable[State]) -> set[State]:
-    """The states no question may be about: those asked already and those said to be impossible."""
+    """The states asked about already and those said to be impossible: no question may be about
+    them (nor about any state ``Learner.possible`` rules out)."""
     return set(asked) | {learner.state_of(mask) for mask in learner.impossible}
 
 
 def first_open(learner: Learner, candidates: Iterable[SituationQuestion],
                skip: set[State]) -> SituationQuestion | None:
-    """The first candidate about a state not in ``skip`` and not labelled yet (a conflict is)."""
+    """The first candidate about a state not in ``skip``, not labelled yet (a conflict is) and that
+    can happen."""
     labelled = learner.situations
     for question in candidates:
         if question.state in skip:
             continue
         if question.kind != "conflict" and question.state in labelled:
+            continue
+        if question.kind != "conflict" and not learner.possible(learner.state_mask(question.state)):
             continue
         return question
     return None
@@ -84,6 +88,8 @@ def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
                     return
                 seen.add(probe)
                 reached.append(probe)
+                if not learner.possible_when_made(learner.state_mask(probe)):
+                    continue
                 now = does(probe)
                 if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
                     yield SituationQuestion(probe, "unmet-goal", tree_does=now)

@@ -9,6 +9,7 @@ conflict the robot asks about.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from teach.bt.nodes import Action, Condition, Node, walk
@@ -30,23 +31,26 @@ DONE_ABOUT = "done"
 """``asked_about`` of an "is the task done here?" question."""
 
 
-def make_learner(domain: Domain, safe: bool = True) -> Learner:
-    return Learner(domain, safe)
+def make_learner(domain: Domain, safe: bool = True, can_happen: Callable[[State], bool] | None = None) -> Learner:
+    return Learner(domain, safe, can_happen)
 
 
 class Learning:
     """One session's learner with the demonstrations and labels it learned from."""
 
-    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = True):
+    def __init__(self, domain: Domain, store: SessionStore, observer: Observer, safe: bool = True,
+                 can_happen: Callable[[State], bool] | None = None):
+        """``can_happen``: the world's word on which states it can be in; no question is about another."""
         self.domain = domain
         self.safe = safe
+        self.can_happen = can_happen
         self.store = store
         self.observer = observer
         self.restart()
 
     def restart(self) -> None:
         """Forget everything learned (an undo or a resume then learns the journal again)."""
-        self.learner = make_learner(self.domain, self.safe)
+        self.learner = make_learner(self.domain, self.safe, self.can_happen)
         self.demos: list[Demonstration] = []
         self.labels: dict[State, Answer] = {}
         self.asked: set[State] = set()

@@ -107,7 +107,7 @@ class SessionManager:
                                     self.observer, world.state)
         self.turn = Turn(self.observer, lambda: self.budget.left)
         self.showing = Showing(self.record, self.turn, world, self.vocabulary, self.lang)
-        self.learning = Learning(domain, self.store, self.observer, settings.safe)
+        self.learning = Learning(domain, self.store, self.observer, settings.safe, world.can_happen)
         self.asking = Asking(self.record, self.learning, self.vocabulary, self.turn, self.lang, world.state,
                              settings.seed, settings.questions, lambda started: self._after_learning(True, started))
         self.definitions = Definitions(self.record, self.learning, lambda: self.budget, self.lang, self._tree_reply)

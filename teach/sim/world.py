@@ -298,10 +298,9 @@ class World:
         For BallFound the robot is given the ball's position, as if it had seen it before.
         """
         wanted = self._wanted(state)
-        if wanted["BallPlaced"] and wanted["BallGrasped"]:
-            raise DomainError("impossible state: the ball cannot be in the bin and in the gripper")
-        if wanted["BallPlaced"] and wanted["BallClose"] and not wanted["BinClose"]:
-            raise DomainError("impossible state: a ball in the bin is close only when the bin is close")
+        reason = impossible_reason(wanted)
+        if reason is not None:
+            raise DomainError(f"impossible state: {reason}")
         if seed is not None:
             self.rng = np.random.default_rng(seed)
         target = tuple(wanted[name] for name in self.domain.condition_names)
@@ -309,6 +308,10 @@ class World:
             if self._try_arrange(wanted) and self.state() == target:
                 return
         raise DomainError(f"could not arrange the state {self.domain.describe(target)}")
+
+    def can_arrange(self, state: Mapping[str, bool] | State) -> bool:
+        """Whether some pose makes exactly ``state`` hold (``arrange`` would not refuse it)."""
+        return impossible_reason(self._wanted(state)) is None
 
     def _wanted(self, state: Mapping[str, bool] | State) -> dict[str, bool]:
         names = self.domain.condition_names
@@ -475,3 +478,12 @@ def _polar(rng: np.random.Generator, low: float, high: float) -> np.ndarray:
 
 def _far(a: np.ndarray, b: np.ndarray, distance: float) -> bool:
     return float(np.linalg.norm(np.asarray(a) - np.asarray(b))) >= distance
+
+
+def impossible_reason(wanted: Mapping[str, bool]) -> str | None:
+    """Why no pose makes every condition of ``wanted`` take its value (None: one does)."""
+    if wanted["BallPlaced"] and wanted["BallGrasped"]:
+        return "the ball cannot be in the bin and in the gripper"
+    if wanted["BallPlaced"] and wanted["BallClose"] and not wanted["BinClose"]:
+        return "a ball in the bin is close only when the bin is close"
+    return None

@@ -384,6 +384,17 @@ class HiddenStateWorld(SymbolicWorld):
                 self._hidden[variable.name] = self._fitting_value(variable, wanted, state)
         self._state = self._derive(tuple(state))
 
+    def can_happen(self, state: State) -> bool:
+        """Whether some value of every hidden variable gives ``state``'s derived conditions."""
+        for variable in self.spec.variables:
+            wanted = tuple((d, state[self.domain.index(d.condition)]) for d in self.spec.derived
+                           if d.variable == variable.name)
+            # every derived condition compares with a constant: its truth changes only next to one
+            edges = {variable.low, variable.high} | {d.value + step for d, _truth in wanted for step in (-1, 0, 1)}
+            if not any(_fits(value, wanted) for value in edges if variable.low <= value <= variable.high):
+                return False
+        return True
+
     def _fitting_value(self, variable: Variable, wanted: tuple[tuple[Derived, bool], ...], state: State) -> int:
         """A value for ``variable`` that fits, drawn from its start range if one does there."""
         for low, high in (variable.start, (variable.low, variable.high)):

@@ -107,6 +107,9 @@ class MujocoWorld:
         self.world.arrange(state)
         self.frames(None)
 
+    def can_happen(self, state: State) -> bool:
+        return self.world.can_arrange(state)
+
     def reset(self, seed: int | None = None) -> None:
         self.world.reset(seed)
         self.frames(None)

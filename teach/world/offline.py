@@ -28,6 +28,10 @@ class OfflineWorld:
     def arrange(self, state: State) -> None:
         self._state = tuple(state)
 
+    def can_happen(self, state: State) -> bool:
+        """Without a world, or with one of conditions only, every state can happen."""
+        return True
+
     def reset(self, seed: int | None = None) -> None:
         self._state = tuple(False for _ in self.domain.conditions)
 

@@ -70,6 +70,9 @@ class TeachingWorld(Protocol):
 
     def arrange(self, state: State) -> None: ...
 
+    def can_happen(self, state: State) -> bool:
+        """Whether the world can be in ``state`` at all (no question is asked about one it cannot)."""
+
     def reset(self, seed: int | None = None) -> None: ...
 
     def act(self, action: str) -> ActResult: ...

@@ -1,0 +1,150 @@
+"""Rules regressed from the goal through a safe action model: the states the backchained plan
+does not cover (Juba, Le & Stern's SAM acts by planning over the same model; issue 18).
+
+The backchained tree (``teach.learn.backchain``) achieves goal literals one at a time, so
+where the goal's literals interact it can find no action although the model has a way to the
+goal. Regressing the goal breadth-first through the actions finds those ways: each step gives
+a *rule* "where these literals hold, do A" (A's required preconditions plus what the goal still
+needs after A). A rule runs A only where every precondition the learner has not ruled out
+holds, so the rules are exactly as safe as the plan; nearest the goal come first.
+
+A pure function of the ``PlanView``, like the plan. The rules are evaluated by bitmask tests
+(``PlanWithRules``) and become nodes only when the tree is assembled.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from teach.bt.nodes import Action, Inverter, Node, Sequence, Status
+from teach.bt.tick import CompiledTree
+from teach.learn.action_model import Lit, literal_masks
+from teach.learn.backchain import PlanView, Role, literal_node
+from teach.learn.bits import mask_state, state_mask
+
+MAX_RULES = 400
+"""Regressed rules kept (breadth-first, the nearest the goal first): bounds the tree's size."""
+
+
+@dataclass(frozen=True)
+class Rule:
+    """Where the literals ``true``/``false`` (bitmasks) hold, do ``action``, which makes ``makes``
+    hold on the way to the goal; ``needs`` are ``action``'s own preconditions among them."""
+
+    true: int
+    false: int
+    action: str
+    makes: Lit
+    needs: frozenset[Lit]
+
+
+@dataclass(frozen=True)
+class _Step:
+    name: str
+    pre: tuple[Lit, ...]
+    pre_true: int
+    pre_false: int
+    add: int
+    delete: int
+
+
+def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tuple[Lit, ...]], ...],
+                     achievers: tuple[tuple[Lit, tuple[str, ...]], ...]) -> list[Rule]:
+    """The goal regressed breadth-first through every action with effects (a ``PlanView``'s
+    fields), skipping conditions no weaker than one found before."""
+    if not goal:
+        return []
+    effects: dict[str, list[int]] = {}
+    for (index, value), names in achievers:
+        for name in names:
+            masks = effects.setdefault(name, [0, 0])
+            masks[0 if value else 1] |= 1 << index
+    steps = [_Step(name, pre, *literal_masks(pre), *effects[name]) for name, pre in preconditions if name in effects]
+    start = literal_masks(goal)
+    kept = [start]
+    frontier = [start]
+    found: list[Rule] = []
+    while frontier and len(found) < MAX_RULES:
+        reached: list[tuple[int, int]] = []
+        for true, false in frontier:
+            for step in steps:
+                useful = step.add & true | step.delete & false
+                if not useful or step.delete & true & ~step.add or step.add & false:
+                    continue
+                need_true = true & ~step.add | step.pre_true
+                need_false = false & ~step.delete | step.pre_false
+                if need_true & need_false or any(t & ~need_true == 0 and f & ~need_false == 0 for t, f in kept):
+                    continue
+                kept.append((need_true, need_false))
+                reached.append((need_true, need_false))
+                index = (useful & -useful).bit_length() - 1
+                found.append(Rule(need_true, need_false, step.name, (index, bool((step.add & true) >> index & 1)),
+                                  frozenset(step.pre)))
+                if len(found) == MAX_RULES:
+                    return found
+        frontier = reached
+    return found
+
+
+SMALL_DOMAIN = 12
+"""Up to this many conditions a rule is kept only if it fires in some state (every one is tried)."""
+
+
+class PlanWithRules:
+    """The compiled plan, then the first rule whose literals hold: what the plan node followed by
+    the rules' nodes does, by bitmask tests instead of compiled code (a domain of 20 conditions
+    has up to 400 rules of 20 literals: compiling them on every replan cost 0.5 s)."""
+
+    def __init__(self, plan: CompiledTree, rules: list[Rule]):
+        self.plan = plan
+        self.rules = rules
+        self.node: Node | None = None
+        """The plan's node followed by the rules' nodes, once the tree was assembled."""
+
+    def __call__(self, state: tuple[bool, ...]) -> tuple[Status, str | None]:
+        status, action = self.plan(state)
+        if status is not Status.FAILURE:
+            return status, action
+        rule = self.first(state_mask(state))
+        return (Status.FAILURE, None) if rule is None else (Status.RUNNING, rule.action)
+
+    def first(self, mask: int) -> Rule | None:
+        for rule in self.rules:
+            if mask & rule.true == rule.true and not mask & rule.false:
+                return rule
+        return None
+
+
+def with_rules(view: PlanView, plan: CompiledTree, width: int) -> PlanWithRules:
+    """The plan followed by the view's regressed rules; in a small domain only those that fire in
+    some state where the plan does not act (a rule that never fires would only be read: "if …,
+    I …" where I never do)."""
+    rules = regression_rules(view.goal, view.preconditions, view.achievers)
+    if width <= SMALL_DOMAIN:
+        both = PlanWithRules(plan, rules)
+        used = {id(rule) for rule in (both.first(mask) for mask in range(1 << width)
+                                      if plan(mask_state(mask, width))[0] is Status.FAILURE) if rule is not None}
+        rules = [rule for rule in rules if id(rule) in used]
+    return PlanWithRules(plan, rules)
+
+
+def rule_nodes(rules: list[Rule], names: tuple[str, ...], roles: dict[int, Role]) -> list[Node]:
+    """``Sequence(literals..., action)`` for each rule, with the role of every node in ``roles``."""
+    nodes: list[Node] = []
+    for rule in rules:
+        kids: list[Node] = []
+        for index in range(len(names)):
+            if (rule.true | rule.false) >> index & 1:
+                literal = (index, bool(rule.true >> index & 1))
+                node = literal_node(names, literal)
+                role = Role("precondition" if literal in rule.needs else "subgoal", literal, rule.action)
+                roles[node.uid] = role
+                if isinstance(node, Inverter):
+                    roles[node.child.uid] = role
+                kids.append(node)
+        action = Action(rule.action)
+        roles[action.uid] = Role("achiever", rule.makes, rule.action)
+        sequence = Sequence((*kids, action))
+        roles[sequence.uid] = Role("rule", rule.makes, rule.action)
+        nodes.append(sequence)
+    return nodes
