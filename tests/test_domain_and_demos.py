@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from hostile_corpus import TINY
 
 from teach.demos import Step, parse_demonstration, read_demo_set, write_demonstration
 from teach.domain import Literal, load_domain
@@ -46,22 +47,6 @@ def test_a_set_is_read_in_name_order_and_one_too_many_files_is_refused_before_an
                                    f"{limits.MAX_DEMOS}"
 
 
-TINY = """\
-name = "tiny"
-goal = ["Done"]
-
-[[condition]]
-name = "Ready"
-
-[[condition]]
-name = "Done"
-
-[[action]]
-id = 1
-name = "Work"
-pre = ["Ready"]
-ram = ["Done"]
-"""
 
 
 @pytest.mark.parametrize("text, line, words", [

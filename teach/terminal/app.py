@@ -10,17 +10,14 @@ with that letter as the start of the next line ("done").
 from __future__ import annotations
 
 import contextlib
-import os
 import signal
-import stat
-import sys
 import threading
 from collections.abc import Callable
 from pathlib import Path
 
 from prompt_toolkit import PromptSession
 from prompt_toolkit.application import Application
-from prompt_toolkit.history import FileHistory, History, InMemoryHistory
+from prompt_toolkit.history import FileHistory, InMemoryHistory
 from prompt_toolkit.input import Input
 from prompt_toolkit.key_binding import KeyBindings, KeyPressEvent
 from prompt_toolkit.keys import Keys
@@ -31,7 +28,6 @@ from rich.console import Console
 from teach import messages as m
 from teach.dialogue.completion import TeachCompleter, command_words
 from teach.dialogue.phrases import is_yes
-from teach.errors import printable
 from teach.session.commands import COMMANDS, Verb
 from teach.session.machine import SessionManager
 from teach.session.published import Mode, SessionView
@@ -54,7 +50,7 @@ class Terminal:
                                                                         if n.isalpha()]
         self.prompt: PromptSession[str] = PromptSession(
             completer=TeachCompleter(sorted(set(words)), list(view.phrases), _argument_names(view)),
-            history=_history(history),
+            history=FileHistory(str(history)) if history else InMemoryHistory(),
             bottom_toolbar=self._toolbar, input=input, output=output, complete_while_typing=True,
             key_bindings=self._talk_key() if listen else None)
         self._interrupt = threading.Event()
@@ -226,27 +222,6 @@ _LEAVE = ("escape", "c-c", "c-d")
 _TYPED = "typed:"
 _LISTENING = "\x00listen"  # what the push-to-talk key ends the prompt with (no typed line holds NUL)
 _LISTEN_WORDS = ("listen",)  # English only: a German session cannot listen
-
-
-def _history(path: Path | None) -> History:
-    """The line history, kept in ``path`` when that is a regular file or not there yet. Anything
-    else (a folder, a FIFO, a symbolic link) is never read: the session runs without a kept
-    history and says so once."""
-    if path is None:
-        return InMemoryHistory()
-    try:
-        mode = os.lstat(path).st_mode
-    except FileNotFoundError:
-        return FileHistory(str(path))
-    except OSError as error:
-        what = f"cannot be read ({error.strerror})"
-    else:
-        if stat.S_ISREG(mode):
-            return FileHistory(str(path))
-        what = "is " + ("a folder" if stat.S_ISDIR(mode) else "a symbolic link" if stat.S_ISLNK(mode)
-                        else "not a regular file")
-    print(f"teach: note: {printable(str(path))}: {what}: this session keeps no line history", file=sys.stderr)
-    return InMemoryHistory()
 
 
 def _argument_names(view: SessionView) -> dict[str, list[str]]:
