@@ -5,8 +5,9 @@
 Demonstrations from ``bench_learn.hidden_world`` (20 conditions, 20 actions, 10% external
 events). Every update of ``teach.learn.learner.Learner`` is timed, and beside it the
 specialization learner's on the same demonstrations; then the next situation question is
-chosen after all 1,000. Targets (issue 10): one update at 1,000 demonstrations <= 10 ms, a
-question <= 100 ms at 20 conditions. Printed as measured/target ratios (below 1 is within).
+chosen after all 1,000, and after 300 demonstrations of worlds of 5, 8, 20, 30 and 50 conditions.
+Targets (issues 10 and 20): one update at 1,000 demonstrations <= 10 ms, a question <= 100 ms
+at every size. Printed as measured/target ratios (below 1 is within).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from teach.learn.specialize import Specializer  # noqa: E402
 UPDATE_TARGET_MS = 10.0
 QUESTION_TARGET_MS = 100.0
 DEMOS = 1000
+SIZES, SIZE_DEMOS = (5, 8, 20, 30, 50), 300
 
 
 def main() -> None:
@@ -59,6 +61,16 @@ def main() -> None:
     print(f"situations kept: {len(learner.situations)}, conflicts: {len(learner.conflicts)}")
     print(f"next question: {question_ms:.1f} ms (ratio {question_ms / QUESTION_TARGET_MS:.2f}), "
           f"{question.kind if question else 'none left'}")
+    for conditions in SIZES:
+        domain, demos = hidden_world(conditions, 20, SIZE_DEMOS, seed=7)
+        learner = Learner(domain)
+        for demo in demos:
+            learner.update(demo)
+        start = time.perf_counter()
+        question = next_question(learner)
+        question_ms = 1000 * (time.perf_counter() - start)
+        print(f"next question, {conditions} conditions, {SIZE_DEMOS} demonstrations: {question_ms:.1f} ms "
+              f"(ratio {question_ms / QUESTION_TARGET_MS:.2f}), {question.kind if question else 'none left'}")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ back, and no situation is paid for twice. Symbolic world, real learner."""
 
 from __future__ import annotations
 
-from test_session import SEQUENCE, new_session, settings, teach_two_demonstrations
+from test_session import SEQUENCE, new_session, possible_answers, settings, teach_two_demonstrations
 
 from teach.learn.inquiry import next_question
 from teach.session.machine import Mode, SessionManager
@@ -65,7 +65,7 @@ def test_a_question_asked_again_after_an_undo_is_not_paid_twice(ball, tmp_path):
     teach_two_demonstrations(session)
     asked = session.pending
     assert asked is not None
-    session.handle("find the ball")  # the answer raises the next question
+    session.handle(ball.action(possible_answers(ball, asked.state)[0]).label("en"))  # raises the next question
     assert session.pending is not None
     left = session.budget.left
     session.handle("skip")

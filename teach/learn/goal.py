@@ -14,6 +14,11 @@ Two bounds, as for preconditions:
   behaviour shows to matter. A state the teacher acted in that satisfies every candidate
   cannot be explained by any goal; it is reported as ``unexplained``.
 
+A goal the domain file declares (``goal = [...]``) is the author's word, not a guess: every
+other literal is ruled out from the start and the declared ones are confirmed, so the tree
+says "done" where the declared literals hold (of those, the ones every goal state shown held:
+a teacher who stopped where one is false has ruled it out) and no question asks about the goal.
+
 States are bitmasks; the learner feeds distinct labelled states (adding and removing, since
 the latest label of a state wins). Adding an acting state costs O(conditions); the cover is
 recomputed from the stored states only when a candidate it uses disappears (at most twice
@@ -24,9 +29,12 @@ from __future__ import annotations
 
 from teach.learn.action_model import Evidence, Lit
 
+DECLARED = "the domain file's goal"
+"""The source of what a declared goal rules out or confirms."""
+
 
 class GoalLearner:
-    def __init__(self, width: int):
+    def __init__(self, width: int, declared: list[Lit] | None = None):
         self.width = width
         self.full = (1 << width) - 1
         self.goal_states: dict[int, Evidence] = {}
@@ -37,6 +45,10 @@ class GoalLearner:
         self.unexplained: set[int] = set()
         self.ruled_out: dict[Lit, str] = {}
         self.confirmed: dict[Lit, str] = {}
+        if declared:
+            self.ruled_out = {(index, value): DECLARED for index in range(width) for value in (False, True)
+                              if (index, value) not in declared}
+            self.confirmed = dict.fromkeys(declared, DECLARED)
 
     # --- the bounds ---------------------------------------------------------------------------
 

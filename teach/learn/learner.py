@@ -12,7 +12,7 @@ What it keeps (all updated in O(conditions) per step, never by replaying old dat
 
 - the action model (``teach.learn.action_model``): effects and precondition bounds;
 - the goal (``teach.learn.goal``): the smallest set of goal-state literals that explains why
-  the teacher kept acting;
+  the teacher kept acting, or, where the domain file declares one, that goal;
 - the labelled situations: each distinct state with what the robot must do there. A strict
   replay reproduces a demonstration exactly when the tree does the label of each of its
   states, so these are the training set. A state labelled two ways is a *conflict*: kept as
@@ -33,7 +33,7 @@ goal holds; where nothing applies it returns FAILURE.
 
 from __future__ import annotations
 
-from collections.abc import Callable, KeysView
+from collections.abc import Callable, Collection, KeysView, Mapping
 from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from typing import Protocol
@@ -140,7 +140,7 @@ class Learner:
         self._n = len(self.names)
         self._full = (1 << self._n) - 1
         self.model = ActionModel(domain.action_names, self._n)
-        self.goal = GoalLearner(self._n)
+        self.goal = GoalLearner(self._n, [(self.names.index(lit.name), lit.value) for lit in domain.goal])
         self.safe = safe
         self._weak = not safe
         self._situations: dict[int, Situation] = {}
@@ -532,6 +532,18 @@ class Learner:
             parts.append(f"{len(conflicts)} state(s) now labelled two ways (the latest label is used until "
                          f"the teacher decides)")
         return Update(source, changed, conflicts, "; ".join(parts))
+
+    def plan_if_ruled_out(self, out: Mapping[str | None, Collection[Lit]]) -> CompiledTree | None:
+        """The safe plan as it would be if the literals ``out[action]`` were ruled out for each action
+        (None: for the goal), the rest of the model as it is: what the robot would do after those
+        yeses (``teach.learn.safe_inquiry`` predicts answers by it). Without the regressed rules,
+        which only act where the plan does nothing and cost most of a replan."""
+        view = self._current_view()
+        goal = tuple(lit for lit in view.goal if lit not in out.get(None, ()))
+        preconditions = tuple((name, tuple(lit for lit in pursued if lit not in out.get(name, ())))
+                              for name, pursued in view.preconditions)
+        built, _roles = plan(PlanView(goal, preconditions, view.achievers, view.weak_last_resort), self.names)
+        return None if built is None else compile_tree(built, self.names)
 
     def _current_view(self) -> PlanView:
         rank = self._rank
