@@ -17,8 +17,9 @@ $(STAMP): $(BIN)/python pyproject.toml
 run: $(STAMP)
 	$(BIN)/teach replay dialogues/quickstart.dialogue
 
+# One worker per core (pytest-xdist); every test keeps its own temporary folder and ports.
 test: lint
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto
 
 lint: $(STAMP)
 	$(BIN)/ruff check teach tests bench

@@ -657,14 +657,20 @@ def _make_session_kind(entry: Hostile, sub: Path) -> Path:
     return base / "demos" / MOTION_SESSION / "PushBall.motion.json"
 
 
-def _deep_socket(path: Path, folder: Path) -> str:
-    """A socket at a path too long for AF_UNIX (108 bytes), bound through its folder's descriptor."""
+def _bind_socket(path: Path) -> None:
+    """A socket file at ``path`` (nobody listens on it), bound through its folder's descriptor:
+    AF_UNIX takes at most 108 bytes, and a parallel run's temporary folders are deep."""
     where = os.open(path.parent, os.O_RDONLY)
     try:
         with socket.socket(socket.AF_UNIX) as server:
             server.bind(f"/proc/self/fd/{where}/{path.name}")
     finally:
         os.close(where)
+
+
+def _deep_socket(path: Path, folder: Path) -> str:
+    """A socket at a path too long for AF_UNIX to name."""
+    _bind_socket(path)
     return str(path.relative_to(folder))
 
 
@@ -916,8 +922,7 @@ def _make_special(special: str, path: Path, folder: Path) -> str:
     elif special == "folder":
         path.mkdir()
     elif special == "socket":
-        with socket.socket(socket.AF_UNIX) as server:  # the file stays; nobody listens on it
-            server.bind(str(path))
+        _bind_socket(path)
     elif special == "symlink-loop":
         path.symlink_to(path.name)
     elif special == "symlink-to-fifo":
@@ -960,8 +965,7 @@ def _make_set(special: str, target: Path, folder: Path) -> str:
     if special == "set-csv-is-fifo":
         os.mkfifo(bad)
     elif special == "set-csv-is-socket":
-        with socket.socket(socket.AF_UNIX) as server:
-            server.bind(str(bad))
+        _bind_socket(bad)
     elif special == "set-csv-symlink-loop":
         bad.symlink_to(bad.name)
     elif special == "set-csv-to-dev-zero":
