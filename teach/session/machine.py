@@ -41,7 +41,6 @@ from teach.dialogue.phrases import (
 from teach.dialogue.questions import Question, QuestionBudget, describe_situation
 from teach.domain import Domain, State
 from teach.errors import LearnError, TeachError
-from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.open_demonstration import OpenDemonstration
 from teach.session import running
@@ -92,7 +91,7 @@ class SessionManager:
         self.settings = settings
         self.world = world
         self.observer = observer or Observer()
-        self.lang = Lang.parse(settings.lang)
+        self.lang = settings.lang
         self.vocabulary = Vocabulary(domain, world.events)
         journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang, settings.questions,
                                      settings.world, settings.seed, guess=not settings.safe)
