@@ -14,7 +14,8 @@ owned by the pieces it composes, which guiding and the hand follower get instead
 machine: the session record (journal, store, open demonstration: the one place that
 journals), the turn (the replies of one line) and ``Showing`` (the open demonstration in
 words); ``Asking`` holds the situation questions, ``Definitions`` the action definitions,
-``Relearning`` rebuilds what was learned from the journal (resume, undo, redo).
+``Relearning`` rebuilds what was learned from the journal (resume, undo, redo). Its older
+members (``domain``, ``journal``, ``pending`` …) are windows onto these owners, in ``compat.py``.
 """
 
 from __future__ import annotations
@@ -22,14 +23,12 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from teach import messages as m
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration
 from teach.dialogue.phrases import (
     LineTooLong,
-    PhraseBook,
     Suggestion,
     Token,
     UnknownPhrase,
@@ -38,11 +37,10 @@ from teach.dialogue.phrases import (
     is_no,
     is_yes,
 )
-from teach.dialogue.questions import Question, QuestionBudget, describe_situation
+from teach.dialogue.questions import describe_situation
 from teach.domain import Domain, State
 from teach.errors import LearnError, TeachError
 from teach.observe.hook import Observer
-from teach.open_demonstration import OpenDemonstration
 from teach.session import running
 from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
 from teach.session.asking import Asking
@@ -56,16 +54,11 @@ from teach.session.commands import (
     Verb,
     parse_command,
 )
+from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
 from teach.session.describe import unmet_goal, why_refused
 from teach.session.guiding import Guiding
-from teach.session.journal import (
-    DemoLearned,
-    Event,
-    Journal,
-    Situated,
-    state_text,
-)
+from teach.session.journal import DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
 from teach.session.published import Mode, SessionView
 from teach.session.record import SessionRecord
@@ -80,10 +73,8 @@ from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import TeachingWorld
 
-if TYPE_CHECKING:
-    from teach.dialogue.model_repair import ModelQuestion
 
-class SessionManager:
+class SessionManager(CompatMembers):
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
     def __init__(self, settings: Settings, domain: Domain, world: TeachingWorld, observer: Observer | None = None,
@@ -118,45 +109,7 @@ class SessionManager:
         self.observer.on_domain(domain)
         self.guiding = Guiding(self.showing, self.record, self.turn, settings.label_questions, self.relearning.adopt)
 
-    # --- what drivers and tests read --------------------------------------------------------
-
-    @property
-    def domain(self) -> Domain:
-        return self.vocabulary.domain
-
-    @property
-    def phrases(self) -> PhraseBook:
-        return self.vocabulary.phrases
-
-    @property
-    def journal(self) -> Journal:
-        return self.record.journal
-
-    @property
-    def store(self) -> SessionStore:
-        return self.record.store
-
-    @store.setter
-    def store(self, store: SessionStore) -> None:  # a benchmark measures another store
-        self.record.store = store
-
-    @property
-    def open(self) -> OpenDemonstration | None:
-        """The demonstration being shown (or a run's steps, to be continued as a correction)."""
-        return self.record.open
-
-    @open.setter
-    def open(self, opened: OpenDemonstration | None) -> None:
-        self.record.open = opened
-
-    @property
-    def live(self) -> Callable[[Reply], None] | None:
-        """A driver that shows replies as they are produced."""
-        return self.turn.live
-
-    @live.setter
-    def live(self, live: Callable[[Reply], None] | None) -> None:
-        self.turn.live = live
+    # --- what drivers read (the owners' older windows: session/compat.py) -------------------
 
     @property
     def mode(self) -> Mode:
@@ -184,39 +137,7 @@ class SessionManager:
         effects seen so far), or None when a run would be refused."""
         if self.open is not None and len(self.open.steps) > self.open.robot_steps:
             return None  # the teacher is showing something: finish or cancel it first
-        return self.learning.tree if self.learning.has_behaviour else self.planned
-
-    @property
-    def budget(self) -> QuestionBudget:
-        """The situation and definition questions left (the labelling questions have their own)."""
-        return self.asking.budget
-
-    @property
-    def pending(self) -> Question | None:
-        """The situation question waiting for its answer."""
-        return self.asking.pending
-
-    @property
-    def pending_model(self) -> ModelQuestion | None:
-        """The open question about the action definitions."""
-        return self.definitions.pending
-
-    @property
-    def planned(self) -> Node | None:
-        """The tree planned from the action definitions."""
-        return self.definitions.planned
-
-    @property
-    def generation(self) -> int:
-        return self.learning.generation
-
-    @property
-    def pruned(self) -> Node | None:
-        return self.learning.pruned
-
-    @property
-    def demos(self) -> list[Demonstration]:
-        return self.learning.demos
+        return self.learning.tree if self.learning.has_behaviour else self.definitions.planned
 
     # --- the driver's interface -----------------------------------------------------------
 
@@ -424,8 +345,8 @@ class SessionManager:
 
     def cmd_show(self, rest: str) -> list[Reply]:
         full = says_full(rest)
-        if self.pruned is None and self.planned is not None:
-            return [self._tree_reply(self.planned, full)]
+        if self.pruned is None and self.definitions.planned is not None:
+            return [self._tree_reply(self.definitions.planned, full)]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
         return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
@@ -537,8 +458,6 @@ class SessionManager:
             self.observer.on_demonstration(demo.name, demo, self.domain)
         return self.turn.close(self._after_learning(ask=False, started=started, events=events))
 
-    # --- questions --------------------------------------------------------------------------
-
     # --- learning results -------------------------------------------------------------------
 
     def _after_learning(self, ask: bool, started: float | None = None,
@@ -578,7 +497,7 @@ class SessionManager:
         manager.relearning.relearn()
         manager.step = journal.step + 1  # a step of its own: the kill may have come before the save
         manager.observer.set_time(manager.step)
-        current = manager.pruned or manager.planned
+        current = manager.pruned or manager.definitions.planned
         if current is not None:
             from teach.bt.xml import tree_to_xml
 
