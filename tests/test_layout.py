@@ -192,7 +192,8 @@ def test_a_heavy_library_is_imported_in_its_package_only(package, home):
 @pytest.mark.parametrize("name", ["session/machine.py", "session/learning.py", "session/commands.py",
                                   "session/describe.py", "messages.py", "session/record.py", "session/turn.py",
                                   "session/showing.py", "session/definitions.py", "session/running.py",
-                                  "session/resumed.py", "session/arguments.py", "session/published.py",
+                                  "session/resumed.py", "session/relearning.py",
+                                  "session/arguments.py", "session/published.py", "session/compat.py",
                                   "session/vocabulary.py", "session/guiding.py", "session/hand.py",
                                   "open_demonstration.py"])
 def test_the_session_machine_does_no_file_io(name):

@@ -39,6 +39,7 @@ sys.path.insert(0, str(CODE))
 from teach.dialogue.oracle import SKIP, Oracle, oracle_from_tree  # noqa: E402
 from teach.dialogue.script import Script, read_script  # noqa: E402
 from teach.fsutil import atomic_write_text  # noqa: E402
+from teach.messages import Lang  # noqa: E402
 from teach.session.machine import SessionManager  # noqa: E402
 from teach.session.settings import Settings, WorldKind  # noqa: E402
 from teach.session.setup import opened_session, session_domain  # noqa: E402
@@ -50,7 +51,7 @@ YES = {"en": "yes", "de": "ja"}
 def settings_of(script: Script, path: Path, base: Path, safe: bool) -> Settings:
     chosen = script.settings
     return Settings(session=path.stem, domain=Path(str(chosen["domain"])) if "domain" in chosen else None,
-                    lang=str(chosen.get("lang", "en")), questions=int(str(chosen.get("questions", 5))),
+                    lang=Lang.parse(str(chosen.get("lang", "en"))), questions=int(str(chosen.get("questions", 5))),
                     seed=int(str(chosen.get("seed", 0))), world=WorldKind.parse(str(chosen.get("world", "mujoco"))),
                     base=base, record=False, safe=safe)
 

@@ -59,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.dialogue.oracle import answer_open_questions, oracle_from_model, oracle_from_tree
     from teach.domain import load_domain
     from teach.errors import TeachError
+    from teach.messages import Lang
     from teach.observe.hook import Observer
     from teach.replay import replay
     from teach.session.machine import SessionManager
@@ -81,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
             asked[-1].update(answer=answer, change=change)
 
     with tempfile.TemporaryDirectory(prefix="teach-bench-") as scratch:
-        settings = Settings("bench", lang=args.lang, questions=args.questions, world=WorldKind.OFFLINE,
+        settings = Settings("bench", lang=Lang.parse(args.lang), questions=args.questions, world=WorldKind.OFFLINE,
                             base=Path(scratch), record=False)
         manager = SessionManager(settings, domain, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)

@@ -65,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.dialogue.script import AUDIO, read_script
     from teach.domain import load_domain
     from teach.errors import TeachError
+    from teach.messages import Lang
     from teach.session.dialogue_check import check_lines
     from teach.session.settings import Settings, WorldKind
     from teach.session.setup import dialogue_events, opened_session, session_domain
@@ -80,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     domain_path = args.domain or (Path(str(chosen["domain"])) if "domain" in chosen else None)
     settings = Settings(
         session=args.session or args.dialogue.stem, domain=domain_path,
-        lang=args.lang or str(chosen.get("lang", "en")),
+        lang=Lang.parse(args.lang or str(chosen.get("lang", "en"))),
         questions=args.questions if args.questions is not None else int(str(chosen.get("questions", 5))),
         seed=args.seed if args.seed is not None else int(str(chosen.get("seed", 0))),
         world=WorldKind.parse(args.world or str(chosen.get("world", "mujoco"))),

@@ -61,6 +61,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from teach import messages as m
     from teach.fsutil import check_output
+    from teach.messages import Lang
     from teach.session.settings import Settings
     from teach.session.setup import opened_session
     from teach.session.store import session_root
@@ -77,8 +78,8 @@ def run(args: argparse.Namespace) -> int:
     if _stdin_is_a_file():  # the terminal would read nothing from it and quit as if all was done
         raise TeachError(m.STDIN_IS_A_FILE(args.lang), "<stdin>")
     name = args.resume or args.session or time.strftime("session-%Y%m%d-%H%M%S")
-    settings = Settings(session=name, domain=args.domain, lang=args.lang, questions=args.questions, seed=args.seed,
-                        world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
+    settings = Settings(session=name, domain=args.domain, lang=Lang.parse(args.lang), questions=args.questions,
+                        seed=args.seed, world=args.world, base=args.base, record=not args.no_record, spawn=args.spawn,
                         viewer=args.viewer, pace=args.pace, label_questions=args.label_questions,
                         facilitator=args.facilitator, groot=args.groot, voice=args.voice, safe=not args.guess)
     history = args.base / "recordings" / ".teach_history"

@@ -13,23 +13,22 @@ The machine keeps dispatch, the commands and the learning results; the state it 
 owned by the pieces it composes, which guiding and the hand follower get instead of the
 machine: the session record (journal, store, open demonstration: the one place that
 journals), the turn (the replies of one line) and ``Showing`` (the open demonstration in
-words); ``Asking`` holds the situation questions, ``Definitions`` the action definitions.
+words); ``Asking`` holds the situation questions, ``Definitions`` the action definitions,
+``Relearning`` rebuilds what was learned from the journal (resume, undo, redo). Its older
+members (``domain``, ``journal``, ``pending`` …) are windows onto these owners, in ``compat.py``.
 """
 
 from __future__ import annotations
 
-import re
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from teach import messages as m
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration
 from teach.dialogue.phrases import (
     LineTooLong,
-    PhraseBook,
     Suggestion,
     Token,
     UnknownPhrase,
@@ -38,12 +37,10 @@ from teach.dialogue.phrases import (
     is_no,
     is_yes,
 )
-from teach.dialogue.questions import Question, QuestionBudget, describe_situation
+from teach.dialogue.questions import describe_situation
 from teach.domain import Domain, State
-from teach.errors import FormatError, LearnError, TeachError
-from teach.messages import Lang
+from teach.errors import LearnError, TeachError
 from teach.observe.hook import Observer
-from teach.open_demonstration import OpenDemonstration
 from teach.session import running
 from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
 from teach.session.asking import Asking
@@ -57,27 +54,15 @@ from teach.session.commands import (
     Verb,
     parse_command,
 )
+from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
 from teach.session.describe import unmet_goal, why_refused
 from teach.session.guiding import Guiding
-from teach.session.journal import (
-    Answered,
-    DemoLearned,
-    Event,
-    Journal,
-    ModelAnswered,
-    ModelLoaded,
-    Redone,
-    Situated,
-    Undone,
-    effective_events,
-    parse_state_text,
-    redoable,
-    state_text,
-)
+from teach.session.journal import DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
 from teach.session.published import Mode, SessionView
-from teach.session.record import IMPOSSIBLE, SessionRecord
+from teach.session.record import SessionRecord
+from teach.session.relearning import Relearning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.resumed import restore_open, restore_situation
 from teach.session.settings import Settings, WorldKind
@@ -88,10 +73,8 @@ from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import TeachingWorld
 
-if TYPE_CHECKING:
-    from teach.dialogue.model_repair import ModelQuestion
 
-class SessionManager:
+class SessionManager(CompatMembers):
     """One teaching session. Not thread-safe: one driver feeds it lines."""
 
     def __init__(self, settings: Settings, domain: Domain, world: TeachingWorld, observer: Observer | None = None,
@@ -99,7 +82,7 @@ class SessionManager:
         self.settings = settings
         self.world = world
         self.observer = observer or Observer()
-        self.lang = Lang.parse(settings.lang)
+        self.lang = settings.lang
         self.vocabulary = Vocabulary(domain, world.events)
         journal = journal or Journal(settings.session, str(domain.path or ""), settings.lang, settings.questions,
                                      settings.world, settings.seed, guess=not settings.safe)
@@ -111,6 +94,8 @@ class SessionManager:
         self.asking = Asking(self.record, self.learning, self.vocabulary, self.turn, self.lang, world.state,
                              settings.seed, settings.questions, lambda started: self._after_learning(True, started))
         self.definitions = Definitions(self.record, self.learning, lambda: self.budget, self.lang, self._tree_reply)
+        self.relearning = Relearning(self.record, self.learning, self.definitions, self.asking, self.vocabulary,
+                                     settings.questions, self.lang)
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
@@ -122,47 +107,9 @@ class SessionManager:
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self.store.prepare(domain)
         self.observer.on_domain(domain)
-        self.guiding = Guiding(self.showing, self.record, self.turn, settings.label_questions, self._adopt)
+        self.guiding = Guiding(self.showing, self.record, self.turn, settings.label_questions, self.relearning.adopt)
 
-    # --- what drivers and tests read --------------------------------------------------------
-
-    @property
-    def domain(self) -> Domain:
-        return self.vocabulary.domain
-
-    @property
-    def phrases(self) -> PhraseBook:
-        return self.vocabulary.phrases
-
-    @property
-    def journal(self) -> Journal:
-        return self.record.journal
-
-    @property
-    def store(self) -> SessionStore:
-        return self.record.store
-
-    @store.setter
-    def store(self, store: SessionStore) -> None:  # a benchmark measures another store
-        self.record.store = store
-
-    @property
-    def open(self) -> OpenDemonstration | None:
-        """The demonstration being shown (or a run's steps, to be continued as a correction)."""
-        return self.record.open
-
-    @open.setter
-    def open(self, opened: OpenDemonstration | None) -> None:
-        self.record.open = opened
-
-    @property
-    def live(self) -> Callable[[Reply], None] | None:
-        """A driver that shows replies as they are produced."""
-        return self.turn.live
-
-    @live.setter
-    def live(self, live: Callable[[Reply], None] | None) -> None:
-        self.turn.live = live
+    # --- what drivers read (the owners' older windows: session/compat.py) -------------------
 
     @property
     def mode(self) -> Mode:
@@ -190,39 +137,7 @@ class SessionManager:
         effects seen so far), or None when a run would be refused."""
         if self.open is not None and len(self.open.steps) > self.open.robot_steps:
             return None  # the teacher is showing something: finish or cancel it first
-        return self.learning.tree if self.learning.has_behaviour else self.planned
-
-    @property
-    def budget(self) -> QuestionBudget:
-        """The situation and definition questions left (the labelling questions have their own)."""
-        return self.asking.budget
-
-    @property
-    def pending(self) -> Question | None:
-        """The situation question waiting for its answer."""
-        return self.asking.pending
-
-    @property
-    def pending_model(self) -> ModelQuestion | None:
-        """The open question about the action definitions."""
-        return self.definitions.pending
-
-    @property
-    def planned(self) -> Node | None:
-        """The tree planned from the action definitions."""
-        return self.definitions.planned
-
-    @property
-    def generation(self) -> int:
-        return self.learning.generation
-
-    @property
-    def pruned(self) -> Node | None:
-        return self.learning.pruned
-
-    @property
-    def demos(self) -> list[Demonstration]:
-        return self.learning.demos
+        return self.learning.tree if self.learning.has_behaviour else self.definitions.planned
 
     # --- the driver's interface -----------------------------------------------------------
 
@@ -386,22 +301,8 @@ class SessionManager:
             return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
-        self.asking.pending = self.definitions.pending = None  # paid for, but about what is undone
-        self.record.add(Undone())
-        self.store.retire_undone(self.journal)
-        self._rebuild_from_journal()
-        taken_back = redoable(self.journal.events)[-1]  # what this undo took (a skipped question never counts)
-        text = self._learning_text(taken_back, m.UNDONE_DEMONSTRATION, m.UNDONE_ANSWER, m.UNDONE_LEARNING)
+        text = self.relearning.undo()
         return self.turn.say([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
-
-    def _learning_text(self, event: Event, demo: m.Text, answer: m.Text, other: m.Text) -> str:
-        """What an undo or redo moved, in words: the demonstration's name or the question answered."""
-        if isinstance(event, DemoLearned):  # demo-004.csv is "4", the teacher's fourth
-            number = re.fullmatch(r"demo-0*([0-9]+)", Path(event.file).stem)
-            return demo(self.lang, name=number.group(1) if number else Path(event.file).stem)
-        if isinstance(event, Answered):
-            return answer(self.lang, question=event.question)
-        return other(self.lang)
 
     def cmd_redo(self, rest: str) -> list[Reply]:
         """Bring back what the last undo took: steps of the open demonstration, else the last
@@ -411,13 +312,9 @@ class SessionManager:
         put_back = self.showing.put_back()
         if put_back is not None:
             return [Reply(ReplyKind.INFO, put_back), self._state_reply()]
-        back = redoable(self.journal.events)
-        if not back or self.showing.has_steps:
+        if not self.relearning.can_redo() or self.showing.has_steps:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_REDO(self.lang))]
-        self.record.add(Redone())
-        self.store.bring_back_redone(self.journal)
-        self._rebuild_from_journal()
-        text = self._learning_text(back[-1], m.REDONE_DEMONSTRATION, m.REDONE_ANSWER, m.REDONE_LEARNING)
+        text = self.relearning.redo()
         return self.turn.say([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def cmd_steps(self, rest: str) -> list[Reply]:
@@ -448,8 +345,8 @@ class SessionManager:
 
     def cmd_show(self, rest: str) -> list[Reply]:
         full = says_full(rest)
-        if self.pruned is None and self.planned is not None:
-            return [self._tree_reply(self.planned, full)]
+        if self.pruned is None and self.definitions.planned is not None:
+            return [self._tree_reply(self.definitions.planned, full)]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
         return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
@@ -561,8 +458,6 @@ class SessionManager:
             self.observer.on_demonstration(demo.name, demo, self.domain)
         return self.turn.close(self._after_learning(ask=False, started=started, events=events))
 
-    # --- questions --------------------------------------------------------------------------
-
     # --- learning results -------------------------------------------------------------------
 
     def _after_learning(self, ask: bool, started: float | None = None,
@@ -590,52 +485,7 @@ class SessionManager:
             replies += self.asking.maybe_ask(len(self.demos))
         return replies
 
-    # --- the journal: undo and resume -------------------------------------------------------
-
-    def _adopt(self, domain: Domain) -> None:
-        """Guiding taught a new action: learn everything again in the grown domain."""
-        self.learning.domain = domain
-        self._rebuild_from_journal()
-
-    def _rebuild_from_journal(self) -> None:
-        """Re-learn everything in the journal (after an undo or on resume), deterministically."""
-        try:
-            self._replay_journal()
-        except (KeyError, TypeError, ValueError, AttributeError) as error:
-            raise FormatError(f"the session journal is damaged ({type(error).__name__}: {error})",
-                              self.store.journal_path) from None
-
-    def _replay_journal(self) -> None:
-        self.learning.restart()
-        self.definitions.restart()
-        self.asking.rebuilt(self.settings.questions)
-        answered = 0
-        for event in effective_events(self.journal.events):
-            if isinstance(event, DemoLearned):
-                self.learning.learn_demonstration(self.store.read_demonstration(event.file, self.domain),
-                                                  event.source)
-            elif isinstance(event, (ModelLoaded, ModelAnswered)):
-                self.definitions.replay(event)
-            elif isinstance(event, Answered):
-                answered += 1
-                state = parse_state_text(event.state)
-                if len(state) != len(self.domain.conditions):
-                    raise ValueError(f"an answered state has {len(state)} values, not {len(self.domain.conditions)}")
-                if event.answer not in ("skip", "done", IMPOSSIBLE) and event.answer not in self.domain.action_names:
-                    raise FormatError(m.UNKNOWN_JOURNAL_ACTION(
-                        "en", number=self.journal.events.index(event), action=event.answer), self.store.journal_path)
-                self.learning.asked.add(state)
-                if event.answer == IMPOSSIBLE:
-                    self.learning.rule_out(state, f"answer to question {answered}")
-                elif event.answer != "skip":
-                    try:
-                        self.learning.learn_answer(state, None if event.answer == "done" else event.answer,
-                                                   f"answer to question {answered}", event.asked_about)
-                    except LearnError:
-                        pass  # it was rejected when it was given, too
-        if self.learning.has_behaviour:
-            self.learning.prune()
-        self.definitions.replan()
+    # --- resume ---------------------------------------------------------------------------
 
     @classmethod
     def resume(cls, settings: Settings, domain: Domain, world: TeachingWorld,
@@ -644,10 +494,10 @@ class SessionManager:
         journal = store.load_journal()
         manager = cls(settings, domain, world, observer, journal)
         manager.guiding.restore(journal.events)
-        manager._rebuild_from_journal()
+        manager.relearning.relearn()
         manager.step = journal.step + 1  # a step of its own: the kill may have come before the save
         manager.observer.set_time(manager.step)
-        current = manager.pruned or manager.planned
+        current = manager.pruned or manager.definitions.planned
         if current is not None:
             from teach.bt.xml import tree_to_xml
 

@@ -31,8 +31,8 @@ class Settings:
     session: str
     domain: Path | None = None
     """The domain file; None: the ball-in-bin domain."""
-    lang: str = Lang.EN
-    """A ``Lang`` once made (a string from the command line or a journal is parsed here)."""
+    lang: Lang = Lang.EN
+    """Parsed where a string enters (the command line, a dialogue's ``@lang``, a journal): ``Lang.parse``."""
     questions: int = 5
     seed: int = 0
     world: WorldKind = WorldKind.MUJOCO
@@ -60,7 +60,6 @@ class Settings:
         if not SESSION_NAME.match(self.session):
             raise TeachError(f"session name {self.session!r} must be letters, digits, '-' and '_' "
                              "(it names folders under demos/ and trees/)")
-        object.__setattr__(self, "lang", Lang.parse(self.lang))
         if self.questions < 0:
             raise TeachError("--questions must be 0 or more")
         object.__setattr__(self, "world", WorldKind.parse(self.world))

@@ -12,6 +12,7 @@ from teach import messages as m
 from teach.domain import Domain, load_domain
 from teach.errors import TeachError
 from teach.lock import session_lock
+from teach.messages import Lang
 from teach.observe.hook import Observer, Observers
 from teach.observe.merge import print_note
 from teach.protect import Input
@@ -85,7 +86,7 @@ def _world_that_fits(settings: Settings, domain: Domain, note: Callable[[str], N
 
 def resumed_settings(settings: Settings, journal: Journal) -> Settings:
     """A resumed session keeps the domain, language, budget, world, seed and learner it was started with."""
-    return replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=journal.lang,
+    return replace(settings, domain=Path(journal.domain) if journal.domain else None, lang=Lang.parse(journal.lang),
                    questions=journal.questions, world=WorldKind.parse(journal.world), seed=journal.seed,
                    safe=not journal.guess)
 
