@@ -32,7 +32,8 @@ class Settings:
     domain: Path | None = None
     """The domain file; None: the ball-in-bin domain."""
     lang: Lang = Lang.EN
-    """Parsed where a string enters (the command line, a dialogue's ``@lang``, a journal): ``Lang.parse``."""
+    """Parsed where a string enters (the command line, a dialogue's ``@lang``, a journal), with the
+    file and line it came from: ``Lang.parse``; checked again here for callers mypy does not see."""
     questions: int = 5
     seed: int = 0
     world: WorldKind = WorldKind.MUJOCO
@@ -63,3 +64,4 @@ class Settings:
         if self.questions < 0:
             raise TeachError("--questions must be 0 or more")
         object.__setattr__(self, "world", WorldKind.parse(self.world))
+        object.__setattr__(self, "lang", Lang.parse(self.lang))  # a plain "de" from unchecked code too
