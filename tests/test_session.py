@@ -361,6 +361,35 @@ def test_a_suggestion_declined_or_ignored_is_dropped(ball, tmp_path):
     assert session.handle("") == [] and steps_of(session) == [1]
 
 
+@pytest.mark.parametrize(("lang", "typo", "meant"), [("en", "hlep", "help"), ("en", "sohw full", "show full"),
+                                                     ("de", "hilfr", "hilfe")])
+def test_a_typo_of_a_command_is_offered_and_done_on_yes(ball, tmp_path, lang, typo, meant):
+    session = new_session(ball, tmp_path, lang=lang)
+    replies = session.handle(typo)
+    assert len(replies) == 1 and replies[0].text.endswith((f"“{meant}”?", f"„{meant}“?")), replies[0].text
+    assert [r.text for r in session.handle("")] == [r.text for r in session.handle(meant)]  # Enter: yes
+
+
+def test_a_typo_of_yes_answers_an_open_question_only_once_confirmed(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("ask")
+    assert session.pending is not None and session.budget.left == 4
+    replies = session.handle("yse")
+    assert replies[0].text == "I don't know “yse”. Did you mean “yes”?" and session.pending is not None
+    session.handle("yes")
+    assert session.pending is None
+
+
+def test_a_declined_typo_guess_does_nothing_and_a_far_word_gets_none(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle("hlep")
+    assert [r.text for r in session.handle("no")] == ["Say it another way, please."]
+    assert "Did you mean" not in session.handle("xylophone")[0].text
+    assert session.handle("") == []
+
+
 def test_conversational_commands(ball, tmp_path):
     session = new_session(ball, tmp_path)
     assert session.handle("?")[0].text.startswith(session.handle("help")[0].text[:20])

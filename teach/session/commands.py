@@ -5,11 +5,13 @@ member here and its handler."""
 
 from __future__ import annotations
 
+import difflib
+from collections.abc import Iterable
 from dataclasses import dataclass
 from enum import Enum
 
 from teach.dialogue.phrases import normalize
-from teach.messages import Text
+from teach.messages import Lang, Text
 
 
 @dataclass(frozen=True)
@@ -145,3 +147,25 @@ def parse_command(line: str) -> tuple[Command | None, str]:
         if head and head in command.names:
             return command, words[1] if len(words) > 1 else ""
     return None, line
+
+
+TYPO_CUTOFF = 0.6
+"""Similarity (``difflib``) from which a first word is read as a typo of a command word: "hlep"
+and "yse" (0.75, 0.67) are, "rum" for "run" too; two words that close are not guessed between."""
+
+
+def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = ()) -> str | None:
+    """The line with its first word read as the word of ``lang`` (a command's, or one of
+    ``answers`` while a question is open) it is a typo of — "hlep" gives "help", "sohw full"
+    gives "show full" — or None where no word is close, or two are about as close."""
+    words = line.split(maxsplit=1)
+    typed = normalize(words[0]) if words else ""
+    if len(typed) < 3:
+        return None
+    known = {word for command in COMMANDS for word in (command.value.de if lang == Lang.DE else command.value.en)
+             if " " not in word and len(word) >= 3}
+    known.update(answers)
+    scored = sorted(((difflib.SequenceMatcher(None, typed, word).ratio(), word) for word in known), reverse=True)
+    if not scored or scored[0][0] < TYPO_CUTOFF or (len(scored) > 1 and scored[1][0] > scored[0][0] - 0.05):
+        return None
+    return " ".join([scored[0][1], *words[1:]])

@@ -40,6 +40,7 @@ from teach.dialogue.phrases import (
 from teach.dialogue.questions import describe_situation
 from teach.domain import Domain, State
 from teach.errors import LearnError, TeachError
+from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.session import running
 from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
@@ -53,6 +54,7 @@ from teach.session.commands import (
     Command,
     Verb,
     parse_command,
+    typo_of_command,
 )
 from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
@@ -97,6 +99,7 @@ class SessionManager(CompatMembers):
         self.relearning = Relearning(self.record, self.learning, self.definitions, self.asking, self.vocabulary,
                                      settings.questions, self.lang)
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
+        self.retype: str | None = None  # ... of a command or an answer word: the line a yes stands for
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
         self.finished = False
@@ -165,7 +168,7 @@ class SessionManager(CompatMembers):
         """One teacher line in, every reply to it out, in order. Never raises for bad input.
         ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
         line = line.strip()
-        if not line and self.suggestion is None:
+        if not line and self.suggestion is None and self.retype is None:
             return []
         self.turn.begin()
         self._interrupt = interrupt
@@ -173,19 +176,27 @@ class SessionManager(CompatMembers):
         try:
             check_length(line, self.lang)
         except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
-            self.suggestion = None
+            self.suggestion = self.retype = None
             return self.turn.close([Reply(ReplyKind.ERROR, too_long.message)])
         self.observer.on_dialogue("teacher", line, self.budget.left)
         suggestion, self.suggestion = self.suggestion, None
+        retype, self.retype = self.retype, None
         asking = self.mode is Mode.ASKING
         try:
-            replies = self._dispatch(line, suggestion)
+            if retype is not None and is_no(line, self.lang):
+                replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+            else:
+                replies = self._dispatch(retype if retype is not None and is_yes(line, self.lang) else line,
+                                         suggestion)
         except UnknownPhrase as unknown:
             # during a situation question only a guessed action is kept: confirming it answers the question
             keep = not asking or (self.pending is not None and unknown.suggestion is not None
                                   and unknown.suggestion.candidate.kind == "action")
             self.suggestion = unknown.suggestion if keep else None
-            replies = [Reply(ReplyKind.ERROR, unknown.message)]
+            if not unknown.suggestions:  # no phrase is close: perhaps a command or an answer word is
+                self.retype = typo_of_command(line, self.lang, answers=self._answer_words())
+            shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
+            replies = [Reply(ReplyKind.ERROR, shown.message)]
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
@@ -195,6 +206,12 @@ class SessionManager(CompatMembers):
         self.record.note_open()
         self.record.save()  # the step clock too, so a resume goes on from it
         return turn
+
+    def _answer_words(self) -> tuple[str, ...]:
+        """The words a typo may be read as besides the commands: yes and no while a question is open."""
+        if self.pending is None and self.pending_model is None:
+            return ()
+        return ("ja", "nein") if self.lang == Lang.DE else ("yes", "no")
 
     def command(self, line: str) -> tuple[Command | None, str]:
         """The command ``handle`` would read in a line ("ok run" is 'run'), and its argument."""
