@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from teach.bt.nodes import Node, Status, action_names, condition_names
 from teach.bt.tick import compile_tree
@@ -13,8 +13,9 @@ from teach.domain import Domain, Literal, State, load_domain
 from teach.errors import DomainError
 
 if TYPE_CHECKING:
-    from teach.dialogue.model_repair import ModelOracle
-    from teach.session.machine import SessionManager
+    from teach.dialogue.model_repair import ModelOracle, ModelQuestion
+    from teach.dialogue.questions import Question
+    from teach.messages import Lang
 
 SKIP = "skip"
 
@@ -122,7 +123,22 @@ SituationOracle = Oracle | PlanningOracle
 """Either kind of oracle: ``answer(state)`` gives an action, None (done) or ``SKIP``."""
 
 
-def answer_open_questions(manager: SessionManager, oracle: SituationOracle | None,
+class AskingSession(Protocol):
+    """What answering a session's open questions needs of it (``teach.session.machine.SessionManager``
+    is one): said here, so the dialogue layer never imports the session above it."""
+
+    @property
+    def pending(self) -> Question | None: ...
+    @property
+    def pending_model(self) -> ModelQuestion | None: ...
+    @property
+    def domain(self) -> Domain: ...
+    @property
+    def lang(self) -> Lang: ...
+    def handle(self, line: str) -> object: ...
+
+
+def answer_open_questions(manager: AskingSession, oracle: SituationOracle | None,
                           model_oracle: ModelOracle | None = None, said: Callable[[str], None] | None = None) -> None:
     """Answer the session's open questions through ``handle`` until none is open (each answer
     may raise another); ``said`` hears each answer before the session does."""

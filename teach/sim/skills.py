@@ -21,6 +21,7 @@ special case in Δ2): that is physics, not a rule.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 
@@ -302,22 +303,32 @@ def _detour(start: np.ndarray, end: np.ndarray, bin_xy: np.ndarray) -> np.ndarra
 
 BUILTIN_SKILLS: Mapping[str, type[Skill]] = MappingProxyType(
     {skill.name: skill for skill in (FindBall, ApproachBall, GraspBall, ApproachBin, PlaceBall)})
-"""The ball-in-bin skills, the same in every world; a world's own are in ``World.taught_skills``."""
+"""The ball-in-bin skills, the same in every world; a world's own are ``taught_in(world)``."""
+
+_TAUGHT: weakref.WeakKeyDictionary[World, dict[str, type[Skill]]] = weakref.WeakKeyDictionary()
+"""Per world, the skills of actions taught by guidance in it; gone with the world. Kept here, not
+on ``World``, so the world knows nothing of skills (skills drive the world, not back)."""
+
+
+def taught_in(world: World) -> Mapping[str, type[Skill]]:
+    """The skills taught by guidance in ``world``, by action name."""
+    return MappingProxyType(_TAUGHT.get(world, {}))
 
 
 def register(world: World, skill: type[Skill]) -> type[Skill]:
     """Make a skill runnable under its action name in ``world`` only: an action one session taught
     by guidance is no skill of another session's world, even in the same process."""
-    world.taught_skills[skill.name] = skill
+    _TAUGHT.setdefault(world, {})[skill.name] = skill
     return skill
 
 
 def skill_for(world: World, name: str) -> type[Skill]:
     """The skill for action ``name`` in ``world``: one taught there, else a built-in one."""
-    skill = world.taught_skills.get(name) or BUILTIN_SKILLS.get(name)
+    taught = taught_in(world)
+    skill = taught.get(name) or BUILTIN_SKILLS.get(name)
     if skill is None:
         raise DomainError(f"the simulation has no skill for action {name!r} "
-                          f"(it has {', '.join(sorted({*BUILTIN_SKILLS, *world.taught_skills}))})")
+                          f"(it has {', '.join(sorted({*BUILTIN_SKILLS, *taught}))})")
     return skill
 
 

@@ -38,16 +38,13 @@ import math
 from collections.abc import Mapping
 from importlib import resources
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import mujoco
 import numpy as np
 
 from teach.domain import Domain, State, load_domain
 from teach.errors import DomainError
-
-if TYPE_CHECKING:
-    from teach.sim.skills import Skill
 from teach.observe.scene import SceneShape
 
 ASSETS = Path(str(resources.files("teach.sim") / "assets"))
@@ -112,8 +109,6 @@ class World:
         self._time_before_reset = 0.0
         self._memory: np.ndarray | None = None
         self.rng = np.random.default_rng(seed)
-        self.taught_skills: dict[str, type[Skill]] = {}
-        """Skills of actions taught by guidance in this world (``teach.sim.skills.register``)."""
         self.reset(seed)
 
     # --- time -------------------------------------------------------------------------------
