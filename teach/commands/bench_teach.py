@@ -63,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
     from teach.observe.hook import Observer
     from teach.replay import replay
     from teach.session.machine import SessionManager
+    from teach.session.published import Mode
     from teach.session.settings import Settings, WorldKind
     from teach.world.offline import OfflineWorld
 
@@ -86,9 +87,9 @@ def run(args: argparse.Namespace) -> int:
                             base=Path(scratch), record=False)
         manager = SessionManager(settings, domain, OfflineWorld(domain), Questions())
         manager.import_demonstrations(train)
-        while manager.budget.left > 0:
+        while manager.view().questions_left > 0:
             manager.handle("ask")
-            if manager.pending is None:
+            if manager.view().mode is not Mode.ASKING:
                 break
             answer_open_questions(manager, oracle)
         tree = manager.pruned

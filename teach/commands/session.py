@@ -89,7 +89,8 @@ def run(args: argparse.Namespace) -> int:
         if args.listen:
             from teach.voice.listen import Listener
 
-            listen = Listener(manager.domain, manager.lang, print).listen
+            view = manager.view()
+            listen = Listener(view.domain, view.lang, print).listen
         try:
             if not settings.voice:
                 Terminal(manager, history=history, listen=listen).run()
