@@ -24,7 +24,7 @@ from foreign.model import Task
 from foreign.questions import Answered, ask
 from foreign.teaching import demonstration, split_starts
 from teach.bt.tick import compile_tree
-from teach.domain import Domain
+from teach.domain import Domain, State
 
 TARGET = 0.95
 MAX_ROUNDS = 60
@@ -57,6 +57,7 @@ def session_loop(task: Task, seed: int, make: Callable[[Domain], Any], questions
     learner = make(task.domain)
     progress = Progress()
     names = task.domain.condition_names
+    asked: list[State] = []  # as a session's: a situation asked about once is not asked again
     for number in range(1, max_rounds + 1):
         start = rng.choice(pool)
         progress.rounds = number
@@ -69,7 +70,7 @@ def session_loop(task: Task, seed: int, make: Callable[[Domain], Any], questions
             progress.demonstrations += 1
             progress.lines += len(demo.steps)
         if questions:
-            progress.answers += ask(learner, task, questions, f"round {number} question")
+            progress.answers += ask(learner, task, questions, f"round {number} question", asked)
         if progress.outcomes is None or learner.tree != before:
             progress.outcomes = judge(task, learner.tree, tests)
         if progress.outcomes.share("reached") >= TARGET:

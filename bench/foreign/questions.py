@@ -73,9 +73,12 @@ def may(task: Task, action: str | None, state: int) -> bool:
     return task.model.by_name[action].applicable(state)
 
 
-def ask(learner: Learner, task: Task, budget: int, prefix: str = "question") -> list[Answered]:
-    """Up to ``budget`` charged answers to the learner's own questions, in the order it asks them."""
-    asked: list[State] = []
+def ask(learner: Learner, task: Task, budget: int, prefix: str = "question",
+        asked: list[State] | None = None) -> list[Answered]:
+    """Up to ``budget`` charged answers to the learner's own questions, in the order it asks them.
+    ``asked``: the situations asked about before (extended here), as a session keeps them for its
+    whole length; without it only this call's are kept."""
+    asked = [] if asked is None else asked
     seen: list[SituationQuestion] = []
     answers: list[Answered] = []
     charged = free = 0
