@@ -382,6 +382,28 @@ def test_a_typo_of_yes_answers_an_open_question_only_once_confirmed(ball, tmp_pa
     assert session.pending is None
 
 
+@pytest.mark.parametrize(("lang", "line"), [("en", "find the ball, xyzzy"), ("de", "such den ball und xyzzy"),
+                                          ("en", "tke the ball"), ("en", "done xyzzy")])
+def test_a_line_whose_first_word_is_understood_is_never_read_as_a_command_typo(ball, tmp_path, lang, line):
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(line)
+    assert session.retype is None
+    session.handle("")  # Enter: nothing is done
+    assert not session.view().finished and session.demos == []
+
+
+def test_yes_to_a_guess_is_not_guessed_at_again(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("ask")
+    assert "Did you mean" not in session.handle("yes xyzzy")[0].text and session.pending is not None
+    session.handle("sip")  # "skip", misspelt
+    assert session.retype == "skip"
+    session.handle("yes")
+    assert session.pending is None and session.retype is None
+
+
 def test_a_declined_typo_guess_does_nothing_and_a_far_word_gets_none(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle("hlep")

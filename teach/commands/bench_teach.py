@@ -63,7 +63,6 @@ def run(args: argparse.Namespace) -> int:
     from teach.observe.hook import Observer
     from teach.replay import replay
     from teach.session.machine import SessionManager
-    from teach.session.published import Mode
     from teach.session.settings import Settings, WorldKind
     from teach.world.offline import OfflineWorld
 
@@ -89,7 +88,7 @@ def run(args: argparse.Namespace) -> int:
         manager.import_demonstrations(train)
         while manager.view().questions_left > 0:
             manager.handle("ask")
-            if manager.view().mode is not Mode.ASKING:
+            if manager.pending is None:  # no situation question (nothing else can open here)
                 break
             answer_open_questions(manager, oracle)
         tree = manager.pruned

@@ -154,10 +154,11 @@ TYPO_CUTOFF = 0.6
 and "yse" (0.75, 0.67) are, "rum" for "run" too; two words that close are not guessed between."""
 
 
-def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = ()) -> str | None:
+def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (), rivals: Iterable[str] = ()) -> str | None:
     """The line with its first word read as the word of ``lang`` (a command's, or one of
     ``answers`` while a question is open) it is a typo of — "hlep" gives "help", "sohw full"
-    gives "show full" — or None where no word is close, or two are about as close."""
+    gives "show full" — or None where no word is close, two are about as close, the first word
+    is a known one, or one of ``rivals`` (the phrases' words) is closer."""
     words = line.split(maxsplit=1)
     typed = normalize(words[0]) if words else ""
     if len(typed) < 3:
@@ -165,7 +166,12 @@ def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = ()) -> str |
     known = {word for command in COMMANDS for word in (command.value.de if lang == Lang.DE else command.value.en)
              if " " not in word and len(word) >= 3}
     known.update(answers)
+    rivals = set(rivals)
+    if typed in known or typed in rivals:  # a word it knows is no typo ("yes xyzzy" is not "yes" misspelt)
+        return None
     scored = sorted(((difflib.SequenceMatcher(None, typed, word).ratio(), word) for word in known), reverse=True)
     if not scored or scored[0][0] < TYPO_CUTOFF or (len(scored) > 1 and scored[1][0] > scored[0][0] - 0.05):
+        return None
+    if any(difflib.SequenceMatcher(None, typed, word).ratio() > scored[0][0] for word in rivals):
         return None
     return " ".join([scored[0][1], *words[1:]])

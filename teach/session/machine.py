@@ -36,6 +36,7 @@ from teach.dialogue.phrases import (
     command_hint,
     is_no,
     is_yes,
+    normalize,
 )
 from teach.dialogue.questions import describe_situation
 from teach.domain import Domain, State
@@ -186,15 +187,19 @@ class SessionManager(CompatMembers):
             if retype is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
             else:
-                replies = self._dispatch(retype if retype is not None and is_yes(line, self.lang) else line,
-                                         suggestion)
+                if retype is not None and is_yes(line, self.lang):
+                    line = retype  # what the yes confirmed; it is not read as a typo again
+                    retype = ""
+                replies = self._dispatch(line, suggestion)
         except UnknownPhrase as unknown:
             # during a situation question only a guessed action is kept: confirming it answers the question
             keep = not asking or (self.pending is not None and unknown.suggestion is not None
                                   and unknown.suggestion.candidate.kind == "action")
             self.suggestion = unknown.suggestion if keep else None
-            if not unknown.suggestions:  # no phrase is close: perhaps a command or an answer word is
-                self.retype = typo_of_command(line, self.lang, answers=self._answer_words())
+            if not unknown.suggestions and retype != "" and _first_word(unknown.text) == _first_word(line):
+                # nothing close, and the line's first word is what was not understood: perhaps a
+                # command or an answer word was meant ("hlep"; not "find the ball, xyzzy")
+                self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
         except TeachError as error:
@@ -562,3 +567,8 @@ def _reproduced_text(reproduced: int, total: int) -> m.Text:
     if total == 1:
         return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
     return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
+
+
+def _first_word(text: str) -> str:
+    words = normalize(text).split()
+    return words[0] if words else ""
