@@ -38,20 +38,19 @@ from collections.abc import Sequence as Seq
 from dataclasses import dataclass, field
 from typing import Protocol
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
+from teach.bt.nodes import Condition, Fallback, Inverter, Node, Sequence, Status
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import LearnError
 from teach.learn.action_model import ActionModel, Lit, literals_of
-from teach.learn.backchain import PlanView, Role, literal_node, plan
-from teach.learn.bits import mask_state, state_mask
+from teach.learn.backchain import PlanView, Role, plan
+from teach.learn.bits import mask_literals, mask_state, state_mask
+from teach.learn.exceptions import Answer, Columns, ExceptionRule, exception_rule
+from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
 from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
-
-Answer = str | None
-"""An action name, or None: the task is done here (the tree must return SUCCESS)."""
 
 EITHER = "<either>"
 """``resolve`` answer: every label the state was given is fine."""
@@ -107,28 +106,6 @@ class Update:
         return self.tree_changed
 
 
-@dataclass(frozen=True)
-class Explanation:
-    """Why a node exists, as data (``kind``, the ``action`` and ``literal`` it concerns, the
-    ``sources`` behind it) and as an English sentence (``text``)."""
-
-    uid: int
-    kind: str
-    text: str
-    action: str | None = None
-    literal: Literal | None = None
-    sources: tuple[str, ...] = ()
-
-
-@dataclass
-class _Exception:
-    mask: int
-    value: int
-    answer: Answer
-    source: str
-    node: Node
-
-
 class Learner:
     """Learns online from demonstrations and answers; see the module docstring."""
 
@@ -147,7 +124,7 @@ class Learner:
         self._situations_view: dict[State, frozenset[Answer]] | None = None
         self._restored: set[Lit] = set()
         self._left_broken: set[Lit] = set()
-        self._columns = _Columns(self._n)
+        self._columns = Columns(self._n)
         self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
         self._rank_sum: dict[Lit, int] = {}
         self._rank_count: dict[Lit, int] = {}
@@ -156,7 +133,7 @@ class Learner:
         self._roles: dict[int, Role] = {}
         self._compiled: CompiledTree | PlanWithRules | None = None
         self._counted: tuple[CompiledTree | PlanWithRules, int] | None = None
-        self._exceptions: list[_Exception] = []
+        self._exceptions: list[ExceptionRule] = []
         self._tree: Node | None = None
         self._root_uid = 0
         self.invariants = Invariants(self._n, can_happen)
@@ -440,25 +417,11 @@ class Learner:
         return self._output(self._mask(state))
 
     def why(self, uid: int) -> Explanation:
-        """Why the node ``uid`` of the current tree exists, as data."""
+        """Why the node ``uid`` of the current tree exists, as data (``teach.learn.explain``)."""
         if self._tree is None:
             self._tree = self._assemble()
-        if uid == self._root_uid:
-            return Explanation(uid, "root", "the root: situations that need an exception are checked first, "
-                               "then the plan from the learned goal and action model")
-        for exception in self._exceptions:
-            if uid in _uids(exception.node):
-                what = "the task is done" if exception.answer is None else f"do {exception.answer}"
-                return Explanation(uid, "exception", f"an exception: {what} where "
-                                   f"{self._words(self._literals(exception.mask, exception.value))} holds, because the "
-                                   f"plan did something else at {exception.source}", exception.answer,
-                                   None, (exception.source,))
-        role = self._roles.get(uid)
-        if role is None:
-            if self._plan is None and not self._exceptions:
-                return Explanation(uid, "nothing", "nothing learned yet: the tree fails in every state")
-            raise LearnError(f"no node {uid} in the learned tree")
-        return self._explain_role(uid, role)
+        return explain_node(uid, self._root_uid, self._exceptions, self._roles, self._plan is not None, self.model,
+                            self.goal, self.names)
 
     def explain(self, uid: int) -> str:
         return self.why(uid).text
@@ -726,26 +689,9 @@ class Learner:
             self._exceptions.insert(0, self._exception(mask, situation))
             self._tree = None
 
-    def _exception(self, mask: int, situation: Situation) -> _Exception:
-        answer = situation.answer
-        chosen = 0
-        if answer is None:
-            for index, _value in (self.goal.required() if self.safe else self.goal.cover):
-                chosen |= 1 << index
-        else:
-            violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
-            if violated is not None:
-                chosen |= 1 << violated[0]
-            if self.safe:  # an exception never licenses an action where a required precondition is false
-                need_pos, need_neg = self.model[answer].required
-                chosen |= need_pos | need_neg
-        chosen = self._columns.separate(mask, answer, chosen)
-        value = mask & chosen
-        leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
-        if answer is not None:
-            leaves.append(Action(answer))
-        node = leaves[0] if len(leaves) == 1 else Sequence(tuple(leaves))
-        return _Exception(chosen, value, answer, situation.sources[-1], node)
+    def _exception(self, mask: int, situation: Situation) -> ExceptionRule:
+        return exception_rule(mask, situation.answer, situation.sources[-1], self._columns, self.names, self.goal,
+                              self.model, self.safe)
 
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
@@ -773,59 +719,10 @@ class Learner:
             self._roles[both.node.uid] = Role("regression")
         return both.node
 
-    # --- explanations -------------------------------------------------------------------------
-
-    def _explain_role(self, uid: int, role: Role) -> Explanation:
-        literal = None if role.literal is None else self._literal(role.literal)
-        if role.kind == "goal-sequence":
-            return Explanation(uid, role.kind, "the goal: every goal literal in turn, each achieved if it does "
-                               "not hold yet")
-        if role.kind == "regression":
-            return Explanation(uid, role.kind, "the plan, then the ways to the goal it does not take: the goal "
-                               "worked back through the actions, one rule per step")
-        assert role.literal is not None and literal is not None
-        if role.kind == "goal":
-            holding = [src for e in self.goal.goal_states.values() for src in e.sources][:5]
-            acting = self.goal.violations(role.literal)
-            return Explanation(uid, "goal", f"goal literal {literal}: it held in all {len(self.goal.goal_states)} "
-                               f"goal state(s) ({', '.join(holding)}) and was still missing in {acting} state(s) "
-                               f"where the teacher kept acting", None, literal, tuple(holding))
-        if role.kind == "achieve":
-            return Explanation(uid, role.kind, f"achieve {literal}: done if it holds, otherwise an action that "
-                               f"makes it hold", None, literal)
-        assert role.action is not None
-        knowledge = self.model[role.action]
-        if role.kind == "subgoal":
-            return Explanation(uid, role.kind, f"{literal} with {role.action}: the goal still needs it after "
-                               f"{role.action}", role.action, literal)
-        if role.kind == "precondition":
-            applied = knowledge.applied
-            return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "
-                               f"state(s) where {role.action} was done ({', '.join(applied.sources)}), and "
-                               f"{knowledge.reason(role.literal)}", role.action, literal, tuple(applied.sources))
-        if role.literal in knowledge.made:
-            evidence = knowledge.made[role.literal]
-            sources = tuple(evidence.sources)
-            text = (f"{role.action} makes {literal} hold: seen {evidence.count} time(s) "
-                    f"({', '.join(sources)}) and never contradicted")
-        else:
-            sources = (knowledge.guessed[role.literal],)
-            text = (f"{role.action} makes {literal} hold: guessed from the answer at {sources[0]} "
-                    f"({role.action} was never demonstrated)")
-        if role.kind == "last-resort":
-            text = f"last resort for {literal}: {role.action} even when its preconditions do not hold; " + text
-        return Explanation(uid, role.kind, text, role.action, literal, sources)
-
     # --- helpers ------------------------------------------------------------------------------
 
-    def _literal(self, literal: Lit) -> Literal:
-        return Literal(self.names[literal[0]], literal[1])
-
-    def _words(self, literals: list[Lit]) -> str:
-        return " and ".join(str(self._literal(lit)) for lit in literals) or "anything"
-
     def _literals(self, mask: int, value: int) -> list[Lit]:
-        return [(i, bool(value >> i & 1)) for i in range(self._n) if mask >> i & 1]
+        return mask_literals(mask, value, self._n)
 
     def _checked_mask(self, state: Seq[bool], source: str) -> int:
         if len(state) != self._n:
@@ -837,64 +734,6 @@ class Learner:
 
     def _state(self, mask: int) -> State:
         return mask_state(mask, self._n)
-
-
-def _uids(node: Node) -> set[int]:
-    return {n.uid for n in walk(node)}
-
-
-class _Columns:
-    """The labelled situations by column, for building exceptions fast: per condition, a big
-    int whose bit j says whether it holds in situation j; per answer, which situations allow
-    it. Separating a state from every situation that does not allow its answer is then a few
-    popcounts per literal instead of a pass over all situations."""
-
-    def __init__(self, width: int):
-        self.width = width
-        self.position: dict[int, int] = {}
-        self.holds = [0] * width
-        self.allows: dict[Answer, int] = {}
-        self.everything = 0
-
-    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
-        bit = 1 << len(self.position)
-        self.position[mask] = len(self.position)
-        self.everything |= bit
-        for index in range(self.width):
-            if mask >> index & 1:
-                self.holds[index] |= bit
-        for answer in allowed:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
-        bit = 1 << self.position[mask]
-        for answer in old:
-            self.allows[answer] &= ~bit
-        for answer in new:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def firing(self, mask: int, value: int) -> int:
-        """The situations in which the conditions of ``mask`` have the values of ``value``."""
-        result = self.everything
-        for index in range(self.width):
-            if mask >> index & 1:
-                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
-        return result & self.everything
-
-    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
-        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
-        which ``mask`` differs from every situation that does not allow ``answer``."""
-        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
-                   for i in range(self.width)]
-        left = self.everything & ~self.allows.get(answer, 0)
-        for index in range(self.width):
-            if chosen >> index & 1:
-                left &= ~differs[index]
-        while left:
-            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
-            chosen |= 1 << best
-            left &= ~differs[best]
-        return chosen
 
 
 def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Learner:
