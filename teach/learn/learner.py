@@ -50,6 +50,8 @@ from teach.learn.exceptions import Answer, Columns, ExceptionRule, exception_rul
 from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
+from teach.learn.plan_view import Ranks, goal_bound_plan, plan_view, ruled_out_plan
+from teach.learn.refusals import Refusals
 from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
 
 EITHER = "<either>"
@@ -119,15 +121,13 @@ class Learner:
         self.model = ActionModel(domain.action_names, self._n)
         self.goal = GoalLearner(self._n, [(self.names.index(lit.name), lit.value) for lit in domain.goal])
         self.safe = safe
-        self._weak = not safe
         self._situations: dict[int, Situation] = {}
         self._situations_view: dict[State, frozenset[Answer]] | None = None
         self._restored: set[Lit] = set()
         self._left_broken: set[Lit] = set()
         self._columns = Columns(self._n)
         self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
-        self._rank_sum: dict[Lit, int] = {}
-        self._rank_count: dict[Lit, int] = {}
+        self._ranks = Ranks()
         self._view: PlanView | None = None
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
@@ -137,8 +137,7 @@ class Learner:
         self._tree: Node | None = None
         self._root_uid = 0
         self.invariants = Invariants(self._n, can_happen)
-        self._refused: dict[str | None, list[tuple[frozenset[Lit], str]]] = {}
-        """Groups of literals the teacher said no to, per action (None: the goal), with the source."""
+        self._refusals = Refusals(self.model, self.goal, self._n)
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -195,11 +194,7 @@ class Learner:
             position += 1
             changed = mask ^ after
             previous = (changed & after, changed & ~after & self._full)
-            for index in range(self._n):
-                if changed >> index & 1:
-                    literal = (index, bool(after >> index & 1))
-                    self._rank_sum[literal] = self._rank_sum.get(literal, 0) + position
-                    self._rank_count[literal] = self._rank_count.get(literal, 0) + 1
+            self._ranks.established(changed, after, position, self._n)
         return self._finish(where, touched, new_conflicts)
 
     def teach_step(self, state: State, answer: Answer, source: str) -> Update:
@@ -276,12 +271,12 @@ class Learner:
         if not needed and action is None:
             return self.teach_step(hypothesis.state, None, source)
         if needed:
-            self._refuse(action, frozenset((self.names.index(name), value) for name, value in hypothesis.settles),
-                         source)
+            settles = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+            self._refusals.refuse(action, settles, source)
         else:
             assert action is not None
             self.model.applied(action, mask, source)
-            self._infer_needed()  # what is left of a group refused before may be one literal now
+            self._refusals.infer_needed()  # what is left of a group refused before may be one literal now
         return self._finish(source, [], [])
 
     def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
@@ -292,7 +287,7 @@ class Learner:
             return self.teach_step(state, answer, source)
         mask = self._checked_mask(state, source)
         false = frozenset(lit for lit in self.required_of(asked_about) if bool(mask >> lit[0] & 1) != lit[1])
-        self._refuse(asked_about, false, source)
+        self._refusals.refuse(asked_about, false, source)
         return self.teach_step(state, answer, source)
 
     def rule_out(self, state: State, source: str) -> None:
@@ -323,59 +318,13 @@ class Learner:
         """The groups of unsure literals worth asking about next, best first: all of them and then
         each half, or, where a group inside them was refused (or was impossible), each half of
         what is left of that group (a yes to all of it is known not to come)."""
-        current = list(literals)
-        for group, _source in reversed(self._refused.get(action, [])):
-            left = [lit for lit in current if lit in group]
-            if len(left) >= 2:
-                half = len(left) // 2
-                return [left[:half], left[half:]]
-        half = len(current) // 2
-        return [current, current[:half], current[half:]] if half else [current] if current else []
+        return self._refusals.untested(action, literals)
 
     def required_of(self, action: str | None) -> list[Lit]:
         """What the safe tree checks before ``action`` (None: before it says "done")."""
         if action is None:
             return self.goal.required()
         return literals_of(*self.model[action].required, self._n)
-
-    def _unsure(self, action: str | None) -> set[Lit]:
-        if action is None:
-            return set(self.goal.unsure())
-        return set(literals_of(*self.model[action].unsure, self._n))
-
-    def _keep(self, action: str | None, literal: Lit, source: str) -> None:
-        if action is None:
-            self.goal.confirm(literal, source)
-        else:
-            self.model.confirm(action, literal, source)
-
-    def _refuse(self, action: str | None, false: frozenset[Lit], source: str) -> None:
-        """The teacher said no to ``action`` (None: "done") where the literals ``false`` do not hold:
-        one of them is needed; a single one is kept for good, a group is remembered to be split."""
-        if len(false) == 1:
-            self._keep(action, next(iter(false)), source)
-        elif false and not false & self._confirmed(action):
-            self._refused.setdefault(action, []).append((false, source))
-        self._infer_needed()
-
-    def _infer_needed(self) -> None:
-        """A refused group with one unsure literal left: that one is needed."""
-        for action, groups in self._refused.items():
-            unsure = self._unsure(action)
-            kept = []
-            for group, source in groups:
-                left = group & unsure
-                if len(left) == 1 and not group & self._confirmed(action):
-                    self._keep(action, next(iter(left)), source)
-                elif len(left) > 1:
-                    kept.append((group, source))
-            groups[:] = kept
-
-    def _confirmed(self, action: str | None) -> frozenset[Lit]:
-        if action is None:
-            return frozenset(self.goal.confirmed)
-        knowledge = self.model[action]
-        return frozenset((*knowledge.confirmed, *knowledge.maintained))
 
     def state_mask(self, state: Seq[bool]) -> int:
         """The bitmask (bit i = condition i) of a state."""
@@ -401,10 +350,7 @@ class Learner:
         """The plan as it would be if the goal were its over-specific bound (every literal that
         held in all goal states): where it acts otherwise than the tree, an answer tells which
         of those literals the task needs."""
-        view = self._current_view()
-        goal = tuple(sorted(self.goal.candidates(), key=self._rank))
-        bound, _roles = plan(PlanView(goal, view.preconditions, view.achievers, view.weak_last_resort), self.names)
-        return None if bound is None else compile_tree(bound, self.names)
+        return goal_bound_plan(self._current_view(), sorted(self.goal.candidates(), key=self._ranks.rank), self.names)
 
     def goal_holds(self, state: State) -> bool:
         """Does the learned goal hold in ``state`` (never before a goal state was shown)? The safe
@@ -501,47 +447,10 @@ class Learner:
         (None: for the goal), the rest of the model as it is: what the robot would do after those
         yeses (``teach.learn.safe_inquiry`` predicts answers by it). Without the regressed rules,
         which only act where the plan does nothing and cost most of a replan."""
-        view = self._current_view()
-        goal = tuple(lit for lit in view.goal if lit not in out.get(None, ()))
-        preconditions = tuple((name, tuple(lit for lit in pursued if lit not in out.get(name, ())))
-                              for name, pursued in view.preconditions)
-        built, _roles = plan(PlanView(goal, preconditions, view.achievers, view.weak_last_resort), self.names)
-        return None if built is None else compile_tree(built, self.names)
+        return ruled_out_plan(self._current_view(), out, self.names)
 
     def _current_view(self) -> PlanView:
-        rank = self._rank
-        if self.safe:  # the cover and confirmed literals first: they are what the teacher was after
-            cover = set(self.goal.cover) | set(self.goal.confirmed)
-            goal = tuple(sorted(self.goal.required(), key=lambda lit: (lit not in cover, rank(lit))))
-        else:
-            goal = tuple(sorted(self.goal.cover, key=rank))
-        preconditions = []
-        achievers: dict[Lit, list[str]] = {}
-        for name, knowledge in self.model.actions.items():
-            made_true, made_false = knowledge.effects
-            if not made_true | made_false:
-                continue
-            # every required precondition is checked (or achieved) before the action: the
-            # assumed ones first, in the order the demonstrations establish them
-            pos, neg = knowledge.assumed
-            need_pos, need_neg = knowledge.required
-            pursued = sorted(literals_of(pos, neg, self._n), key=rank)
-            if self.safe:
-                pursued += sorted(literals_of(need_pos & ~pos, need_neg & ~neg, self._n), key=rank)
-            preconditions.append((name, tuple(pursued)))
-        for index in range(self._n):
-            for value in (True, False):
-                found = self.model.achievers((index, value))
-                if found:
-                    achievers[(index, value)] = found
-        return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
-                        self._weak, regression=self.safe)
-
-    def _rank(self, literal: Lit) -> tuple[int, int]:
-        """Literals the demonstrations establish early come first (-1: never established); the
-        mean step is rounded, so the plan is not rebuilt for every small change of it."""
-        count = self._rank_count.get(literal, 0)
-        return (round(self._rank_sum[literal] / count) if count else -1), literal[0]
+        return plan_view(self.model, self.goal, self._ranks.rank, self._n, self.safe)
 
     def _replan(self) -> None:
         self._view = self._current_view()
@@ -627,7 +536,7 @@ class Learner:
                 self._replan()
                 # only a count that ties or beats the best so far matters exactly
                 limit = errors if best is None else best[0] + 1
-                score = (self._plan_errors(limit), tuple(-x for x in self._rank(literal)), literal)
+                score = (self._plan_errors(limit), tuple(-x for x in self._ranks.rank(literal)), literal)
                 del knowledge.confirmed[literal]
                 if score[0] < errors and (best is None or score < best):
                     best = score
