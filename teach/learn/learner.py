@@ -13,29 +13,29 @@ What it keeps (all updated in O(conditions) per step, never by replaying old dat
 - the action model (``teach.learn.action_model``): effects and precondition bounds;
 - the goal (``teach.learn.goal``): the smallest set of goal-state literals that explains why
   the teacher kept acting, or, where the domain file declares one, that goal;
-- the labelled situations: each distinct state with what the robot must do there. A strict
-  replay reproduces a demonstration exactly when the tree does the label of each of its
-  states, so these are the training set. A state labelled two ways is a *conflict*: kept as
-  data, the latest label wins until ``resolve``.
+- the labelled situations (``teach.learn.labels``): each distinct state with what the robot
+  must do there, the training set; a state labelled two ways is a *conflict*, kept as data,
+  the latest label wins until ``resolve``.
 
 The tree is ``Fallback(exception..., plan)``. The plan is backchained from the goal through
-the model (``teach.learn.backchain``) and rebuilt only when what the planner reads changed.
-Where the plan does not do a state's label, the learner first tries to repair the model (a
-possible precondition the prior left out is added back if that reproduces more situations;
-if the teacher restored that literal at once after every external event that took it away,
-it is assumed for every other action it held for too, unless that gets more situations wrong),
-and otherwise adds an *exception* in front: the fewest literals of that state that hold in
-no situation labelled otherwise (and, for an action, a violated goal literal, so an
-exception never fires where the goal holds), then the label. So every consistent
-demonstration is reproduced strictly, and the tree returns SUCCESS only where the learned
-goal holds; where nothing applies it returns FAILURE.
+the model (``teach.learn.backchain``, reading the view ``teach.learn.plan_view`` builds) and
+rebuilt only when that view changed. Where the plan does not do a state's label, the learner
+first tries to repair the model (``teach.learn.repair``), and otherwise adds an *exception*
+in front (``teach.learn.exceptions``): the fewest literals of that state that hold in no
+situation labelled otherwise, then the label. So every consistent demonstration is
+reproduced strictly, and the tree returns SUCCESS only where the learned goal holds; where
+nothing applies it returns FAILURE.
+
+This module's jobs: the online update and the teacher's answers (what a "no" says is
+``teach.learn.refusals``), when to replan, repair and add exceptions, and assembling the tree;
+why a node exists is ``teach.learn.explain``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, KeysView, Mapping
 from collections.abc import Sequence as Seq
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Protocol
 
 from teach.bt.nodes import Condition, Fallback, Inverter, Node, Sequence, Status
@@ -46,31 +46,18 @@ from teach.errors import LearnError
 from teach.learn.action_model import ActionModel, Lit, literals_of
 from teach.learn.backchain import PlanView, Role, plan
 from teach.learn.bits import mask_literals, mask_state, state_mask
-from teach.learn.exceptions import Answer, Columns, ExceptionRule, exception_rule
+from teach.learn.exceptions import Answer, ExceptionRule, exception_rule
 from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
+from teach.learn.labels import Conflict, Labels, Situation
 from teach.learn.plan_view import Ranks, goal_bound_plan, plan_view, ruled_out_plan
 from teach.learn.refusals import Refusals
 from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
+from teach.learn.repair import FAILED, PlanTrials, Restored, repair_model
 
 EITHER = "<either>"
 """``resolve`` answer: every label the state was given is fine."""
-
-REPAIR_TRIALS = 4
-"""Model repairs tried per update; each costs one replan and one check of every situation."""
-
-_FAILED = "<failure>"
-
-
-@dataclass
-class Situation:
-    """A labelled state: the answers allowed there, the latest one, and where they came from."""
-
-    state: State
-    allowed: frozenset[Answer]
-    answer: Answer
-    sources: list[str] = field(default_factory=list)
 
 
 class Hypothesis(Protocol):
@@ -84,14 +71,6 @@ class Hypothesis(Protocol):
     def action(self) -> str | None: ...
     @property
     def settles(self) -> tuple[tuple[str, bool], ...]: ...
-
-
-@dataclass(frozen=True)
-class Conflict:
-    """One state labelled with different answers; ``labels`` pairs each answer with its source."""
-
-    state: State
-    labels: tuple[tuple[Answer, str], ...]
 
 
 @dataclass(frozen=True)
@@ -121,12 +100,7 @@ class Learner:
         self.model = ActionModel(domain.action_names, self._n)
         self.goal = GoalLearner(self._n, [(self.names.index(lit.name), lit.value) for lit in domain.goal])
         self.safe = safe
-        self._situations: dict[int, Situation] = {}
-        self._situations_view: dict[State, frozenset[Answer]] | None = None
-        self._restored: set[Lit] = set()
-        self._left_broken: set[Lit] = set()
-        self._columns = Columns(self._n)
-        self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
+        self._restored = Restored()
         self._ranks = Ranks()
         self._view: PlanView | None = None
         self._plan: Node | None = None
@@ -137,7 +111,10 @@ class Learner:
         self._tree: Node | None = None
         self._root_uid = 0
         self.invariants = Invariants(self._n, can_happen)
+        self._labels = Labels(self.goal, self.invariants, self._n, self._recount)
+        self._situations = self._labels.situations  # read here often; labelled through self._labels only
         self._refusals = Refusals(self.model, self.goal, self._n)
+        self._trials = PlanTrials(self._replan, self._keep_plan, self._plan_output, self._plan_errors)
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -151,15 +128,13 @@ class Learner:
     @property
     def conflicts(self) -> list[Conflict]:
         """Unresolved conflicts, in the order they arose."""
-        return [Conflict(self._state(mask), tuple(labels)) for mask, labels in self._conflicts.items()]
+        return [Conflict(self._state(mask), tuple(labels)) for mask, labels in self._labels.conflicts.items()]
 
     @property
     def situations(self) -> dict[State, frozenset[Answer]]:
         """Every labelled state with the answers allowed there (kept until a label changes: the
         question selectors read it often)."""
-        if self._situations_view is None:
-            self._situations_view = {s.state: s.allowed for s in self._situations.values()}
-        return self._situations_view
+        return self._labels.view()
 
     def update(self, demo: Demonstration, source: str | None = None) -> Update:
         """Learn one more demonstration (any order, repeats, loops, external events)."""
@@ -183,7 +158,7 @@ class Learner:
             if self._label(mask, step.state, answer, src):
                 new_conflicts.append(mask)
             touched.append(mask)
-            self._note_restored(broken, after if answer is not None else None)
+            self._restored.note(broken, after if answer is not None else None)
             broken = []
             if answer is None:
                 continue
@@ -207,18 +182,6 @@ class Learner:
             self.model.applied(answer, mask, source)
             self._guess_effect(mask, answer, source)
         return self._finish(source, [mask], [mask] if conflict else [])
-
-    def _note_restored(self, broken: list[Lit], after: int | None) -> None:
-        """Which literals an external event took away did the teacher's next action restore?"""
-        for literal in broken:
-            if after is not None and bool(after >> literal[0] & 1) == literal[1]:
-                self._restored.add(literal)
-            else:
-                self._left_broken.add(literal)
-
-    def _maintained(self, literal: Lit) -> bool:
-        """The teacher restored ``literal`` at once every time an event took it away (at least once)."""
-        return literal in self._restored and literal not in self._left_broken
 
     def _guess_effect(self, mask: int, answer: str, source: str) -> None:
         """An action never demonstrated, asked for in a state one literal away from where
@@ -244,7 +207,7 @@ class Learner:
     def resolve(self, state: State, answer: Answer, source: str = "the teacher's decision") -> Update:
         """Settle a conflict: ``answer`` is what to do there, or ``EITHER`` (every label is fine)."""
         mask = self._checked_mask(state, source)
-        labels = self._conflicts.pop(mask, None)
+        labels = self._labels.conflicts.pop(mask, None)
         if labels is None:
             raise LearnError(f"no conflict in the state [{self.domain.describe(tuple(state))}]", source)
         situation = self._situations[mask]
@@ -257,7 +220,7 @@ class Learner:
                 if self.safe:
                     self.model.applied(answer, mask, source)  # the teacher chose it here: it can run here
             allowed, chosen = frozenset({answer}), answer
-        self._relabel(mask, situation, allowed, chosen)
+        self._labels.relabel(mask, situation, allowed, chosen)
         situation.sources.append(source)
         return self._finish(source, [mask], [])
 
@@ -295,7 +258,7 @@ class Learner:
         sharing the reason the data shows for it (``teach.learn.invariants``). It costs nothing
         and changes no tree; a group question about it is then asked in halves."""
         self.invariants.rule_out(self._checked_mask(state, source), source,
-                                 lambda care, value: self._columns.firing(care, value) != 0)
+                                 lambda care, value: self._labels.columns.firing(care, value) != 0)
 
     @property
     def impossible(self) -> dict[int, str]:
@@ -375,45 +338,10 @@ class Learner:
     # --- labels -------------------------------------------------------------------------------
 
     def _label(self, mask: int, state: State, answer: Answer, source: str) -> bool:
-        """Record a label; True if it starts (or extends) a conflict."""
-        situation = self._situations.get(mask)
-        if situation is None:
-            self.invariants.saw(mask)
-            self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
-            self._situations_view = None
-            self._columns.add(mask, frozenset({answer}))
-            self._recount(state, frozenset(), frozenset({answer}))
-            self._feed_goal(mask, frozenset({answer}), source)
-            return False
-        situation.sources.append(source)
-        if answer in situation.allowed:
-            if answer is None:
-                self.goal.add_goal_state(mask, source)
-            return False
-        history = self._conflicts.setdefault(mask, [(situation.answer, situation.sources[0])])
-        history.append((answer, source))
-        self._relabel(mask, situation, frozenset({answer}), answer)
-        return True
+        """Record a label (``teach.learn.labels``); True if it starts (or extends) a conflict."""
+        return self._labels.label(mask, state, answer, source)
 
-    def _relabel(self, mask: int, situation: Situation, allowed: frozenset[Answer], answer: Answer) -> None:
-        old = situation.allowed
-        if old == frozenset({None}):
-            self.goal.remove_goal_state(mask)
-        elif None not in old:
-            self.goal.remove_acting_state(mask)
-        self._columns.relabel(mask, old, allowed)
-        self._recount(situation.state, old, allowed)
-        situation.allowed, situation.answer = allowed, answer
-        self._situations_view = None
-        self._feed_goal(mask, allowed, situation.sources[-1])
-
-    def _feed_goal(self, mask: int, allowed: frozenset[Answer], source: str) -> None:
-        if allowed == frozenset({None}):
-            self.goal.add_goal_state(mask, source)
-        elif None not in allowed:
-            self.goal.add_acting_state(mask, source)
-
-    # --- planning and repair ------------------------------------------------------------------
+    # --- the tree: when to replan, repair and add exceptions ----------------------------------
 
     def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
         before = self._tree if self._tree is not None else self._assemble()
@@ -434,8 +362,8 @@ class Learner:
         self._tree = None
         after = self.tree
         changed = after != before
-        conflicts = tuple(Conflict(self._state(m), tuple(self._conflicts[m])) for m in dict.fromkeys(new_conflicts)
-                          if m in self._conflicts)
+        conflicts = tuple(Conflict(self._state(m), tuple(self._labels.conflicts[m]))
+                          for m in dict.fromkeys(new_conflicts) if m in self._labels.conflicts)
         parts = [f"{source}: " + ("the tree changed" if changed else "the tree already does this")]
         if conflicts:
             parts.append(f"{len(conflicts)} state(s) now labelled two ways (the latest label is used until "
@@ -465,18 +393,18 @@ class Learner:
 
     def _plan_does(self, state: State) -> Answer | str:
         if self._compiled is None:
-            return _FAILED
+            return FAILED
         status, action = self._compiled(state)
         if status is Status.RUNNING:
             return action
-        return None if status is Status.SUCCESS else _FAILED
+        return None if status is Status.SUCCESS else FAILED
 
     def _output(self, mask: int) -> Answer | bool:
         for exception in self._exceptions:
             if mask & exception.mask == exception.value:
                 return exception.answer
         result = self._plan_output(mask)
-        return False if result == _FAILED else result
+        return False if result == FAILED else result
 
     def _plan_errors(self, limit: int | None = None) -> int:
         """How many situations the plan gets wrong; counting stops at ``limit`` (the caller
@@ -509,70 +437,16 @@ class Learner:
         self._counted = (compiled, wrong + (does not in new))
 
     def _repair_model(self, wrong: list[int]) -> None:
-        """Add back possible preconditions the prior left out where that reproduces more
-        situations: for a newly learned situation where the plan runs the wrong action, each
-        possible precondition of that action false there is tried, and the one that leaves
-        the fewest situations wrong is kept (ties: the one established latest, nearest the
-        action). At most ``REPAIR_TRIALS`` replans per update."""
-        trials = 0
-        errors = self._plan_errors()
-        for mask in wrong:
-            situation = self._situations[mask]
-            running = self._plan_output(mask)
-            if trials >= REPAIR_TRIALS or not errors:
-                return
-            if running in situation.allowed or running is None or running == _FAILED:
-                continue
-            knowledge = self.model[running]  # type: ignore[index]
-            pos, neg = knowledge.possible
-            have_pos, have_neg = knowledge.assumed
-            kept = (self._view, self._plan, self._roles, self._compiled)
-            best: tuple[int, tuple[int, ...], Lit] | None = None
-            for literal in literals_of(pos & ~have_pos, neg & ~have_neg, self._n):
-                if bool(mask >> literal[0] & 1) == literal[1] or trials >= REPAIR_TRIALS:
-                    continue
-                trials += 1
-                knowledge.confirmed[literal] = situation.sources[-1]
-                self._replan()
-                # only a count that ties or beats the best so far matters exactly
-                limit = errors if best is None else best[0] + 1
-                score = (self._plan_errors(limit), tuple(-x for x in self._ranks.rank(literal)), literal)
-                del knowledge.confirmed[literal]
-                if score[0] < errors and (best is None or score < best):
-                    best = score
-            if best is None:
-                self._view, self._plan, self._roles, self._compiled = kept
-                continue
-            errors = best[0]
-            knowledge.confirmed[best[2]] = situation.sources[-1]
-            self._replan()
-            if self._maintained(best[2]):
-                errors = self._extend(best[2], situation.sources[-1], errors)
+        """Repair the action model where the plan runs the wrong action (``teach.learn.repair``)."""
+        repair_model(wrong, self._situations, self.model, self._ranks.rank, self._restored, self._n, self._trials)
 
-    def _extend(self, literal: Lit, source: str, errors: int) -> int:
-        """A maintained literal just shown to be needed by one action is needed by every action
-        it held for each time that action was done: people keep what they care about. Kept only
-        if no more situations go wrong; returns how many are wrong now."""
-        index, value = literal
-        others = []
-        for knowledge in self.model.actions.values():
-            pos, neg = knowledge.possible
-            have_pos, have_neg = knowledge.assumed
-            if knowledge.demonstrated and ((pos & ~have_pos) if value else (neg & ~have_neg)) >> index & 1:
-                others.append(knowledge)
-        if not others:
-            return errors
+    def _keep_plan(self) -> Callable[[], None]:
+        """A way back to the current plan (repair tries others)."""
         kept = (self._view, self._plan, self._roles, self._compiled)
-        for knowledge in others:
-            knowledge.maintained[literal] = source
-        self._replan()
-        now = self._plan_errors(errors + 1)
-        if now <= errors:
-            return now
-        for knowledge in others:
-            del knowledge.maintained[literal]
-        self._view, self._plan, self._roles, self._compiled = kept
-        return errors
+
+        def back() -> None:
+            self._view, self._plan, self._roles, self._compiled = kept
+        return back
 
     def _rebuild_exceptions(self) -> None:
         """Exceptions for a new plan: one for each situation the plan gets wrong and no
@@ -581,13 +455,13 @@ class Learner:
         self._exceptions = []
         self._tree = None
         covered = 0
-        position = self._columns.position
+        position = self._labels.columns.position
         for mask, situation in self._situations.items():
             if covered >> position[mask] & 1 or self._plan_does(situation.state) in situation.allowed:
                 continue
             exception = self._exception(mask, situation)
             self._exceptions.insert(0, exception)
-            covered |= self._columns.firing(exception.mask, exception.value)
+            covered |= self._labels.columns.firing(exception.mask, exception.value)
 
     def _fix(self, masks: Seq[int]) -> None:
         """Add an exception for every given situation the tree gets wrong."""
@@ -599,8 +473,8 @@ class Learner:
             self._tree = None
 
     def _exception(self, mask: int, situation: Situation) -> ExceptionRule:
-        return exception_rule(mask, situation.answer, situation.sources[-1], self._columns, self.names, self.goal,
-                              self.model, self.safe)
+        return exception_rule(mask, situation.answer, situation.sources[-1], self._labels.columns, self.names,
+                              self.goal, self.model, self.safe)
 
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
