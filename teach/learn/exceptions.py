@@ -3,8 +3,9 @@ in front of it checks the fewest literals of that state that hold in no situatio
 otherwise (and, for an action, a violated goal literal, so a rule never fires where the goal
 holds), then does the label.
 
-Kept apart from ``teach.learn.learner`` because choosing those literals fast needs its own index
-of the situations (``Columns``); the learner keeps the situations and decides when rules are built.
+Kept apart from ``teach.learn.learner``: a rule is a pure function of one situation, the goal,
+the model and the situations' column index (``teach.learn.labels.Columns``), which makes
+choosing its literals a few popcounts; the learner decides when rules are built.
 """
 
 from __future__ import annotations
@@ -16,9 +17,7 @@ from teach.learn.action_model import ActionModel
 from teach.learn.backchain import literal_node
 from teach.learn.bits import mask_literals
 from teach.learn.goal import GoalLearner
-
-Answer = str | None
-"""An action name, or None: the task is done here (the tree must return SUCCESS)."""
+from teach.learn.labels import Answer, Columns
 
 
 @dataclass
@@ -31,60 +30,6 @@ class ExceptionRule:
     answer: Answer
     source: str
     node: Node
-
-
-class Columns:
-    """The labelled situations by column, for building exceptions fast: per condition, a big
-    int whose bit j says whether it holds in situation j; per answer, which situations allow
-    it. Separating a state from every situation that does not allow its answer is then a few
-    popcounts per literal instead of a pass over all situations."""
-
-    def __init__(self, width: int):
-        self.width = width
-        self.position: dict[int, int] = {}
-        self.holds = [0] * width
-        self.allows: dict[Answer, int] = {}
-        self.everything = 0
-
-    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
-        bit = 1 << len(self.position)
-        self.position[mask] = len(self.position)
-        self.everything |= bit
-        for index in range(self.width):
-            if mask >> index & 1:
-                self.holds[index] |= bit
-        for answer in allowed:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
-        bit = 1 << self.position[mask]
-        for answer in old:
-            self.allows[answer] &= ~bit
-        for answer in new:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def firing(self, mask: int, value: int) -> int:
-        """The situations in which the conditions of ``mask`` have the values of ``value``."""
-        result = self.everything
-        for index in range(self.width):
-            if mask >> index & 1:
-                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
-        return result & self.everything
-
-    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
-        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
-        which ``mask`` differs from every situation that does not allow ``answer``."""
-        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
-                   for i in range(self.width)]
-        left = self.everything & ~self.allows.get(answer, 0)
-        for index in range(self.width):
-            if chosen >> index & 1:
-                left &= ~differs[index]
-        while left:
-            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
-            chosen |= 1 << best
-            left &= ~differs[best]
-        return chosen
 
 
 def exception_rule(mask: int, answer: Answer, source: str, columns: Columns, names: tuple[str, ...],

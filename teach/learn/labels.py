@@ -6,7 +6,8 @@ the teacher decides. Every label also tells the goal learner whether the state i
 or one where the teacher kept acting.
 
 Kept apart from ``teach.learn.learner``, which decides what the labels mean for the model and
-the tree; here they are only recorded, indexed (``Columns``) and passed on to the goal.
+the tree; here they are only recorded, indexed by column (``Columns``, for the exception rules
+of ``teach.learn.exceptions``) and passed on to the goal.
 """
 
 from __future__ import annotations
@@ -15,9 +16,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from teach.domain import State
-from teach.learn.exceptions import Answer, Columns
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
+
+Answer = str | None
+"""An action name, or None: the task is done here (the tree must return SUCCESS)."""
 
 
 @dataclass
@@ -98,3 +101,57 @@ class Labels:
             self.goal.add_goal_state(mask, source)
         elif None not in allowed:
             self.goal.add_acting_state(mask, source)
+
+
+class Columns:
+    """The labelled situations by column, for building exceptions fast: per condition, a big
+    int whose bit j says whether it holds in situation j; per answer, which situations allow
+    it. Separating a state from every situation that does not allow its answer is then a few
+    popcounts per literal instead of a pass over all situations."""
+
+    def __init__(self, width: int):
+        self.width = width
+        self.position: dict[int, int] = {}
+        self.holds = [0] * width
+        self.allows: dict[Answer, int] = {}
+        self.everything = 0
+
+    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
+        bit = 1 << len(self.position)
+        self.position[mask] = len(self.position)
+        self.everything |= bit
+        for index in range(self.width):
+            if mask >> index & 1:
+                self.holds[index] |= bit
+        for answer in allowed:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
+        bit = 1 << self.position[mask]
+        for answer in old:
+            self.allows[answer] &= ~bit
+        for answer in new:
+            self.allows[answer] = self.allows.get(answer, 0) | bit
+
+    def firing(self, mask: int, value: int) -> int:
+        """The situations in which the conditions of ``mask`` have the values of ``value``."""
+        result = self.everything
+        for index in range(self.width):
+            if mask >> index & 1:
+                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
+        return result & self.everything
+
+    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
+        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
+        which ``mask`` differs from every situation that does not allow ``answer``."""
+        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
+                   for i in range(self.width)]
+        left = self.everything & ~self.allows.get(answer, 0)
+        for index in range(self.width):
+            if chosen >> index & 1:
+                left &= ~differs[index]
+        while left:
+            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
+            chosen |= 1 << best
+            left &= ~differs[best]
+        return chosen

@@ -46,11 +46,11 @@ from teach.errors import LearnError
 from teach.learn.action_model import ActionModel, Lit, literals_of
 from teach.learn.backchain import PlanView, Role, plan
 from teach.learn.bits import mask_literals, mask_state, state_mask
-from teach.learn.exceptions import Answer, ExceptionRule, exception_rule
+from teach.learn.exceptions import ExceptionRule, exception_rule
 from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
-from teach.learn.labels import Conflict, Labels, Situation
+from teach.learn.labels import Answer, Conflict, Labels, Situation
 from teach.learn.plan_view import Ranks, goal_bound_plan, plan_view, ruled_out_plan
 from teach.learn.refusals import Refusals
 from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules

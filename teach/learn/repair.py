@@ -13,8 +13,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 from teach.learn.action_model import ActionModel, Lit, literals_of
-from teach.learn.exceptions import Answer
-from teach.learn.labels import Situation
+from teach.learn.labels import Answer, Situation
 
 REPAIR_TRIALS = 4
 """Model repairs tried per update; each costs one replan and one check of every situation."""
