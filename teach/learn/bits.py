@@ -19,3 +19,8 @@ def state_mask(state: Sequence[bool]) -> int:
 def mask_state(mask: int, conditions: int) -> State:
     """The state of a bitmask over ``conditions`` conditions."""
     return tuple(bool(mask >> i & 1) for i in range(conditions))
+
+
+def mask_literals(mask: int, value: int, conditions: int) -> list[tuple[int, bool]]:
+    """The literals (condition index, value) of the conditions set in ``mask``, with their values in ``value``."""
+    return [(i, bool(value >> i & 1)) for i in range(conditions) if mask >> i & 1]

@@ -13,63 +13,51 @@ What it keeps (all updated in O(conditions) per step, never by replaying old dat
 - the action model (``teach.learn.action_model``): effects and precondition bounds;
 - the goal (``teach.learn.goal``): the smallest set of goal-state literals that explains why
   the teacher kept acting, or, where the domain file declares one, that goal;
-- the labelled situations: each distinct state with what the robot must do there. A strict
-  replay reproduces a demonstration exactly when the tree does the label of each of its
-  states, so these are the training set. A state labelled two ways is a *conflict*: kept as
-  data, the latest label wins until ``resolve``.
+- the labelled situations (``teach.learn.labels``): each distinct state with what the robot
+  must do there, the training set; a state labelled two ways is a *conflict*, kept as data,
+  the latest label wins until ``resolve``.
 
 The tree is ``Fallback(exception..., plan)``. The plan is backchained from the goal through
-the model (``teach.learn.backchain``) and rebuilt only when what the planner reads changed.
-Where the plan does not do a state's label, the learner first tries to repair the model (a
-possible precondition the prior left out is added back if that reproduces more situations;
-if the teacher restored that literal at once after every external event that took it away,
-it is assumed for every other action it held for too, unless that gets more situations wrong),
-and otherwise adds an *exception* in front: the fewest literals of that state that hold in
-no situation labelled otherwise (and, for an action, a violated goal literal, so an
-exception never fires where the goal holds), then the label. So every consistent
-demonstration is reproduced strictly, and the tree returns SUCCESS only where the learned
-goal holds; where nothing applies it returns FAILURE.
+the model (``teach.learn.backchain``, reading the view ``teach.learn.plan_view`` builds) and
+rebuilt only when that view changed. Where the plan does not do a state's label, the learner
+first tries to repair the model (``teach.learn.repair``), and otherwise adds an *exception*
+in front (``teach.learn.exceptions``): the fewest literals of that state that hold in no
+situation labelled otherwise, then the label. So every consistent demonstration is
+reproduced strictly, and the tree returns SUCCESS only where the learned goal holds; where
+nothing applies it returns FAILURE.
+
+This module's jobs: the online update and the teacher's answers (what a "no" says is
+``teach.learn.refusals``), when to replan, repair and add exceptions, and assembling the tree;
+why a node exists is ``teach.learn.explain``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, KeysView, Mapping
 from collections.abc import Sequence as Seq
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Protocol
 
-from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, Status, walk
+from teach.bt.nodes import Condition, Fallback, Inverter, Node, Sequence, Status
 from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
-from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, Literal, State
+from teach.domain import EXTERNAL_ACTION, GOAL_ACTION, Domain, State
 from teach.errors import LearnError
 from teach.learn.action_model import ActionModel, Lit, literals_of
-from teach.learn.backchain import PlanView, Role, literal_node, plan
-from teach.learn.bits import mask_state, state_mask
+from teach.learn.backchain import PlanView, Role, plan
+from teach.learn.bits import mask_literals, mask_state, state_mask
+from teach.learn.exceptions import ExceptionRule, exception_rule
+from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
+from teach.learn.labels import Answer, Conflict, Labels, Situation
+from teach.learn.plan_view import Ranks, goal_bound_plan, plan_view, ruled_out_plan
+from teach.learn.refusals import Refusals
 from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
-
-Answer = str | None
-"""An action name, or None: the task is done here (the tree must return SUCCESS)."""
+from teach.learn.repair import FAILED, PlanTrials, Restored, repair_model
 
 EITHER = "<either>"
 """``resolve`` answer: every label the state was given is fine."""
-
-REPAIR_TRIALS = 4
-"""Model repairs tried per update; each costs one replan and one check of every situation."""
-
-_FAILED = "<failure>"
-
-
-@dataclass
-class Situation:
-    """A labelled state: the answers allowed there, the latest one, and where they came from."""
-
-    state: State
-    allowed: frozenset[Answer]
-    answer: Answer
-    sources: list[str] = field(default_factory=list)
 
 
 class Hypothesis(Protocol):
@@ -86,14 +74,6 @@ class Hypothesis(Protocol):
 
 
 @dataclass(frozen=True)
-class Conflict:
-    """One state labelled with different answers; ``labels`` pairs each answer with its source."""
-
-    state: State
-    labels: tuple[tuple[Answer, str], ...]
-
-
-@dataclass(frozen=True)
 class Update:
     """What one demonstration or answer did."""
 
@@ -105,28 +85,6 @@ class Update:
     @property
     def changed(self) -> bool:
         return self.tree_changed
-
-
-@dataclass(frozen=True)
-class Explanation:
-    """Why a node exists, as data (``kind``, the ``action`` and ``literal`` it concerns, the
-    ``sources`` behind it) and as an English sentence (``text``)."""
-
-    uid: int
-    kind: str
-    text: str
-    action: str | None = None
-    literal: Literal | None = None
-    sources: tuple[str, ...] = ()
-
-
-@dataclass
-class _Exception:
-    mask: int
-    value: int
-    answer: Answer
-    source: str
-    node: Node
 
 
 class Learner:
@@ -142,26 +100,21 @@ class Learner:
         self.model = ActionModel(domain.action_names, self._n)
         self.goal = GoalLearner(self._n, [(self.names.index(lit.name), lit.value) for lit in domain.goal])
         self.safe = safe
-        self._weak = not safe
-        self._situations: dict[int, Situation] = {}
-        self._situations_view: dict[State, frozenset[Answer]] | None = None
-        self._restored: set[Lit] = set()
-        self._left_broken: set[Lit] = set()
-        self._columns = _Columns(self._n)
-        self._conflicts: dict[int, list[tuple[Answer, str]]] = {}
-        self._rank_sum: dict[Lit, int] = {}
-        self._rank_count: dict[Lit, int] = {}
+        self._restored = Restored()
+        self._ranks = Ranks()
         self._view: PlanView | None = None
         self._plan: Node | None = None
         self._roles: dict[int, Role] = {}
         self._compiled: CompiledTree | PlanWithRules | None = None
         self._counted: tuple[CompiledTree | PlanWithRules, int] | None = None
-        self._exceptions: list[_Exception] = []
+        self._exceptions: list[ExceptionRule] = []
         self._tree: Node | None = None
         self._root_uid = 0
         self.invariants = Invariants(self._n, can_happen)
-        self._refused: dict[str | None, list[tuple[frozenset[Lit], str]]] = {}
-        """Groups of literals the teacher said no to, per action (None: the goal), with the source."""
+        self._labels = Labels(self.goal, self.invariants, self._n, self._recount)
+        self._situations = self._labels.situations  # read here often; labelled through self._labels only
+        self._refusals = Refusals(self.model, self.goal, self._n)
+        self._trials = PlanTrials(self._replan, self._keep_plan, self._plan_output, self._plan_errors)
         self._replan()
 
     # --- public API ---------------------------------------------------------------------------
@@ -175,15 +128,13 @@ class Learner:
     @property
     def conflicts(self) -> list[Conflict]:
         """Unresolved conflicts, in the order they arose."""
-        return [Conflict(self._state(mask), tuple(labels)) for mask, labels in self._conflicts.items()]
+        return [Conflict(self._state(mask), tuple(labels)) for mask, labels in self._labels.conflicts.items()]
 
     @property
     def situations(self) -> dict[State, frozenset[Answer]]:
         """Every labelled state with the answers allowed there (kept until a label changes: the
         question selectors read it often)."""
-        if self._situations_view is None:
-            self._situations_view = {s.state: s.allowed for s in self._situations.values()}
-        return self._situations_view
+        return self._labels.view()
 
     def update(self, demo: Demonstration, source: str | None = None) -> Update:
         """Learn one more demonstration (any order, repeats, loops, external events)."""
@@ -207,7 +158,7 @@ class Learner:
             if self._label(mask, step.state, answer, src):
                 new_conflicts.append(mask)
             touched.append(mask)
-            self._note_restored(broken, after if answer is not None else None)
+            self._restored.note(broken, after if answer is not None else None)
             broken = []
             if answer is None:
                 continue
@@ -218,11 +169,7 @@ class Learner:
             position += 1
             changed = mask ^ after
             previous = (changed & after, changed & ~after & self._full)
-            for index in range(self._n):
-                if changed >> index & 1:
-                    literal = (index, bool(after >> index & 1))
-                    self._rank_sum[literal] = self._rank_sum.get(literal, 0) + position
-                    self._rank_count[literal] = self._rank_count.get(literal, 0) + 1
+            self._ranks.established(changed, after, position, self._n)
         return self._finish(where, touched, new_conflicts)
 
     def teach_step(self, state: State, answer: Answer, source: str) -> Update:
@@ -235,18 +182,6 @@ class Learner:
             self.model.applied(answer, mask, source)
             self._guess_effect(mask, answer, source)
         return self._finish(source, [mask], [mask] if conflict else [])
-
-    def _note_restored(self, broken: list[Lit], after: int | None) -> None:
-        """Which literals an external event took away did the teacher's next action restore?"""
-        for literal in broken:
-            if after is not None and bool(after >> literal[0] & 1) == literal[1]:
-                self._restored.add(literal)
-            else:
-                self._left_broken.add(literal)
-
-    def _maintained(self, literal: Lit) -> bool:
-        """The teacher restored ``literal`` at once every time an event took it away (at least once)."""
-        return literal in self._restored and literal not in self._left_broken
 
     def _guess_effect(self, mask: int, answer: str, source: str) -> None:
         """An action never demonstrated, asked for in a state one literal away from where
@@ -272,7 +207,7 @@ class Learner:
     def resolve(self, state: State, answer: Answer, source: str = "the teacher's decision") -> Update:
         """Settle a conflict: ``answer`` is what to do there, or ``EITHER`` (every label is fine)."""
         mask = self._checked_mask(state, source)
-        labels = self._conflicts.pop(mask, None)
+        labels = self._labels.conflicts.pop(mask, None)
         if labels is None:
             raise LearnError(f"no conflict in the state [{self.domain.describe(tuple(state))}]", source)
         situation = self._situations[mask]
@@ -285,7 +220,7 @@ class Learner:
                 if self.safe:
                     self.model.applied(answer, mask, source)  # the teacher chose it here: it can run here
             allowed, chosen = frozenset({answer}), answer
-        self._relabel(mask, situation, allowed, chosen)
+        self._labels.relabel(mask, situation, allowed, chosen)
         situation.sources.append(source)
         return self._finish(source, [mask], [])
 
@@ -299,12 +234,12 @@ class Learner:
         if not needed and action is None:
             return self.teach_step(hypothesis.state, None, source)
         if needed:
-            self._refuse(action, frozenset((self.names.index(name), value) for name, value in hypothesis.settles),
-                         source)
+            settles = frozenset((self.names.index(name), value) for name, value in hypothesis.settles)
+            self._refusals.refuse(action, settles, source)
         else:
             assert action is not None
             self.model.applied(action, mask, source)
-            self._infer_needed()  # what is left of a group refused before may be one literal now
+            self._refusals.infer_needed()  # what is left of a group refused before may be one literal now
         return self._finish(source, [], [])
 
     def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
@@ -315,7 +250,7 @@ class Learner:
             return self.teach_step(state, answer, source)
         mask = self._checked_mask(state, source)
         false = frozenset(lit for lit in self.required_of(asked_about) if bool(mask >> lit[0] & 1) != lit[1])
-        self._refuse(asked_about, false, source)
+        self._refusals.refuse(asked_about, false, source)
         return self.teach_step(state, answer, source)
 
     def rule_out(self, state: State, source: str) -> None:
@@ -323,7 +258,7 @@ class Learner:
         sharing the reason the data shows for it (``teach.learn.invariants``). It costs nothing
         and changes no tree; a group question about it is then asked in halves."""
         self.invariants.rule_out(self._checked_mask(state, source), source,
-                                 lambda care, value: self._columns.firing(care, value) != 0)
+                                 lambda care, value: self._labels.columns.firing(care, value) != 0)
 
     @property
     def impossible(self) -> dict[int, str]:
@@ -346,59 +281,13 @@ class Learner:
         """The groups of unsure literals worth asking about next, best first: all of them and then
         each half, or, where a group inside them was refused (or was impossible), each half of
         what is left of that group (a yes to all of it is known not to come)."""
-        current = list(literals)
-        for group, _source in reversed(self._refused.get(action, [])):
-            left = [lit for lit in current if lit in group]
-            if len(left) >= 2:
-                half = len(left) // 2
-                return [left[:half], left[half:]]
-        half = len(current) // 2
-        return [current, current[:half], current[half:]] if half else [current] if current else []
+        return self._refusals.untested(action, literals)
 
     def required_of(self, action: str | None) -> list[Lit]:
         """What the safe tree checks before ``action`` (None: before it says "done")."""
         if action is None:
             return self.goal.required()
         return literals_of(*self.model[action].required, self._n)
-
-    def _unsure(self, action: str | None) -> set[Lit]:
-        if action is None:
-            return set(self.goal.unsure())
-        return set(literals_of(*self.model[action].unsure, self._n))
-
-    def _keep(self, action: str | None, literal: Lit, source: str) -> None:
-        if action is None:
-            self.goal.confirm(literal, source)
-        else:
-            self.model.confirm(action, literal, source)
-
-    def _refuse(self, action: str | None, false: frozenset[Lit], source: str) -> None:
-        """The teacher said no to ``action`` (None: "done") where the literals ``false`` do not hold:
-        one of them is needed; a single one is kept for good, a group is remembered to be split."""
-        if len(false) == 1:
-            self._keep(action, next(iter(false)), source)
-        elif false and not false & self._confirmed(action):
-            self._refused.setdefault(action, []).append((false, source))
-        self._infer_needed()
-
-    def _infer_needed(self) -> None:
-        """A refused group with one unsure literal left: that one is needed."""
-        for action, groups in self._refused.items():
-            unsure = self._unsure(action)
-            kept = []
-            for group, source in groups:
-                left = group & unsure
-                if len(left) == 1 and not group & self._confirmed(action):
-                    self._keep(action, next(iter(left)), source)
-                elif len(left) > 1:
-                    kept.append((group, source))
-            groups[:] = kept
-
-    def _confirmed(self, action: str | None) -> frozenset[Lit]:
-        if action is None:
-            return frozenset(self.goal.confirmed)
-        knowledge = self.model[action]
-        return frozenset((*knowledge.confirmed, *knowledge.maintained))
 
     def state_mask(self, state: Seq[bool]) -> int:
         """The bitmask (bit i = condition i) of a state."""
@@ -424,10 +313,7 @@ class Learner:
         """The plan as it would be if the goal were its over-specific bound (every literal that
         held in all goal states): where it acts otherwise than the tree, an answer tells which
         of those literals the task needs."""
-        view = self._current_view()
-        goal = tuple(sorted(self.goal.candidates(), key=self._rank))
-        bound, _roles = plan(PlanView(goal, view.preconditions, view.achievers, view.weak_last_resort), self.names)
-        return None if bound is None else compile_tree(bound, self.names)
+        return goal_bound_plan(self._current_view(), sorted(self.goal.candidates(), key=self._ranks.rank), self.names)
 
     def goal_holds(self, state: State) -> bool:
         """Does the learned goal hold in ``state`` (never before a goal state was shown)? The safe
@@ -440,25 +326,11 @@ class Learner:
         return self._output(self._mask(state))
 
     def why(self, uid: int) -> Explanation:
-        """Why the node ``uid`` of the current tree exists, as data."""
+        """Why the node ``uid`` of the current tree exists, as data (``teach.learn.explain``)."""
         if self._tree is None:
             self._tree = self._assemble()
-        if uid == self._root_uid:
-            return Explanation(uid, "root", "the root: situations that need an exception are checked first, "
-                               "then the plan from the learned goal and action model")
-        for exception in self._exceptions:
-            if uid in _uids(exception.node):
-                what = "the task is done" if exception.answer is None else f"do {exception.answer}"
-                return Explanation(uid, "exception", f"an exception: {what} where "
-                                   f"{self._words(self._literals(exception.mask, exception.value))} holds, because the "
-                                   f"plan did something else at {exception.source}", exception.answer,
-                                   None, (exception.source,))
-        role = self._roles.get(uid)
-        if role is None:
-            if self._plan is None and not self._exceptions:
-                return Explanation(uid, "nothing", "nothing learned yet: the tree fails in every state")
-            raise LearnError(f"no node {uid} in the learned tree")
-        return self._explain_role(uid, role)
+        return explain_node(uid, self._root_uid, self._exceptions, self._roles, self._plan is not None, self.model,
+                            self.goal, self.names)
 
     def explain(self, uid: int) -> str:
         return self.why(uid).text
@@ -466,45 +338,10 @@ class Learner:
     # --- labels -------------------------------------------------------------------------------
 
     def _label(self, mask: int, state: State, answer: Answer, source: str) -> bool:
-        """Record a label; True if it starts (or extends) a conflict."""
-        situation = self._situations.get(mask)
-        if situation is None:
-            self.invariants.saw(mask)
-            self._situations[mask] = Situation(state, frozenset({answer}), answer, [source])
-            self._situations_view = None
-            self._columns.add(mask, frozenset({answer}))
-            self._recount(state, frozenset(), frozenset({answer}))
-            self._feed_goal(mask, frozenset({answer}), source)
-            return False
-        situation.sources.append(source)
-        if answer in situation.allowed:
-            if answer is None:
-                self.goal.add_goal_state(mask, source)
-            return False
-        history = self._conflicts.setdefault(mask, [(situation.answer, situation.sources[0])])
-        history.append((answer, source))
-        self._relabel(mask, situation, frozenset({answer}), answer)
-        return True
+        """Record a label (``teach.learn.labels``); True if it starts (or extends) a conflict."""
+        return self._labels.label(mask, state, answer, source)
 
-    def _relabel(self, mask: int, situation: Situation, allowed: frozenset[Answer], answer: Answer) -> None:
-        old = situation.allowed
-        if old == frozenset({None}):
-            self.goal.remove_goal_state(mask)
-        elif None not in old:
-            self.goal.remove_acting_state(mask)
-        self._columns.relabel(mask, old, allowed)
-        self._recount(situation.state, old, allowed)
-        situation.allowed, situation.answer = allowed, answer
-        self._situations_view = None
-        self._feed_goal(mask, allowed, situation.sources[-1])
-
-    def _feed_goal(self, mask: int, allowed: frozenset[Answer], source: str) -> None:
-        if allowed == frozenset({None}):
-            self.goal.add_goal_state(mask, source)
-        elif None not in allowed:
-            self.goal.add_acting_state(mask, source)
-
-    # --- planning and repair ------------------------------------------------------------------
+    # --- the tree: when to replan, repair and add exceptions ----------------------------------
 
     def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
         before = self._tree if self._tree is not None else self._assemble()
@@ -525,8 +362,8 @@ class Learner:
         self._tree = None
         after = self.tree
         changed = after != before
-        conflicts = tuple(Conflict(self._state(m), tuple(self._conflicts[m])) for m in dict.fromkeys(new_conflicts)
-                          if m in self._conflicts)
+        conflicts = tuple(Conflict(self._state(m), tuple(self._labels.conflicts[m]))
+                          for m in dict.fromkeys(new_conflicts) if m in self._labels.conflicts)
         parts = [f"{source}: " + ("the tree changed" if changed else "the tree already does this")]
         if conflicts:
             parts.append(f"{len(conflicts)} state(s) now labelled two ways (the latest label is used until "
@@ -538,47 +375,10 @@ class Learner:
         (None: for the goal), the rest of the model as it is: what the robot would do after those
         yeses (``teach.learn.safe_inquiry`` predicts answers by it). Without the regressed rules,
         which only act where the plan does nothing and cost most of a replan."""
-        view = self._current_view()
-        goal = tuple(lit for lit in view.goal if lit not in out.get(None, ()))
-        preconditions = tuple((name, tuple(lit for lit in pursued if lit not in out.get(name, ())))
-                              for name, pursued in view.preconditions)
-        built, _roles = plan(PlanView(goal, preconditions, view.achievers, view.weak_last_resort), self.names)
-        return None if built is None else compile_tree(built, self.names)
+        return ruled_out_plan(self._current_view(), out, self.names)
 
     def _current_view(self) -> PlanView:
-        rank = self._rank
-        if self.safe:  # the cover and confirmed literals first: they are what the teacher was after
-            cover = set(self.goal.cover) | set(self.goal.confirmed)
-            goal = tuple(sorted(self.goal.required(), key=lambda lit: (lit not in cover, rank(lit))))
-        else:
-            goal = tuple(sorted(self.goal.cover, key=rank))
-        preconditions = []
-        achievers: dict[Lit, list[str]] = {}
-        for name, knowledge in self.model.actions.items():
-            made_true, made_false = knowledge.effects
-            if not made_true | made_false:
-                continue
-            # every required precondition is checked (or achieved) before the action: the
-            # assumed ones first, in the order the demonstrations establish them
-            pos, neg = knowledge.assumed
-            need_pos, need_neg = knowledge.required
-            pursued = sorted(literals_of(pos, neg, self._n), key=rank)
-            if self.safe:
-                pursued += sorted(literals_of(need_pos & ~pos, need_neg & ~neg, self._n), key=rank)
-            preconditions.append((name, tuple(pursued)))
-        for index in range(self._n):
-            for value in (True, False):
-                found = self.model.achievers((index, value))
-                if found:
-                    achievers[(index, value)] = found
-        return PlanView(goal, tuple(preconditions), tuple((lit, tuple(a)) for lit, a in achievers.items()),
-                        self._weak, regression=self.safe)
-
-    def _rank(self, literal: Lit) -> tuple[int, int]:
-        """Literals the demonstrations establish early come first (-1: never established); the
-        mean step is rounded, so the plan is not rebuilt for every small change of it."""
-        count = self._rank_count.get(literal, 0)
-        return (round(self._rank_sum[literal] / count) if count else -1), literal[0]
+        return plan_view(self.model, self.goal, self._ranks.rank, self._n, self.safe)
 
     def _replan(self) -> None:
         self._view = self._current_view()
@@ -593,18 +393,18 @@ class Learner:
 
     def _plan_does(self, state: State) -> Answer | str:
         if self._compiled is None:
-            return _FAILED
+            return FAILED
         status, action = self._compiled(state)
         if status is Status.RUNNING:
             return action
-        return None if status is Status.SUCCESS else _FAILED
+        return None if status is Status.SUCCESS else FAILED
 
     def _output(self, mask: int) -> Answer | bool:
         for exception in self._exceptions:
             if mask & exception.mask == exception.value:
                 return exception.answer
         result = self._plan_output(mask)
-        return False if result == _FAILED else result
+        return False if result == FAILED else result
 
     def _plan_errors(self, limit: int | None = None) -> int:
         """How many situations the plan gets wrong; counting stops at ``limit`` (the caller
@@ -637,70 +437,16 @@ class Learner:
         self._counted = (compiled, wrong + (does not in new))
 
     def _repair_model(self, wrong: list[int]) -> None:
-        """Add back possible preconditions the prior left out where that reproduces more
-        situations: for a newly learned situation where the plan runs the wrong action, each
-        possible precondition of that action false there is tried, and the one that leaves
-        the fewest situations wrong is kept (ties: the one established latest, nearest the
-        action). At most ``REPAIR_TRIALS`` replans per update."""
-        trials = 0
-        errors = self._plan_errors()
-        for mask in wrong:
-            situation = self._situations[mask]
-            running = self._plan_output(mask)
-            if trials >= REPAIR_TRIALS or not errors:
-                return
-            if running in situation.allowed or running is None or running == _FAILED:
-                continue
-            knowledge = self.model[running]  # type: ignore[index]
-            pos, neg = knowledge.possible
-            have_pos, have_neg = knowledge.assumed
-            kept = (self._view, self._plan, self._roles, self._compiled)
-            best: tuple[int, tuple[int, ...], Lit] | None = None
-            for literal in literals_of(pos & ~have_pos, neg & ~have_neg, self._n):
-                if bool(mask >> literal[0] & 1) == literal[1] or trials >= REPAIR_TRIALS:
-                    continue
-                trials += 1
-                knowledge.confirmed[literal] = situation.sources[-1]
-                self._replan()
-                # only a count that ties or beats the best so far matters exactly
-                limit = errors if best is None else best[0] + 1
-                score = (self._plan_errors(limit), tuple(-x for x in self._rank(literal)), literal)
-                del knowledge.confirmed[literal]
-                if score[0] < errors and (best is None or score < best):
-                    best = score
-            if best is None:
-                self._view, self._plan, self._roles, self._compiled = kept
-                continue
-            errors = best[0]
-            knowledge.confirmed[best[2]] = situation.sources[-1]
-            self._replan()
-            if self._maintained(best[2]):
-                errors = self._extend(best[2], situation.sources[-1], errors)
+        """Repair the action model where the plan runs the wrong action (``teach.learn.repair``)."""
+        repair_model(wrong, self._situations, self.model, self._ranks.rank, self._restored, self._n, self._trials)
 
-    def _extend(self, literal: Lit, source: str, errors: int) -> int:
-        """A maintained literal just shown to be needed by one action is needed by every action
-        it held for each time that action was done: people keep what they care about. Kept only
-        if no more situations go wrong; returns how many are wrong now."""
-        index, value = literal
-        others = []
-        for knowledge in self.model.actions.values():
-            pos, neg = knowledge.possible
-            have_pos, have_neg = knowledge.assumed
-            if knowledge.demonstrated and ((pos & ~have_pos) if value else (neg & ~have_neg)) >> index & 1:
-                others.append(knowledge)
-        if not others:
-            return errors
+    def _keep_plan(self) -> Callable[[], None]:
+        """A way back to the current plan (repair tries others)."""
         kept = (self._view, self._plan, self._roles, self._compiled)
-        for knowledge in others:
-            knowledge.maintained[literal] = source
-        self._replan()
-        now = self._plan_errors(errors + 1)
-        if now <= errors:
-            return now
-        for knowledge in others:
-            del knowledge.maintained[literal]
-        self._view, self._plan, self._roles, self._compiled = kept
-        return errors
+
+        def back() -> None:
+            self._view, self._plan, self._roles, self._compiled = kept
+        return back
 
     def _rebuild_exceptions(self) -> None:
         """Exceptions for a new plan: one for each situation the plan gets wrong and no
@@ -709,13 +455,13 @@ class Learner:
         self._exceptions = []
         self._tree = None
         covered = 0
-        position = self._columns.position
+        position = self._labels.columns.position
         for mask, situation in self._situations.items():
             if covered >> position[mask] & 1 or self._plan_does(situation.state) in situation.allowed:
                 continue
             exception = self._exception(mask, situation)
             self._exceptions.insert(0, exception)
-            covered |= self._columns.firing(exception.mask, exception.value)
+            covered |= self._labels.columns.firing(exception.mask, exception.value)
 
     def _fix(self, masks: Seq[int]) -> None:
         """Add an exception for every given situation the tree gets wrong."""
@@ -726,26 +472,9 @@ class Learner:
             self._exceptions.insert(0, self._exception(mask, situation))
             self._tree = None
 
-    def _exception(self, mask: int, situation: Situation) -> _Exception:
-        answer = situation.answer
-        chosen = 0
-        if answer is None:
-            for index, _value in (self.goal.required() if self.safe else self.goal.cover):
-                chosen |= 1 << index
-        else:
-            violated = next(((i, v) for i, v in self.goal.cover if bool(mask >> i & 1) != v), None)
-            if violated is not None:
-                chosen |= 1 << violated[0]
-            if self.safe:  # an exception never licenses an action where a required precondition is false
-                need_pos, need_neg = self.model[answer].required
-                chosen |= need_pos | need_neg
-        chosen = self._columns.separate(mask, answer, chosen)
-        value = mask & chosen
-        leaves = [literal_node(self.names, lit) for lit in self._literals(chosen, value)]
-        if answer is not None:
-            leaves.append(Action(answer))
-        node = leaves[0] if len(leaves) == 1 else Sequence(tuple(leaves))
-        return _Exception(chosen, value, answer, situation.sources[-1], node)
+    def _exception(self, mask: int, situation: Situation) -> ExceptionRule:
+        return exception_rule(mask, situation.answer, situation.sources[-1], self._labels.columns, self.names,
+                              self.goal, self.model, self.safe)
 
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
@@ -773,59 +502,10 @@ class Learner:
             self._roles[both.node.uid] = Role("regression")
         return both.node
 
-    # --- explanations -------------------------------------------------------------------------
-
-    def _explain_role(self, uid: int, role: Role) -> Explanation:
-        literal = None if role.literal is None else self._literal(role.literal)
-        if role.kind == "goal-sequence":
-            return Explanation(uid, role.kind, "the goal: every goal literal in turn, each achieved if it does "
-                               "not hold yet")
-        if role.kind == "regression":
-            return Explanation(uid, role.kind, "the plan, then the ways to the goal it does not take: the goal "
-                               "worked back through the actions, one rule per step")
-        assert role.literal is not None and literal is not None
-        if role.kind == "goal":
-            holding = [src for e in self.goal.goal_states.values() for src in e.sources][:5]
-            acting = self.goal.violations(role.literal)
-            return Explanation(uid, "goal", f"goal literal {literal}: it held in all {len(self.goal.goal_states)} "
-                               f"goal state(s) ({', '.join(holding)}) and was still missing in {acting} state(s) "
-                               f"where the teacher kept acting", None, literal, tuple(holding))
-        if role.kind == "achieve":
-            return Explanation(uid, role.kind, f"achieve {literal}: done if it holds, otherwise an action that "
-                               f"makes it hold", None, literal)
-        assert role.action is not None
-        knowledge = self.model[role.action]
-        if role.kind == "subgoal":
-            return Explanation(uid, role.kind, f"{literal} with {role.action}: the goal still needs it after "
-                               f"{role.action}", role.action, literal)
-        if role.kind == "precondition":
-            applied = knowledge.applied
-            return Explanation(uid, role.kind, f"{literal} before {role.action}: it held in all {applied.count} "
-                               f"state(s) where {role.action} was done ({', '.join(applied.sources)}), and "
-                               f"{knowledge.reason(role.literal)}", role.action, literal, tuple(applied.sources))
-        if role.literal in knowledge.made:
-            evidence = knowledge.made[role.literal]
-            sources = tuple(evidence.sources)
-            text = (f"{role.action} makes {literal} hold: seen {evidence.count} time(s) "
-                    f"({', '.join(sources)}) and never contradicted")
-        else:
-            sources = (knowledge.guessed[role.literal],)
-            text = (f"{role.action} makes {literal} hold: guessed from the answer at {sources[0]} "
-                    f"({role.action} was never demonstrated)")
-        if role.kind == "last-resort":
-            text = f"last resort for {literal}: {role.action} even when its preconditions do not hold; " + text
-        return Explanation(uid, role.kind, text, role.action, literal, sources)
-
     # --- helpers ------------------------------------------------------------------------------
 
-    def _literal(self, literal: Lit) -> Literal:
-        return Literal(self.names[literal[0]], literal[1])
-
-    def _words(self, literals: list[Lit]) -> str:
-        return " and ".join(str(self._literal(lit)) for lit in literals) or "anything"
-
     def _literals(self, mask: int, value: int) -> list[Lit]:
-        return [(i, bool(value >> i & 1)) for i in range(self._n) if mask >> i & 1]
+        return mask_literals(mask, value, self._n)
 
     def _checked_mask(self, state: Seq[bool], source: str) -> int:
         if len(state) != self._n:
@@ -837,64 +517,6 @@ class Learner:
 
     def _state(self, mask: int) -> State:
         return mask_state(mask, self._n)
-
-
-def _uids(node: Node) -> set[int]:
-    return {n.uid for n in walk(node)}
-
-
-class _Columns:
-    """The labelled situations by column, for building exceptions fast: per condition, a big
-    int whose bit j says whether it holds in situation j; per answer, which situations allow
-    it. Separating a state from every situation that does not allow its answer is then a few
-    popcounts per literal instead of a pass over all situations."""
-
-    def __init__(self, width: int):
-        self.width = width
-        self.position: dict[int, int] = {}
-        self.holds = [0] * width
-        self.allows: dict[Answer, int] = {}
-        self.everything = 0
-
-    def add(self, mask: int, allowed: frozenset[Answer]) -> None:
-        bit = 1 << len(self.position)
-        self.position[mask] = len(self.position)
-        self.everything |= bit
-        for index in range(self.width):
-            if mask >> index & 1:
-                self.holds[index] |= bit
-        for answer in allowed:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def relabel(self, mask: int, old: frozenset[Answer], new: frozenset[Answer]) -> None:
-        bit = 1 << self.position[mask]
-        for answer in old:
-            self.allows[answer] &= ~bit
-        for answer in new:
-            self.allows[answer] = self.allows.get(answer, 0) | bit
-
-    def firing(self, mask: int, value: int) -> int:
-        """The situations in which the conditions of ``mask`` have the values of ``value``."""
-        result = self.everything
-        for index in range(self.width):
-            if mask >> index & 1:
-                result &= self.holds[index] if value >> index & 1 else ~self.holds[index]
-        return result & self.everything
-
-    def separate(self, mask: int, answer: Answer, chosen: int) -> int:
-        """``chosen`` plus the fewest further conditions (greedily, most separating first) on
-        which ``mask`` differs from every situation that does not allow ``answer``."""
-        differs = [self.holds[i] if not mask >> i & 1 else self.everything & ~self.holds[i]
-                   for i in range(self.width)]
-        left = self.everything & ~self.allows.get(answer, 0)
-        for index in range(self.width):
-            if chosen >> index & 1:
-                left &= ~differs[index]
-        while left:
-            best = max(range(self.width), key=lambda i: ((left & differs[i]).bit_count(), -i))
-            chosen |= 1 << best
-            left &= ~differs[best]
-        return chosen
 
 
 def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Learner:

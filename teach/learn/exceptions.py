@@ -1,0 +1,57 @@
+"""The learner's exception rules: where the plan does not do a labelled situation's label, a rule
+in front of it checks the fewest literals of that state that hold in no situation labelled
+otherwise (and, for an action, a violated goal literal, so a rule never fires where the goal
+holds), then does the label.
+
+Kept apart from ``teach.learn.learner``: a rule is a pure function of one situation, the goal,
+the model and the situations' column index (``teach.learn.labels.Columns``), which makes
+choosing its literals a few popcounts; the learner decides when rules are built.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from teach.bt.nodes import Action, Node, Sequence
+from teach.learn.action_model import ActionModel
+from teach.learn.backchain import literal_node
+from teach.learn.bits import mask_literals
+from teach.learn.goal import GoalLearner
+from teach.learn.labels import Answer, Columns
+
+
+@dataclass
+class ExceptionRule:
+    """Do ``answer`` where the conditions of ``mask`` have the values of ``value`` (``node``, the
+    rule as a tree); ``source``: the situation it was built for."""
+
+    mask: int
+    value: int
+    answer: Answer
+    source: str
+    node: Node
+
+
+def exception_rule(mask: int, answer: Answer, source: str, columns: Columns, names: tuple[str, ...],
+                   goal: GoalLearner, model: ActionModel, safe: bool) -> ExceptionRule:
+    """The rule for the situation ``mask``, labelled ``answer`` at ``source``. The safe learner's
+    rule also checks the goal's required literals (for "done") or the action's required
+    preconditions: a rule never licenses an action where a required precondition is false."""
+    chosen = 0
+    if answer is None:
+        for index, _value in (goal.required() if safe else goal.cover):
+            chosen |= 1 << index
+    else:
+        violated = next(((i, v) for i, v in goal.cover if bool(mask >> i & 1) != v), None)
+        if violated is not None:
+            chosen |= 1 << violated[0]
+        if safe:
+            need_pos, need_neg = model[answer].required
+            chosen |= need_pos | need_neg
+    chosen = columns.separate(mask, answer, chosen)
+    value = mask & chosen
+    leaves = [literal_node(names, lit) for lit in mask_literals(chosen, value, len(names))]
+    if answer is not None:
+        leaves.append(Action(answer))
+    node = leaves[0] if len(leaves) == 1 else Sequence(tuple(leaves))
+    return ExceptionRule(chosen, value, answer, source, node)
