@@ -263,12 +263,12 @@ class PhraseBook:
         self._longest = max((len(key) for key in self._entries), default=1)
         self._ranking: tuple[str | None, list[tuple[float, _Entry]]] = (None, [])
 
-
     @property
-    def words(self) -> tuple[str, ...]:
-        """Every word of the action and event phrases (both languages), sorted: what a typo of a
-        command is weighed against, so "tke the tray" is not read as a command."""
-        return tuple(sorted({*self._vocabulary["action"], *self._vocabulary["event"]}))
+    def words(self) -> frozenset[str]:
+        """Every word of the action and event phrases (both languages): what a typo of a command
+        is weighed against, so "tke the tray" is not read as a command."""
+        return frozenset((*self._vocabulary["action"], *self._vocabulary["event"]))
+
     def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...]) -> None:
         spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", name)  # FindBall → "Find Ball"
         for lang, phrases in ((Lang.EN, english), (Lang.DE, german)):

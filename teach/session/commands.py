@@ -154,7 +154,8 @@ TYPO_CUTOFF = 0.6
 and "yse" (0.75, 0.67) are, "rum" for "run" too; two words that close are not guessed between."""
 
 
-def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (), rivals: Iterable[str] = ()) -> str | None:
+def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (),
+                    rivals: frozenset[str] = frozenset()) -> str | None:
     """The line with its first word read as the word of ``lang`` (a command's, or one of
     ``answers`` while a question is open) it is a typo of — "hlep" gives "help", "sohw full"
     gives "show full" — or None where no word is close, two are about as close, the first word
@@ -166,7 +167,6 @@ def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (), rivals: 
     known = {word for command in COMMANDS for word in (command.value.de if lang == Lang.DE else command.value.en)
              if " " not in word and len(word) >= 3}
     known.update(answers)
-    rivals = set(rivals)
     if typed in known or typed in rivals:  # a word it knows is no typo ("yes xyzzy" is not "yes" misspelt)
         return None
     scored = sorted(((difflib.SequenceMatcher(None, typed, word).ratio(), word) for word in known), reverse=True)

@@ -183,20 +183,18 @@ class SessionManager(CompatMembers):
         suggestion, self.suggestion = self.suggestion, None
         retype, self.retype = self.retype, None
         asking = self.mode is Mode.ASKING
+        confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
             if retype is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
             else:
-                if retype is not None and is_yes(line, self.lang):
-                    line = retype  # what the yes confirmed; it is not read as a typo again
-                    retype = ""
-                replies = self._dispatch(line, suggestion)
+                replies = self._dispatch(retype if confirmed and retype is not None else line, suggestion)
         except UnknownPhrase as unknown:
             # during a situation question only a guessed action is kept: confirming it answers the question
             keep = not asking or (self.pending is not None and unknown.suggestion is not None
                                   and unknown.suggestion.candidate.kind == "action")
             self.suggestion = unknown.suggestion if keep else None
-            if not unknown.suggestions and retype != "" and _first_word(unknown.text) == _first_word(line):
+            if not unknown.suggestions and not confirmed and _first_word(unknown.text) == _first_word(line):
                 # nothing close, and the line's first word is what was not understood: perhaps a
                 # command or an answer word was meant ("hlep"; not "find the ball, xyzzy")
                 self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)

@@ -61,7 +61,7 @@ class Settings:
         if not SESSION_NAME.match(self.session):
             raise TeachError(f"session name {self.session!r} must be letters, digits, '-' and '_' "
                              "(it names folders under demos/ and trees/)")
+        object.__setattr__(self, "lang", Lang.parse(self.lang))  # a plain "de" from unchecked code too
         if self.questions < 0:
             raise TeachError("--questions must be 0 or more")
         object.__setattr__(self, "world", WorldKind.parse(self.world))
-        object.__setattr__(self, "lang", Lang.parse(self.lang))  # a plain "de" from unchecked code too
