@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NoReturn
@@ -56,6 +57,8 @@ class ConditionDef:
     de: str = ""
     en_false: str = ""
     de_false: str = ""
+    form: tuple[str, ...] = ()
+    """Optional ``(predicate, object, ...)``, e.g. ``("on", "a", "b")``: see ``teach.learn.lifting``."""
 
     def label(self, lang: str = "en", value: bool = True) -> str:
         if not value:
@@ -75,6 +78,9 @@ class ActionDef:
     de: tuple[str, ...] = ()
     pre: tuple[Literal, ...] = ()
     ram: tuple[Literal, ...] = ()
+    form: tuple[str, ...] = ()
+    """Optional ``(kind, object, ...)``, e.g. ``("unstack", "a", "b")``: an instance of a parameterised
+    action; instances of one kind share what is learned about them (``teach.learn.lifting``)."""
 
     def label(self, lang: str = "en") -> str:
         phrases = self.de if lang == "de" else self.en
@@ -157,8 +163,8 @@ def check_tree_fits(domain: Domain, conditions: set[str], actions: set[str], pat
 
 _KEYS = {
     "": ("name", "goal", "condition", "action"),
-    "condition": ("name", "en", "de", "en_false", "de_false"),
-    "action": ("id", "name", "en", "de", "pre", "ram"),
+    "condition": ("name", "en", "de", "en_false", "de_false", "form"),
+    "action": ("id", "name", "en", "de", "pre", "ram", "form"),
 }
 """The keys each part of a domain file may hold: any other is a typo that would be ignored."""
 
@@ -268,6 +274,7 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
 
     conditions: list[ConditionDef] = []
     cond_names: set[str] = set()
+    forms: dict[tuple[str, ...], str] = {}
     for i, raw in enumerate(raw_conditions):
         line = cond_lines[i] if i < len(cond_lines) else None
         if not isinstance(raw, dict):
@@ -284,7 +291,9 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
             fail(f"condition {cname}: 'en', 'de', 'en_false' and 'de_false' must be strings", line)
         if any(len(label) > limits.MAX_LABEL_CHARS for label in labels):
             fail(f"condition {cname}: a label is longer than {limits.MAX_LABEL_CHARS} characters", line)
-        conditions.append(ConditionDef(cname, *labels))
+        en, de, en_false, de_false = labels
+        form = _form(raw, f"condition {cname}", forms, fail, lines.key("form", line))
+        conditions.append(ConditionDef(cname, en, de, en_false, de_false, form))
         cond_names.add(cname)
 
     def literals(raw: object, what: str, line: int | None) -> tuple[Literal, ...]:
@@ -339,12 +348,36 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
             phrases[lang] = tuple(value)
         pre = literals(raw.get("pre", []), f"action {aname}: 'pre'", line)
         ram = literals(raw.get("ram", []), f"action {aname}: 'ram'", line)
-        actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram))  # type: ignore[arg-type]
+        form = _form(raw, f"action {aname}", forms, fail, lines.key("form", line))
+        actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram, form))  # type: ignore[arg-type]
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 
     goal = literals(data.get("goal", []), "'goal'", lines.key("goal", None))
     return Domain(name, tuple(conditions), tuple(actions), goal, path)
+
+
+MAX_FORM_OBJECTS = 8
+"""Objects a condition's or an action's ``form`` may name."""
+
+
+def _form(raw: dict, what: str, seen: dict[tuple[str, ...], str], fail: Callable[[str, int | None], NoReturn],
+          line: int | None) -> tuple[str, ...]:
+    """The optional ``form = ["kind", "object", ...]`` of a condition or action, checked: identifiers,
+    at most ``MAX_FORM_OBJECTS`` objects, no two conditions (or two actions) of the same form."""
+    value = raw.get("form")
+    if value is None:
+        return ()
+    if (not isinstance(value, list) or not value or len(value) > MAX_FORM_OBJECTS + 1
+            or not all(isinstance(part, str) and _NAME.match(part) for part in value)):
+        fail(f"{what}: 'form' must be a list of a kind and up to {MAX_FORM_OBJECTS} objects, each an identifier "
+             f"(letters, digits, _), like [\"on\", \"a\", \"b\"]; got {shown(value)}", line)
+    form = tuple(value)
+    key = (what.split(" ")[0], *form)
+    if key in seen:
+        fail(f"{what} has the same 'form' as {seen[key]}", line)
+    seen[key] = what
+    return form
 
 
 def find_domain_file(folder: str | Path) -> Path:

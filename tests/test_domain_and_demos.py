@@ -96,9 +96,9 @@ def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
 
 @pytest.mark.parametrize("body, line, message", [
     (TINY.replace('pre = ["Ready"]', 'prex = ["Ready"]'), 13,
-     "unknown key 'prex' in [[action]] (allowed: id, name, en, de, pre, ram)"),
+     "unknown key 'prex' in [[action]] (allowed: id, name, en, de, pre, ram, form)"),
     (TINY.replace('name = "Done"', 'name = "Done"\nlabel = "x"'), 9,
-     "unknown key 'label' in [[condition]] (allowed: name, en, de, en_false, de_false)"),
+     "unknown key 'label' in [[condition]] (allowed: name, en, de, en_false, de_false, form)"),
     ("goals = []\n" + TINY, 1, "unknown key 'goals' at the top level (allowed: name, goal, condition, action)"),
     (TINY + "\n[meta]\nx = 1\n", 16, "unknown key 'meta' at the top level"),
     (TINY.replace("id = 1", "id = " + "9" * 5000), 11, "a number with more than 4300 digits"),

@@ -32,8 +32,14 @@ def phrase(atom: str) -> str:
     return atom.strip("()").replace("-", " ")
 
 
-def load(name: str) -> Task:
-    """The instance ``pddl/<name>-problem.pddl`` of ``pddl/<name>-domain.pddl``."""
+def form(atom: str) -> tuple[str, ...]:
+    """``(pick-up a)`` -> ``("pick_up", "a")``: the predicate or action and its objects."""
+    return tuple(identifier(part) for part in atom.strip("()").split())
+
+
+def load(name: str, lifted: bool = True) -> Task:
+    """The instance ``pddl/<name>-problem.pddl`` of ``pddl/<name>-domain.pddl``; ``lifted``: the
+    learner's domain declares each fact's and operator's form (predicate and objects), as PDDL does."""
     parser = Parser(str(PDDL / f"{name}-domain.pddl"), str(PDDL / f"{name}-problem.pddl"))
     grounded = ground(parser.parse_problem(parser.parse_domain()))
     facts = sorted(grounded.facts)
@@ -53,4 +59,5 @@ def load(name: str) -> Task:
     names = {identifier(a): phrase(a) for a in (*facts, *(o.name for o in operators))}
     if len(set(names)) != len(facts) + len(operators):
         raise ValueError(f"{name}: two facts or operators get the same identifier")
-    return Task(name, learner_domain(name, model, names), model, (mask(grounded.initial_state),))
+    forms = {identifier(a): form(a) for a in (*facts, *(o.name for o in operators))} if lifted else None
+    return Task(name, learner_domain(name, model, names, forms), model, (mask(grounded.initial_state),))

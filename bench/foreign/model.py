@@ -146,9 +146,13 @@ def _distances(model: Model, roots: tuple[int, ...]) -> dict[int, int]:
     return distance
 
 
-def learner_domain(name: str, model: Model, phrases: dict[str, str]) -> Domain:
-    """The domain as the learner sees it: one condition per fact, one action per operator, no model, no goal."""
-    conditions = tuple(ConditionDef(c, phrases.get(c, c)) for c in model.conditions)
-    actions = tuple(ActionDef(i + 1, o.name, (phrases.get(o.name, o.name),)) for i, o in enumerate(model.operators))
+def learner_domain(name: str, model: Model, phrases: dict[str, str],
+                   forms: dict[str, tuple[str, ...]] | None = None) -> Domain:
+    """The domain as the learner sees it: one condition per fact, one action per operator, no model, no
+    goal; ``forms``: each one's predicate or kind and objects, where the domain has them (PDDL)."""
+    forms = forms or {}
+    conditions = tuple(ConditionDef(c, phrases.get(c, c), form=forms.get(c, ())) for c in model.conditions)
+    actions = tuple(ActionDef(i + 1, o.name, (phrases.get(o.name, o.name),), form=forms.get(o.name, ()))
+                    for i, o in enumerate(model.operators))
     return Domain(name, conditions, actions)
 

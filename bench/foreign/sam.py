@@ -10,7 +10,12 @@
   ``Sequence(goal literals...)`` that returns SUCCESS. So an action runs only where all its
   SAM preconditions hold, and "done" only where the whole SAM goal holds.
 
-Never demonstrated actions are never used. Online: ``update`` after each demonstration.
+Where the domain declares forms (``teach.learn.lifting``), it is lifted SAM: a transition of one
+instance is, renamed, one of each sibling, and only conditions about an action's own objects can
+be its preconditions, exactly as the default learner reads such a domain.
+
+Never demonstrated actions (nor their siblings) are never used. Online: ``update`` after each
+demonstration.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence
 from teach.demos import Demonstration
 from teach.domain import Domain
 from teach.learn.bits import state_mask
+from teach.learn.lifting import lifting_of
 
 MAX_RULES = 400
 """Regressed conditions kept (breadth-first, so the nearest to the goal): bounds the tree's size."""
@@ -42,6 +48,7 @@ class SamLearner:
         self._n = len(domain.conditions)
         self._full = (1 << self._n) - 1
         self.known: dict[str, _Known] = {}
+        self._lifting = lifting_of(domain)
         self.goal: tuple[int, int] | None = None
         self._tree: Node | None = None
 
@@ -58,17 +65,23 @@ class SamLearner:
             if step.action < 0:
                 continue
             name = self.domain.action(step.action).name
-            known = self.known.get(name)
-            if known is None:
-                known = self.known[name] = _Known(mask, ~mask & self._full)
-            known.pre_true &= mask
-            known.pre_false &= ~mask
-            if i + 1 < len(steps):
-                after = state_mask(steps[i + 1].state)
-                known.add |= after & ~mask
-                known.delete |= mask & ~after
+            after = state_mask(steps[i + 1].state) if i + 1 < len(steps) else None
+            self._learn(name, mask, after, self._full)
+            for renaming in self._lifting.renamings.get(name, ()) if self._lifting else ():
+                self._learn(renaming.sibling, renaming.mask(mask), None if after is None else renaming.mask(after),
+                            renaming.image)
         self._tree = None
         return self.tree != before
+
+    def _learn(self, name: str, mask: int, after: int | None, known_bits: int) -> None:
+        """One application of ``name`` in ``mask`` (then ``after``), saying nothing outside ``known_bits``."""
+        own = self._lifting.own[name] if self._lifting else self._full
+        known = self.known.setdefault(name, _Known(own, own))
+        known.pre_true &= mask | ~known_bits
+        known.pre_false &= ~mask | ~known_bits
+        if after is not None:
+            known.add |= after & ~mask & known_bits
+            known.delete |= mask & ~after & known_bits
 
     @property
     def tree(self) -> Node:

@@ -25,6 +25,10 @@ Per robot action (external events, -1, belong to nobody and teach no action anyt
   transition replaces them);
 - **ruled out** preconditions: possible ones the teacher said are not needed.
 
+Where the domain declares parameterised actions (``teach.learn.lifting``), each transition is
+also one of every sibling instance, renamed, and an action's bounds hold only conditions about its
+own objects; answers about one instance are answers about its siblings.
+
 The **required** preconditions are the possible ones not ruled out. They are the safe bound
 (SAM): in STRIPS-like worlds every real precondition is among them, so a tree that checks
 all of them before an action never runs it where a real precondition is false. The assumed
@@ -38,6 +42,10 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from teach.learn.lifting import Lifting, Renaming
 
 Lit = tuple[int, bool]
 """A literal: (condition index, value)."""
@@ -66,6 +74,8 @@ class ActionKnowledge:
     name: str
     order: int
     full: int
+    own: int = -1
+    """The conditions that can be preconditions at all (``teach.learn.lifting``; -1: every one)."""
     applied: Evidence = field(default_factory=Evidence)
     transitions: int = 0
     held_true: int = -1
@@ -107,7 +117,7 @@ class ActionKnowledge:
         """The upper bound on preconditions: what held in every application."""
         if not self.applied.count:
             return 0, 0
-        return self.held_true, self.held_false
+        return self.held_true & self.own, self.held_false & self.own
 
     @property
     def required(self) -> tuple[int, int]:
@@ -158,10 +168,15 @@ class ActionKnowledge:
 class ActionModel:
     """The learned model of every action of a domain, updated one transition at a time."""
 
-    def __init__(self, action_names: tuple[str, ...], width: int):
+    def __init__(self, action_names: tuple[str, ...], width: int, lifting: Lifting | None = None):
         self.width = width
         self.full = (1 << width) - 1
         self.actions = {name: ActionKnowledge(name, i, self.full) for i, name in enumerate(action_names)}
+        self._renamings: dict[str, tuple[Renaming, ...]] = {}
+        if lifting is not None:
+            self._renamings = lifting.renamings
+            for name, own in lifting.own.items():
+                self.actions[name].own = own
 
     def __getitem__(self, name: str) -> ActionKnowledge:
         return self.actions[name]
@@ -169,10 +184,18 @@ class ActionModel:
     def applied(self, name: str, before: int, source: str, previous: tuple[int, int] | None = None) -> None:
         """The action was chosen in ``before`` (demonstrated or answered); ``previous``: the
         literals (made true, made false) the robot action right before it changed, if any."""
-        knowledge = self.actions[name]
+        self._applied(self.actions[name], before, self.full, source, previous)
+        for renaming in self._renamings.get(name, ()):
+            renamed = (renaming.mask(previous[0]), renaming.mask(previous[1])) if previous is not None else None
+            self._applied(self.actions[renaming.sibling], renaming.mask(before), renaming.image,
+                          f"{source} as {name}", renamed)
+
+    def _applied(self, knowledge: ActionKnowledge, before: int, known: int, source: str,
+                 previous: tuple[int, int] | None) -> None:
+        """``applied`` for one action, saying nothing about the conditions outside ``known``."""
         knowledge.applied.add(source)
-        knowledge.held_true &= before
-        knowledge.held_false &= ~before & self.full
+        knowledge.held_true &= before | ~known
+        knowledge.held_false &= ~before & self.full | ~known
         if previous is not None:
             knowledge.followed += 1
             knowledge.enabled_true &= previous[0]
@@ -180,9 +203,14 @@ class ActionModel:
 
     def observed(self, name: str, before: int, after: int, source: str) -> None:
         """One transition (before, action, after); ``applied`` must have been called for it."""
-        knowledge = self.actions[name]
+        self._observed(self.actions[name], before, after, self.full, source)
+        for renaming in self._renamings.get(name, ()):
+            self._observed(self.actions[renaming.sibling], renaming.mask(before), renaming.mask(after),
+                           renaming.image, f"{source} as {name}")
+
+    def _observed(self, knowledge: ActionKnowledge, before: int, after: int, known: int, source: str) -> None:
         knowledge.transitions += 1
-        changed = before ^ after
+        changed = (before ^ after) & known
         knowledge.became_true |= changed & after
         knowledge.became_false |= changed & ~after & self.full
         for index in range(self.width):
@@ -191,15 +219,25 @@ class ActionModel:
                 knowledge.made.setdefault(literal, Evidence()).add(source)
 
     def confirm(self, name: str, literal: Lit, source: str) -> None:
-        """Keep ``literal`` as a precondition of ``name`` from now on (it had to be added back)."""
-        self.actions[name].confirmed.setdefault(literal, source)
+        """Keep ``literal`` as a precondition of ``name`` (and its siblings) from now on (it had to be added back)."""
+        for knowledge, renamed in self._with_siblings(name, literal):
+            knowledge.confirmed.setdefault(renamed, source)
 
     def rule_out(self, name: str, literal: Lit, source: str) -> None:
-        """The teacher said ``literal`` is not needed before ``name``."""
-        knowledge = self.actions[name]
-        knowledge.ruled_out.setdefault(literal, source)
-        knowledge.confirmed.pop(literal, None)
-        knowledge.maintained.pop(literal, None)
+        """The teacher said ``literal`` is not needed before ``name`` (nor, renamed, before its siblings)."""
+        for knowledge, renamed in self._with_siblings(name, literal):
+            knowledge.ruled_out.setdefault(renamed, source)
+            knowledge.confirmed.pop(renamed, None)
+            knowledge.maintained.pop(renamed, None)
+
+    def _with_siblings(self, name: str, literal: Lit) -> list[tuple[ActionKnowledge, Lit]]:
+        """``name`` with ``literal``, and each sibling with ``literal`` renamed (where it has a name there)."""
+        found = [(self.actions[name], literal)]
+        for renaming in self._renamings.get(name, ()):
+            renamed = renaming.literal(literal)
+            if renamed is not None:
+                found.append((self.actions[renaming.sibling], renamed))
+        return found
 
     def guess(self, name: str, literal: Lit, source: str) -> None:
         """An effect inferred from an answer (see ``Learner.teach_step``); transitions of the

@@ -51,9 +51,10 @@ from teach.learn.explain import Explanation, explain_node
 from teach.learn.goal import GoalLearner
 from teach.learn.invariants import Invariants
 from teach.learn.labels import Answer, Conflict, Labels, Situation
+from teach.learn.lifting import lifting_of
 from teach.learn.plan_view import Ranks, goal_bound_plan, plan_view, ruled_out_plan
 from teach.learn.refusals import Refusals
-from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, rule_nodes, with_rules
+from teach.learn.regress import SMALL_DOMAIN, PlanWithRules, goal_node, rule_nodes, with_rules
 from teach.learn.repair import FAILED, PlanTrials, Restored, repair_model
 
 EITHER = "<either>"
@@ -97,7 +98,7 @@ class Learner:
         self.names = domain.condition_names
         self._n = len(self.names)
         self._full = (1 << self._n) - 1
-        self.model = ActionModel(domain.action_names, self._n)
+        self.model = ActionModel(domain.action_names, self._n, lifting_of(domain))
         self.goal = GoalLearner(self._n, [(self.names.index(lit.name), lit.value) for lit in domain.goal])
         self.safe = safe
         self._restored = Restored()
@@ -498,7 +499,12 @@ class Learner:
         if not isinstance(both, PlanWithRules) or not both.rules:
             return self._plan
         if both.node is None:
-            both.node = Fallback((self._plan, *rule_nodes(both.rules, self.names, self._roles)))
+            rules = rule_nodes(both.rules, self.names, self._roles)
+            if both.rules_first:
+                done = goal_node(both.goal, self.names, self._roles)
+                both.node = Fallback((done, *rules, self._plan))
+            else:
+                both.node = Fallback((self._plan, *rules))
             self._roles[both.node.uid] = Role("regression")
         return both.node
 

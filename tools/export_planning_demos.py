@@ -1,0 +1,73 @@
+"""Write one of the safety bench's planning domains as a demonstration set teach reads.
+
+    .venv/bin/python tools/export_planning_demos.py blocksworld demos/blocksworld --demos 2
+
+Writes FOLDER/domain.toml (every fact a condition and every operator an action, each with its
+``form``, and the true model as ``pre``/``ram``; no goal, so it is learned) and FOLDER/two/
+(or the count given) with the optimal plans from random reachable starts as CSV files. The
+learner reads neither ``pre`` nor ``ram``; tests judge its tree against them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "bench"))
+sys.path.insert(0, str(ROOT))
+
+from foreign import ipc  # noqa: E402
+from foreign.model import Task  # noqa: E402
+from foreign.teaching import demonstration  # noqa: E402
+
+from teach.demos import write_demonstration  # noqa: E402
+
+COUNT_WORDS = {1: "one", 2: "two", 3: "three", 5: "five", 20: "twenty"}
+
+
+def domain_toml(task: Task) -> str:
+    model, domain = task.model, task.domain
+
+    def strings(values: list[str] | tuple[str, ...]) -> str:
+        return "[" + ", ".join(f'"{v}"' for v in values) + "]"
+
+    def literals(true: int, false: int) -> list[str]:
+        return [name if value else f"!{name}" for name, value in sorted(model.literals(true, false))]
+
+    out = [f"# {task.name}, grounded from bench/foreign/pddl by tools/export_planning_demos.py.",
+           f'name = "{task.name}"', ""]
+    for condition in domain.conditions:
+        out += ["[[condition]]", f'name = "{condition.name}"', f'en = "{condition.en}"',
+                f"form = {strings(condition.form)}", ""]
+    for action in domain.actions:
+        operator = model.by_name[action.name]
+        out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"', f"en = {strings(action.en)}",
+                f"form = {strings(action.form)}", f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
+                f"ram = {strings(literals(operator.add, operator.delete))}", ""]
+    return "\n".join(out)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("domain", choices=ipc.DOMAINS)
+    parser.add_argument("folder", type=Path)
+    parser.add_argument("--demos", type=int, default=2, help="how many demonstrations (default 2)")
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args(argv)
+    task = ipc.load(args.domain)
+    args.folder.mkdir(parents=True, exist_ok=True)
+    (args.folder / "domain.toml").write_text(domain_toml(task))
+    demos = args.folder / COUNT_WORDS.get(args.demos, str(args.demos))
+    demos.mkdir(exist_ok=True)
+    starts = task.starts()
+    random.Random(args.seed).shuffle(starts)
+    for i, start in enumerate(starts[:args.demos]):
+        write_demonstration(demos / f"d{i + 1:02d}.csv", demonstration(task, start, f"d{i + 1:02d}"))
+    print(f"{args.folder}/domain.toml and {args.demos} demonstrations in {demos}")
+
+
+if __name__ == "__main__":
+    main()
