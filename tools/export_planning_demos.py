@@ -24,8 +24,18 @@ from foreign.model import Task  # noqa: E402
 from foreign.teaching import demonstration  # noqa: E402
 
 from teach.demos import write_demonstration  # noqa: E402
+from teach.dialogue.phrases import phrase_key  # noqa: E402
 
 COUNT_WORDS = {1: "one", 2: "two", 3: "three", 5: "five", 20: "twenty"}
+
+
+def action_phrase(form: tuple[str, ...]) -> str:
+    """``("stack", "b", "a")`` -> ``"stack b object a"``: an object a teacher's line would lose as a
+    filler word ("a") is named as an object, so no two actions read the same."""
+    words = [form[0].replace("_", " ")]
+    for thing in form[1:]:
+        words.append(thing if phrase_key(thing) else f"object {thing}")
+    return " ".join(words)
 
 
 def domain_toml(task: Task) -> str:
@@ -44,7 +54,7 @@ def domain_toml(task: Task) -> str:
                 f"form = {strings(condition.form)}", ""]
     for action in domain.actions:
         operator = model.by_name[action.name]
-        out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"', f"en = {strings(action.en)}",
+        out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"', f"en = {strings([action_phrase(action.form)])}",
                 f"form = {strings(action.form)}", f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
                 f"ram = {strings(literals(operator.add, operator.delete))}", ""]
     return "\n".join(out)
