@@ -54,8 +54,9 @@ def domain_toml(task: Task) -> str:
                 f"form = {strings(condition.form)}", ""]
     for action in domain.actions:
         operator = model.by_name[action.name]
-        out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"', f"en = {strings([action_phrase(action.form)])}",
-                f"form = {strings(action.form)}", f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
+        out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"',
+                f"en = {strings([action_phrase(action.form)])}", f"form = {strings(action.form)}",
+                f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
                 f"ram = {strings(literals(operator.add, operator.delete))}", ""]
     return "\n".join(out)
 
