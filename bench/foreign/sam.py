@@ -27,9 +27,7 @@ from teach.demos import Demonstration
 from teach.domain import Domain
 from teach.learn.bits import state_mask
 from teach.learn.lifting import lifting_of
-
-MAX_RULES = 400
-"""Regressed conditions kept (breadth-first, so the nearest to the goal): bounds the tree's size."""
+from teach.learn.regress import MAX_RULE_NODES
 
 
 @dataclass
@@ -97,7 +95,8 @@ class SamLearner:
         kept = [self.goal]
         frontier = [self.goal]
         order = [a.name for a in self.domain.actions if a.name in self.known]
-        while frontier and len(found) < MAX_RULES:
+        nodes = 0
+        while frontier:
             reached: list[tuple[int, int]] = []
             for true, false in frontier:
                 for name in order:
@@ -108,11 +107,12 @@ class SamLearner:
                     need_false = (false & ~k.delete) | k.pre_false
                     if need_true & need_false or any(t & ~need_true == 0 and f & ~need_false == 0 for t, f in kept):
                         continue
+                    nodes += (need_true | need_false).bit_count() + 2
+                    if nodes > MAX_RULE_NODES:  # the learner's budget (teach.learn.regress)
+                        return found
                     kept.append((need_true, need_false))
                     reached.append((need_true, need_false))
                     found.append((need_true, need_false, name))
-                    if len(found) == MAX_RULES:
-                        return found
             frontier = reached
         return found
 

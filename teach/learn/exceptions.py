@@ -33,10 +33,13 @@ class ExceptionRule:
 
 
 def exception_rule(mask: int, answer: Answer, source: str, columns: Columns, names: tuple[str, ...],
-                   goal: GoalLearner, model: ActionModel, safe: bool) -> ExceptionRule:
+                   goal: GoalLearner, model: ActionModel, safe: bool, exact: bool = False) -> ExceptionRule:
     """The rule for the situation ``mask``, labelled ``answer`` at ``source``. The safe learner's
     rule also checks the goal's required literals (for "done") or the action's required
-    preconditions: a rule never licenses an action where a required precondition is false."""
+    preconditions: a rule never licenses an action where a required precondition is false.
+    ``exact``: it tests every condition, so it fires in that state only."""
+    if exact:
+        return _rule((1 << len(names)) - 1, mask, answer, source, names)
     chosen = 0
     if answer is None:
         for index, _value in (goal.required() if safe else goal.cover):
@@ -48,7 +51,10 @@ def exception_rule(mask: int, answer: Answer, source: str, columns: Columns, nam
         if safe:
             need_pos, need_neg = model[answer].required
             chosen |= need_pos | need_neg
-    chosen = columns.separate(mask, answer, chosen)
+    return _rule(columns.separate(mask, answer, chosen), mask, answer, source, names)
+
+
+def _rule(chosen: int, mask: int, answer: Answer, source: str, names: tuple[str, ...]) -> ExceptionRule:
     value = mask & chosen
     leaves = [literal_node(names, lit) for lit in mask_literals(chosen, value, len(names))]
     if answer is not None:

@@ -374,8 +374,9 @@ class Learner:
     def plan_if_ruled_out(self, out: Mapping[str | None, Collection[Lit]]) -> CompiledTree | None:
         """The safe plan as it would be if the literals ``out[action]`` were ruled out for each action
         (None: for the goal), the rest of the model as it is: what the robot would do after those
-        yeses (``teach.learn.safe_inquiry`` predicts answers by it). Without the regressed rules,
-        which only act where the plan does nothing and cost most of a replan."""
+        yeses (``teach.learn.safe_inquiry`` predicts answers by it, in domains small enough for the
+        rules to act only where the plan does nothing). Without the regressed rules, which cost most
+        of a replan."""
         return ruled_out_plan(self._current_view(), out, self.names)
 
     def _current_view(self) -> PlanView:
@@ -474,8 +475,13 @@ class Learner:
             self._tree = None
 
     def _exception(self, mask: int, situation: Situation) -> ExceptionRule:
+        """Where the regressed rules are complete they already act wherever the model knows a way, so
+        an exception only makes the tree do what the teacher did in that very state (it tests every
+        condition): a more general one would override the rules in states nobody showed, where it
+        can lead round in circles (logistics: 13% of runs after 2 demonstrations)."""
+        exact = isinstance(self._compiled, PlanWithRules) and self._compiled.complete
         return exception_rule(mask, situation.answer, situation.sources[-1], self._labels.columns, self.names,
-                              self.goal, self.model, self.safe)
+                              self.goal, self.model, self.safe, exact)
 
     def _assemble(self) -> Node:
         kids = [e.node for e in self._exceptions]
@@ -502,7 +508,7 @@ class Learner:
             rules = rule_nodes(both.rules, self.names, self._roles)
             if both.rules_first:
                 done = goal_node(both.goal, self.names, self._roles)
-                both.node = Fallback((done, *rules, self._plan))
+                both.node = Fallback((done, *rules) if both.complete else (done, *rules, self._plan))
             else:
                 both.node = Fallback((self._plan, *rules))
             self._roles[both.node.uid] = Role("regression")

@@ -10,12 +10,14 @@ holds, so the rules are exactly as safe as the plan; nearest the goal come first
 
 In a small domain (every state can be tried) the plan comes first and only the rules that fire
 where it finds no action are kept: the tree reads as the thesis's PA-BT with its gaps filled.
-In a larger one the rules come first (after a check that the goal holds) and the plan only where
-no rule fires: the nearest-the-goal rule that fires leads, in the learned model, to a state where
-a rule nearer the goal fires, so the robot never goes round in circles there, which achieving
-goal literals one at a time does where they interact (planning domains declared with forms,
-``teach.learn.lifting``: 24% of blocksworld runs looped with the plan first, none with the rules
-first).
+In a larger one the rules come first (after a check that the goal holds): the nearest-the-goal
+rule that fires leads, in the learned model, to a state where a rule nearer the goal fires, so
+the robot never goes round in circles there, which achieving goal literals one at a time does
+where they interact (planning domains declared with forms, ``teach.learn.lifting``: 24% of
+blocksworld runs looped with the plan first, none with the rules first). Where the regression
+found every condition, no other way to the goal exists in the learned model, so nothing follows
+the rules (FAILURE: the robot stops and asks); where ``MAX_RULE_NODES`` cut it short, the plan
+follows them.
 
 A pure function of the ``PlanView``, like the plan. The rules are evaluated by bitmask tests
 (``PlanWithRules``) and become nodes only when the tree is assembled.
@@ -31,8 +33,11 @@ from teach.learn.action_model import Lit, literal_masks
 from teach.learn.backchain import PlanView, Role, literal_node
 from teach.learn.bits import mask_state, state_mask
 
-MAX_RULES = 400
-"""Regressed rules kept (breadth-first, the nearest the goal first): bounds the tree's size."""
+MAX_RULE_NODES = 12_000
+"""Nodes the regressed rules may add to the tree (each rule: its literals, its action and a
+Sequence; breadth-first, the nearest the goal first): bounds the tree's size well inside what a
+tree file may hold (``teach.limits.MAX_TREE_NODES``) and a replan's time (1,000 rules of a
+logistics instance take about 0.2 s)."""
 
 
 @dataclass(frozen=True)
@@ -58,11 +63,12 @@ class _Step:
 
 
 def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tuple[Lit, ...]], ...],
-                     achievers: tuple[tuple[Lit, tuple[str, ...]], ...]) -> list[Rule]:
+                     achievers: tuple[tuple[Lit, tuple[str, ...]], ...]) -> tuple[list[Rule], bool]:
     """The goal regressed breadth-first through every action with effects (a ``PlanView``'s
-    fields), skipping conditions no weaker than one found before."""
+    fields), skipping conditions no weaker than one found before; and whether that is all of
+    them (False: ``MAX_RULE_NODES`` cut the regression short)."""
     if not goal:
-        return []
+        return [], True
     effects: dict[str, list[int]] = {}
     for (index, value), names in achievers:
         for name in names:
@@ -73,7 +79,8 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
     kept = [start]
     frontier = [start]
     found: list[Rule] = []
-    while frontier and len(found) < MAX_RULES:
+    nodes = 0
+    while frontier:
         reached: list[tuple[int, int]] = []
         for true, false in frontier:
             for step in steps:
@@ -87,12 +94,13 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
                 kept.append((need_true, need_false))
                 reached.append((need_true, need_false))
                 index = (useful & -useful).bit_length() - 1
+                nodes += (need_true | need_false).bit_count() + 2
+                if nodes > MAX_RULE_NODES:
+                    return found, False
                 found.append(Rule(need_true, need_false, step.name, (index, bool((step.add & true) >> index & 1)),
                                   frozenset(step.pre)))
-                if len(found) == MAX_RULES:
-                    return found
         frontier = reached
-    return found
+    return found, True
 
 
 SMALL_DOMAIN = 12
@@ -105,11 +113,15 @@ class PlanWithRules:
     compiled code (a domain of 20 conditions has up to 400 rules of 20 literals: compiling them on
     every replan cost 0.5 s)."""
 
-    def __init__(self, plan: CompiledTree, rules: list[Rule], goal: tuple[Lit, ...] = (), rules_first: bool = False):
+    def __init__(self, plan: CompiledTree, rules: list[Rule], goal: tuple[Lit, ...] = (), rules_first: bool = False,
+                 complete: bool = False):
         self.plan = plan
         self.rules = rules
         self.goal = goal
         self.rules_first = rules_first
+        self.complete = rules_first and complete
+        """Rules first, and they are every regressed condition: where none fires the learned model
+        has no way to the goal, so the plan is not tried there (it could only go round in circles)."""
         self._goal_true, self._goal_false = literal_masks(goal)
         self.node: Node | None = None
         """The regression node (plan and rules in their order), once the tree was assembled."""
@@ -122,7 +134,7 @@ class PlanWithRules:
             rule = self.first(mask)
             if rule is not None:
                 return Status.RUNNING, rule.action
-            return self.plan(state)
+            return (Status.FAILURE, None) if self.complete else self.plan(state)
         status, action = self.plan(state)
         if status is not Status.FAILURE:
             return status, action
@@ -140,9 +152,9 @@ def with_rules(view: PlanView, plan: CompiledTree, width: int) -> PlanWithRules:
     """The plan followed by the view's regressed rules; in a small domain only those that fire in
     some state where the plan does not act (a rule that never fires would only be read: "if …,
     I …" where I never do); in a larger one the rules first (module docstring)."""
-    rules = regression_rules(view.goal, view.preconditions, view.achievers)
+    rules, complete = regression_rules(view.goal, view.preconditions, view.achievers)
     if width > SMALL_DOMAIN:
-        return PlanWithRules(plan, rules, view.goal, rules_first=bool(rules))
+        return PlanWithRules(plan, rules, view.goal, rules_first=bool(rules), complete=complete)
     both = PlanWithRules(plan, rules)
     used = {id(rule) for rule in (both.first(mask) for mask in range(1 << width)
                                   if plan(mask_state(mask, width))[0] is Status.FAILURE) if rule is not None}
