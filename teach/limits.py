@@ -39,7 +39,9 @@ MAX_SET_LINES = 500_000
 """Lines in all demonstrations of one set together."""
 
 MAX_TREE_BYTES = 5 * MIB
-MAX_TREE_NODES = 20_000
+MAX_TREE_NODES = 50_000
+"""Elements of a tree file: a policy regressed in a planning domain (``teach.learn.regress``) has up to
+20,000 nodes of rules besides its plan and exceptions."""
 MAX_TREE_DEPTH = 200
 
 MAX_DIALOGUE_BYTES = 1 * MIB

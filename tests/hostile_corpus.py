@@ -28,6 +28,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from teach.limits import MAX_TREE_NODES
+
 ROOT = Path(__file__).resolve().parent.parent
 GOOD_DOMAIN = (ROOT / "demos" / "ball" / "domain.toml").read_bytes()
 GOOD_TREE = (ROOT / "demos" / "ball" / "reference" / "colledanchise.xml").read_bytes()
@@ -94,8 +96,8 @@ def trees() -> list[Hostile]:
         "wide-200k-leaves": tree_file("<ReactiveFallback>\n" + "<A/>\n" * 200_000 + "</ReactiveFallback>",
                                       "<Action ID='A'/>"),
         "balanced-depth-16": tree_file(_balanced(16), "<Action ID='A'/>"),
-        "nodes-20001": tree_file("<ReactiveFallback>\n" + "<A/>\n" * 20_001 + "</ReactiveFallback>",
-                                 "<Action ID='A'/>"),
+        f"nodes-{MAX_TREE_NODES + 1}": tree_file("<ReactiveFallback>\n" + "<A/>\n" * (MAX_TREE_NODES + 1)
+                                                 + "</ReactiveFallback>", "<Action ID='A'/>"),
         "binary-1": bytes(rng.randrange(256) for _ in range(4096)),
         "binary-2": b"\x89PNG\r\n\x1a\n" + bytes(rng.randrange(256) for _ in range(512)),
         "binary-3": bytes(range(256)) * 4,

@@ -27,7 +27,7 @@ from teach.demos import Demonstration
 from teach.domain import Domain
 from teach.learn.bits import state_mask
 from teach.learn.lifting import lifting_of
-from teach.learn.regress import MAX_RULE_NODES
+from teach.learn.regress import MAX_RULE_NODES, rule_nodes_count
 
 
 @dataclass
@@ -107,7 +107,7 @@ class SamLearner:
                     need_false = (false & ~k.delete) | k.pre_false
                     if need_true & need_false or any(t & ~need_true == 0 and f & ~need_false == 0 for t, f in kept):
                         continue
-                    nodes += (need_true | need_false).bit_count() + 2
+                    nodes += rule_nodes_count(need_true, need_false)
                     if nodes > MAX_RULE_NODES:  # the learner's budget (teach.learn.regress)
                         return found
                     kept.append((need_true, need_false))
