@@ -353,6 +353,12 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 
+    formed = next((a.name for a in actions if a.form), None)
+    for i, condition in enumerate(conditions):
+        if formed is not None and not condition.form:
+            fail(f"condition {condition.name} has no 'form' but action {formed} has one: give every condition "
+                 f"its form (form = [\"{condition.name}\"] if it is about no object)",
+                 cond_lines[i] if i < len(cond_lines) else None)
     goal = literals(data.get("goal", []), "'goal'", lines.key("goal", None))
     return Domain(name, tuple(conditions), tuple(actions), goal, path)
 

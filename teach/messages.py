@@ -246,6 +246,12 @@ MUST_ACTION_QUESTION = Text("Every time I did “{action}” so far, {held}. If 
                             "(yes, or tell me what to do there)",
                             "Bisher galt jedes Mal, wenn ich „{action}“ getan habe: {held}. Angenommen, {situation}. "
                             "Darf ich es dann trotzdem tun? (ja, oder sag mir, was ich dort tun soll)")
+MUST_KIN_QUESTION = Text("I have not done “{action}” yet, but every time I did a step like it (“{like}”), the same "
+                         "held for its things; for “{action}” that is: {held}. If {situation}, may I do it? (yes, or "
+                         "tell me what to do there)",
+                         "„{action}“ habe ich noch nie getan, aber jedes Mal, wenn ich einen Schritt wie diesen getan "
+                         "habe („{like}“), galt dasselbe für seine Dinge; für „{action}“ heißt das: {held}. "
+                         "Angenommen, {situation}. Darf ich es dann tun? (ja, oder sag mir, was ich dort tun soll)")
 MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situation}, is the task done? "
                           "(yes, or tell me what to do there)",
                           "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "

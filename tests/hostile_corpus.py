@@ -249,6 +249,14 @@ def domains() -> list[Hostile]:
         "pre-table": ('pre = ["Ready"]', "pre = {a = 1}"),
         "pre-too-many": ('pre = ["Ready"]', "pre = [" + ", ".join(['"Ready"'] * 65) + "]"),
         "ram-unknown": ('ram = ["Done"]', 'ram = ["!Nothing"]'),
+        "form-string": ('name = "Work"', 'name = "Work"\nform = "work"'),
+        "form-empty": ('name = "Work"', 'name = "Work"\nform = []'),
+        "form-int": ('name = "Ready"', 'name = "Ready"\nform = ["ready", 1]'),
+        "form-space": ('name = "Ready"', 'name = "Ready"\nform = ["ready", "a b"]'),
+        "form-path": ('name = "Ready"', 'name = "Ready"\nform = ["ready", "../x"]'),
+        "form-too-many-objects": ('name = "Ready"', 'name = "Ready"\nform = [' + ", ".join(['"o"'] * 10) + "]"),
+        "form-table": ('name = "Work"', 'name = "Work"\nform = {kind = "work"}'),
+        "form-action-without-condition-forms": ('name = "Work"', 'name = "Work"\nform = ["work"]'),
         "goal-unknown": ('goal = ["Done"]', 'goal = ["Finished"]'),
         "goal-string": ('goal = ["Done"]', 'goal = "Done"'),
         "goal-nested": ('goal = ["Done"]', 'goal = [["Done"]]'),
@@ -326,6 +334,8 @@ def domains() -> list[Hostile]:
         assert old in TINY, name
         cases[name] = TINY.replace(old, new, 1).encode()
     cases["key-prex-in-ball-domain"] = good.replace("pre = ", "prex = ", 1).encode()
+    cases["form-duplicate-condition"] = TINY.replace('name = "Ready"', 'name = "Ready"\nform = ["s"]').replace(
+        'name = "Done"', 'name = "Done"\nform = ["s"]').encode()
     cases["key-after-separator-lines"] = ("# a\u2028b\u2029c\x85d\n" + TINY.replace('ram = ["Done"]', 'rma = ["Done"]')
                                           ).encode()
     for number, at in enumerate(_opening_quotes(good)[:12]):  # truncated inside a string: never valid TOML

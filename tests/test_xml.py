@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from strategies import trees
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Parallel, Sequence, walk
-from teach.bt.xml import MAX_BYTES, read_tree, tree_from_xml, tree_to_xml, write_tree
+from teach.bt.xml import MAX_BYTES, MAX_NODES, read_tree, tree_from_xml, tree_to_xml, write_tree
 from teach.errors import FormatError
 
 CONDITIONS = ["BallFound", "BallClose", "BallGrasped", "BinClose", "BallPlaced"]
@@ -209,3 +209,12 @@ def test_unreadable_paths_are_format_errors(tmp_path: Path) -> None:
         read_tree(tmp_path / "missing.xml")
     with pytest.raises(FormatError, match="folder"):
         read_tree(tmp_path)
+
+
+def test_a_tree_too_large_to_read_back_is_not_written(tmp_path: Path) -> None:
+    path = tmp_path / "big.xml"
+    with pytest.raises(FormatError, match=f"more than a tree file may hold \\({MAX_NODES} elements"):
+        write_tree(path, Fallback(tuple(Action("A") for _ in range(MAX_NODES))))
+    assert not path.exists()
+    write_tree(path, Fallback(tuple(Action("A") for _ in range(MAX_NODES - 10))))
+    assert path.exists()

@@ -32,16 +32,22 @@ def phrase(atom: str) -> str:
     return atom.strip("()").replace("-", " ")
 
 
-def form(atom: str) -> tuple[str, ...]:
-    """``(pick-up a)`` -> ``("pick_up", "a")``: the predicate or action and its objects."""
-    return tuple(identifier(part) for part in atom.strip("()").split())
+def form(atom: str, constants: frozenset[str] = frozenset()) -> tuple[str, ...]:
+    """``(pick-up a)`` -> ``("pick_up", "a")``: the predicate or action and its objects. A PDDL
+    constant is not a parameter: it goes into the name (``(lit switch)`` -> ``("lit_switch",)``), so
+    a precondition about it stays one of every action's own (``teach.learn.lifting``)."""
+    kind, *objects = atom.strip("()").split()
+    name = "_".join([identifier(kind), *(f"{i}_{identifier(o)}" for i, o in enumerate(objects) if o in constants)])
+    return (name, *(identifier(o) for o in objects if o not in constants))
 
 
 def load(name: str, lifted: bool = True) -> Task:
     """The instance ``pddl/<name>-problem.pddl`` of ``pddl/<name>-domain.pddl``; ``lifted``: the
     learner's domain declares each fact's and operator's form (predicate and objects), as PDDL does."""
     parser = Parser(str(PDDL / f"{name}-domain.pddl"), str(PDDL / f"{name}-problem.pddl"))
-    grounded = ground(parser.parse_problem(parser.parse_domain()))
+    domain = parser.parse_domain()
+    constants = frozenset(domain.constants)
+    grounded = ground(parser.parse_problem(domain))
     facts = sorted(grounded.facts)
     operators = sorted(grounded.operators, key=lambda o: o.name)
     if len(facts) > MAX_FACTS or len(operators) > MAX_OPERATORS:
@@ -59,5 +65,5 @@ def load(name: str, lifted: bool = True) -> Task:
     names = {identifier(a): phrase(a) for a in (*facts, *(o.name for o in operators))}
     if len(set(names)) != len(facts) + len(operators):
         raise ValueError(f"{name}: two facts or operators get the same identifier")
-    forms = {identifier(a): form(a) for a in (*facts, *(o.name for o in operators))} if lifted else None
+    forms = {identifier(a): form(a, constants) for a in (*facts, *(o.name for o in operators))} if lifted else None
     return Task(name, learner_domain(name, model, names, forms), model, (mask(grounded.initial_state),))

@@ -14,7 +14,7 @@ Where the domain declares forms (``teach.learn.lifting``), it is lifted SAM: a t
 instance is, renamed, one of each sibling, and only conditions about an action's own objects can
 be its preconditions, exactly as the default learner reads such a domain.
 
-Never demonstrated actions (nor their siblings) are never used. Online: ``update`` after each
+An action is used only once it, or (with forms) an action of its kind, was demonstrated. Online: ``update`` after each
 demonstration.
 """
 

@@ -99,8 +99,14 @@ def _write_node(node: Node, level: int, lines: list[str], kinds: dict[str, str])
 
 def write_tree(path: str | Path, root: Node, project: str | Path | None = None) -> None:
     """Write a tree file atomically (the text is built completely before anything is written); no
-    folder between ``project`` (default: the working folder) and it may be a symbolic link."""
-    atomic_write_text(path, tree_to_xml(root), project)
+    folder between ``project`` (default: the working folder) and it may be a symbolic link. A tree
+    too large to be read back (``MAX_NODES`` elements, ``MAX_BYTES``) is refused, not written."""
+    text = tree_to_xml(root)
+    elements = text.count("<") - text.count("</") - 1  # less the XML declaration
+    if elements > MAX_NODES or len(text.encode()) > MAX_BYTES:
+        raise FormatError(f"the tree has {elements} elements ({len(text.encode())} bytes): more than a tree file may "
+                          f"hold ({MAX_NODES} elements, {MAX_BYTES} bytes), so it is not written", path)
+    atomic_write_text(path, text, project)
 
 
 # --- reading ------------------------------------------------------------------------------------

@@ -107,6 +107,9 @@ class Question:
     """The action a must-precondition question asks about; a yes is the answer "do it here"."""
     settles: tuple[tuple[str, bool], ...] = ()
     """The literals (condition, value) that always held so far and do not hold here."""
+    like: str = ""
+    """For a must-precondition question about an action never done itself: the step of its kind
+    that was done (``teach.learn.lifting``), so the question does not claim it was done."""
 
     def text(self, domain: Domain, lang: Lang = Lang.EN) -> str:
         situation = describe_situation(domain, self.state, lang)
@@ -115,8 +118,11 @@ class Question:
             if self.kind == "must-goal":
                 return m.MUST_GOAL_QUESTION(lang, held=held, situation=situation)
             assert self.action is not None
-            return m.MUST_ACTION_QUESTION(lang, held=held, action=domain.action(self.action).label(lang),
-                                          situation=situation)
+            action = domain.action(self.action).label(lang)
+            if self.like:
+                return m.MUST_KIN_QUESTION(lang, held=held, action=action, like=domain.action(self.like).label(lang),
+                                           situation=situation)
+            return m.MUST_ACTION_QUESTION(lang, held=held, action=action, situation=situation)
         if self.shown:
             labels = [domain.action(a).label(lang) if a else m.DONE_WORD(lang) for a in self.shown]
             return m.CONFLICT_QUESTION(lang, shown=m.OR(lang).join(labels), situation=situation)

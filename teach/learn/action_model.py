@@ -22,33 +22,31 @@ Per robot action (external events, -1, belong to nobody and teach no action anyt
   and **maintained** ones: a literal the teacher restored at once every time an event took it
   away, once another action was shown to need it, is assumed for every action it held for;
 - **guessed effects** of an action never demonstrated, from an answer (until its first
-  transition replaces them);
-- **ruled out** preconditions: possible ones the teacher said are not needed.
+  transition replaces them).
+
+A teacher's "yes, I may do X here" is an application of X in that state, so every literal false
+there leaves X's possible preconditions: that is how answers rule literals out.
 
 Where the domain declares parameterised actions (``teach.learn.lifting``), each transition is
 also one of every sibling instance, renamed, and an action's bounds hold only conditions about its
 own objects; answers about one instance are answers about its siblings.
 
-The **required** preconditions are the possible ones not ruled out. They are the safe bound
+The **required** preconditions are the possible ones. They are the safe bound
 (SAM): in STRIPS-like worlds every real precondition is among them, so a tree that checks
 all of them before an action never runs it where a real precondition is false. The assumed
 ones only order the tree (which literals to achieve first); the rest are checked, not pursued.
 
-Everything is updated in O(conditions) per transition; nothing is ever recomputed from the
-old demonstrations.
+Everything is updated in O(conditions) per transition (times the action's siblings where the
+domain has forms); nothing is ever recomputed from the old demonstrations.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from teach.learn.lifting import Lifting, Renaming
-
-Lit = tuple[int, bool]
-"""A literal: (condition index, value)."""
+from teach.learn.bits import Lit
+from teach.learn.lifting import Lifting, Renaming
 
 EVIDENCE_KEPT = 5
 """How many sources are kept per fact for explanations (the count is always exact)."""
@@ -87,9 +85,12 @@ class ActionKnowledge:
     followed: int = 0
     made: dict[Lit, Evidence] = field(default_factory=dict)
     confirmed: dict[Lit, str] = field(default_factory=dict)
+    shown_itself: int = 0
+    """Applications of this action itself (``applied.count`` also counts its siblings', renamed)."""
+    like: str = ""
+    """The first sibling whose steps were renamed onto this action (``teach.learn.lifting``)."""
     maintained: dict[Lit, str] = field(default_factory=dict)
     guessed: dict[Lit, str] = field(default_factory=dict)
-    ruled_out: dict[Lit, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.held_true = self.held_false = self.full
@@ -98,6 +99,11 @@ class ActionKnowledge:
     @property
     def demonstrated(self) -> bool:
         return self.transitions > 0
+
+    @property
+    def known_from(self) -> str:
+        """The sibling all that is known of this action comes from ("" if it was done itself)."""
+        return "" if self.shown_itself else self.like
 
     @property
     def effects(self) -> tuple[int, int]:
@@ -121,10 +127,8 @@ class ActionKnowledge:
 
     @property
     def required(self) -> tuple[int, int]:
-        """The safe bound the tree checks: every possible precondition the teacher did not rule out."""
-        pos, neg = self.possible
-        out_pos, out_neg = literal_masks(self.ruled_out)
-        return pos & ~out_pos, neg & ~out_neg
+        """The safe bound the tree checks: every possible precondition."""
+        return self.possible
 
     @property
     def unsure(self) -> tuple[int, int]:
@@ -184,11 +188,13 @@ class ActionModel:
     def applied(self, name: str, before: int, source: str, previous: tuple[int, int] | None = None) -> None:
         """The action was chosen in ``before`` (demonstrated or answered); ``previous``: the
         literals (made true, made false) the robot action right before it changed, if any."""
+        self.actions[name].shown_itself += 1
         self._applied(self.actions[name], before, self.full, source, previous)
         for renaming in self._renamings.get(name, ()):
             renamed = (renaming.mask(previous[0]), renaming.mask(previous[1])) if previous is not None else None
-            self._applied(self.actions[renaming.sibling], renaming.mask(before), renaming.image,
-                          f"{source} as {name}", renamed)
+            sibling = self.actions[renaming.sibling]
+            sibling.like = sibling.like or name
+            self._applied(sibling, renaming.mask(before), renaming.image, f"{source} as {name}", renamed)
 
     def _applied(self, knowledge: ActionKnowledge, before: int, known: int, source: str,
                  previous: tuple[int, int] | None) -> None:
@@ -198,8 +204,8 @@ class ActionModel:
         knowledge.held_false &= ~before & self.full | ~known
         if previous is not None:
             knowledge.followed += 1
-            knowledge.enabled_true &= previous[0]
-            knowledge.enabled_false &= previous[1]
+            knowledge.enabled_true &= previous[0] | ~known
+            knowledge.enabled_false &= previous[1] | ~known
 
     def observed(self, name: str, before: int, after: int, source: str) -> None:
         """One transition (before, action, after); ``applied`` must have been called for it."""
@@ -222,13 +228,6 @@ class ActionModel:
         """Keep ``literal`` as a precondition of ``name`` (and its siblings) from now on (it had to be added back)."""
         for knowledge, renamed in self._with_siblings(name, literal):
             knowledge.confirmed.setdefault(renamed, source)
-
-    def rule_out(self, name: str, literal: Lit, source: str) -> None:
-        """The teacher said ``literal`` is not needed before ``name`` (nor, renamed, before its siblings)."""
-        for knowledge, renamed in self._with_siblings(name, literal):
-            knowledge.ruled_out.setdefault(renamed, source)
-            knowledge.confirmed.pop(renamed, None)
-            knowledge.maintained.pop(renamed, None)
 
     def _with_siblings(self, name: str, literal: Lit) -> list[tuple[ActionKnowledge, Lit]]:
         """``name`` with ``literal``, and each sibling with ``literal`` renamed (where it has a name there)."""

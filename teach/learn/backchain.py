@@ -49,8 +49,9 @@ class PlanView:
 class Role:
     """Why a node of the plan exists: ``kind`` is one of goal, achieve, precondition,
     achiever, last-resort, goal-sequence, and for the regressed rules (``teach.learn.regress``)
-    regression (the plan and the rules), rule, subgoal; ``literal`` the literal it checks or
-    achieves, ``action`` the action involved."""
+    regression (the plan and the rules), regression-first and regression-complete (rules first,
+    with or without the plan behind them), goal-check, rule, subgoal; ``literal`` the literal it
+    checks or achieves, ``action`` the action involved."""
 
     kind: str
     literal: Lit | None = None

@@ -6,6 +6,9 @@ from collections.abc import Sequence
 
 from teach.domain import State
 
+Lit = tuple[int, bool]
+"""A literal: (condition index, value)."""
+
 
 def state_mask(state: Sequence[bool]) -> int:
     """The bitmask of a state: bit i set iff condition i holds."""
@@ -21,6 +24,6 @@ def mask_state(mask: int, conditions: int) -> State:
     return tuple(bool(mask >> i & 1) for i in range(conditions))
 
 
-def mask_literals(mask: int, value: int, conditions: int) -> list[tuple[int, bool]]:
+def mask_literals(mask: int, value: int, conditions: int) -> list[Lit]:
     """The literals (condition index, value) of the conditions set in ``mask``, with their values in ``value``."""
     return [(i, bool(value >> i & 1)) for i in range(conditions) if mask >> i & 1]

@@ -1,7 +1,8 @@
 """The learner's exception rules: where the plan does not do a labelled situation's label, a rule
 in front of it checks the fewest literals of that state that hold in no situation labelled
 otherwise (and, for an action, a violated goal literal, so a rule never fires where the goal
-holds), then does the label.
+holds), then does the label. An *exact* rule tests every condition: it fires in its own state
+only (the learner puts those in front of rules that come first, ``teach.learn.regress``).
 
 Kept apart from ``teach.learn.learner``: a rule is a pure function of one situation, the goal,
 the model and the situations' column index (``teach.learn.labels.Columns``), which makes

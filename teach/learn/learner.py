@@ -109,6 +109,9 @@ class Learner:
         self._compiled: CompiledTree | PlanWithRules | None = None
         self._counted: tuple[CompiledTree | PlanWithRules, int] | None = None
         self._exceptions: list[ExceptionRule] = []
+        self._later: list[ExceptionRule] = []
+        """Exceptions tried after the regressed rules, before the plan (rules-first trees only): they
+        fire only where no rule does, so they never turn the robot away from a way to the goal."""
         self._tree: Node | None = None
         self._root_uid = 0
         self.invariants = Invariants(self._n, can_happen)
@@ -330,7 +333,8 @@ class Learner:
         """Why the node ``uid`` of the current tree exists, as data (``teach.learn.explain``)."""
         if self._tree is None:
             self._tree = self._assemble()
-        return explain_node(uid, self._root_uid, self._exceptions, self._roles, self._plan is not None, self.model,
+        return explain_node(uid, self._root_uid, [*self._exceptions, *self._later], self._roles, self._plan is not None,
+                            self.model,
                             self.goal, self.names)
 
     def explain(self, uid: int) -> str:
@@ -405,6 +409,18 @@ class Learner:
         for exception in self._exceptions:
             if mask & exception.mask == exception.value:
                 return exception.answer
+        both = self._compiled
+        if isinstance(both, PlanWithRules) and both.rules_first:
+            decided = both.decided(mask)
+            if decided is None:
+                later = next((e for e in self._later if mask & e.mask == e.value), None)
+                if later is not None:
+                    return later.answer
+                decided = both.behind_rules(self._state(mask))
+            status, action = decided
+            if status is Status.RUNNING:
+                return action
+            return None if status is Status.SUCCESS else False
         result = self._plan_output(mask)
         return False if result == FAILED else result
 
@@ -455,7 +471,11 @@ class Learner:
         exception built so far covers (an exception is right wherever it fires on a situation,
         so covered situations need no check)."""
         self._exceptions = []
+        self._later = []
         self._tree = None
+        if isinstance(self._compiled, PlanWithRules) and self._compiled.rules_first:
+            self._fix(list(self._situations))
+            return
         covered = 0
         position = self._labels.columns.position
         for mask, situation in self._situations.items():
@@ -471,15 +491,24 @@ class Learner:
             situation = self._situations[mask]
             if self._output(mask) in situation.allowed:
                 continue
-            self._exceptions.insert(0, self._exception(mask, situation))
+            both = self._compiled
+            if isinstance(both, PlanWithRules) and both.rules_first:
+                self._add_behind_rules(mask, situation, both)
+            else:
+                self._exceptions.insert(0, self._exception(mask, situation))
             self._tree = None
 
-    def _exception(self, mask: int, situation: Situation) -> ExceptionRule:
-        """Where the regressed rules are complete they already act wherever the model knows a way, so
-        an exception only makes the tree do what the teacher did in that very state (it tests every
-        condition): a more general one would override the rules in states nobody showed, where it
-        can lead round in circles (logistics: 13% of runs after 2 demonstrations)."""
-        exact = isinstance(self._compiled, PlanWithRules) and self._compiled.complete
+    def _add_behind_rules(self, mask: int, situation: Situation, both: PlanWithRules) -> None:
+        """In a rules-first tree an exception never overrides the goal check or a rule except in its
+        own state: there the teacher's step is done (a rule that tests every condition, in front),
+        elsewhere only where no rule fits (a general one, behind the rules). A general one in front
+        would turn the robot away from the rules' way to the goal in states nobody showed, and could
+        lead it round in circles (logistics, 2 demonstrations: 13–25% of runs)."""
+        if both.decided(mask) is not None:
+            self._exceptions.insert(0, self._exception(mask, situation, exact=True))
+        self._later.insert(0, self._exception(mask, situation))
+
+    def _exception(self, mask: int, situation: Situation, exact: bool = False) -> ExceptionRule:
         return exception_rule(mask, situation.answer, situation.sources[-1], self._labels.columns, self.names,
                               self.goal, self.model, self.safe, exact)
 
@@ -504,13 +533,17 @@ class Learner:
         both = self._compiled
         if not isinstance(both, PlanWithRules) or not both.rules:
             return self._plan
-        if both.node is None:
-            rules = rule_nodes(both.rules, self.names, self._roles)
-            if both.rules_first:
-                done = goal_node(both.goal, self.names, self._roles)
-                both.node = Fallback((done, *rules) if both.complete else (done, *rules, self._plan))
-            else:
-                both.node = Fallback((self._plan, *rules))
+        if both.rules_first:
+            later = tuple(e.node for e in self._later)
+            if both.node is None or both.node_later != later:
+                if both.rule_nodes is None:
+                    both.rule_nodes = (goal_node(both.goal, self.names, self._roles),
+                                       *rule_nodes(both.rules, self.names, self._roles))
+                behind = () if both.complete else (self._plan,)
+                both.node, both.node_later = Fallback((*both.rule_nodes, *later, *behind)), later
+                self._roles[both.node.uid] = Role("regression-complete" if both.complete else "regression-first")
+        elif both.node is None:
+            both.node = Fallback((self._plan, *rule_nodes(both.rules, self.names, self._roles)))
             self._roles[both.node.uid] = Role("regression")
         return both.node
 

@@ -15,8 +15,14 @@ So a transition of ``unstack_a_b`` is, renamed, a transition of ``unstack_c_d``,
 bounds (``teach.learn.action_model``) of every instance learn from it: this is lifted SAM (Juba,
 Le & Stern, KR 2021; Juba & Stern, 2022), which learns the action models of standard planning
 domains from a few trajectories and stays safe. Instances are of one kind only when their objects
-repeat in the same pattern (``move_a_a`` is not renamed into ``move_a_b``). A condition without a
-form has no objects; an action without a form learns only from itself, as before.
+repeat in the same pattern (``move_a_a`` is not renamed into ``move_a_b``). An action without a
+form learns only from itself, as before. A condition without a form (``teach.domain`` refuses one
+where actions have forms; a domain built in code may still have one) could be about any object:
+it may be any action's precondition and is never renamed, so only an action's own applications
+say anything about it.
+
+An object is one of the action's parameters: a PDDL constant belongs in the predicate's name
+(``lit_switch``), or a precondition about it would fall outside every action's own conditions.
 """
 
 from __future__ import annotations
@@ -24,9 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from teach.domain import Domain
-
-Lit = tuple[int, bool]
-"""A literal: (condition index, value), as in ``teach.learn.action_model``."""
+from teach.learn.bits import Lit
 
 
 @dataclass(frozen=True)
@@ -65,9 +69,10 @@ def lifting_of(domain: Domain) -> Lifting | None:
     """The domain's lifting; None when no action declares a form (nothing is shared)."""
     if not any(action.form for action in domain.actions):
         return None
-    forms = [condition.form or (condition.name,) for condition in domain.conditions]
-    index = {form: i for i, form in enumerate(forms)}
+    forms = [condition.form for condition in domain.conditions]
+    index = {form: i for i, form in enumerate(forms) if form}
     everything = (1 << len(forms)) - 1
+    formless = sum(1 << i for i, form in enumerate(forms) if not form)
     own: dict[str, int] = {}
     kinds: dict[tuple[object, ...], list[str]] = {}
     objects: dict[str, tuple[str, ...]] = {}
@@ -77,7 +82,7 @@ def lifting_of(domain: Domain) -> Lifting | None:
             continue
         mine = action.form[1:]
         objects[action.name] = mine
-        own[action.name] = sum(1 << i for i, form in enumerate(forms) if set(form[1:]) <= set(mine))
+        own[action.name] = formless | sum(1 << i for i, form in enumerate(forms) if form and set(form[1:]) <= set(mine))
         pattern = tuple(mine.index(o) for o in mine)
         kinds.setdefault((action.form[0], pattern), []).append(action.name)
     renamings: dict[str, tuple[Renaming, ...]] = {}
@@ -90,10 +95,13 @@ def lifting_of(domain: Domain) -> Lifting | None:
                 rename = dict(zip(objects[name], objects[sibling], strict=True))
                 pairs = []
                 for i, form in enumerate(forms):
-                    if own[name] >> i & 1:
+                    if form and own[name] >> i & 1:
                         theirs = index.get((form[0], *(rename[o] for o in form[1:])))
                         if theirs is not None:
                             pairs.append((i, theirs))
-                found.append(Renaming(sibling, tuple(pairs), sum(1 << t for _m, t in pairs)))
+                image = 0
+                for _mine, theirs in pairs:
+                    image |= 1 << theirs
+                found.append(Renaming(sibling, tuple(pairs), image))
             renamings[name] = tuple(found)
     return Lifting(own, renamings)

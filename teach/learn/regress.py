@@ -14,10 +14,10 @@ In a larger one the rules come first (after a check that the goal holds): the ne
 rule that fires leads, in the learned model, to a state where a rule nearer the goal fires, so
 the robot never goes round in circles there, which achieving goal literals one at a time does
 where they interact (planning domains declared with forms, ``teach.learn.lifting``: 24% of
-blocksworld runs looped with the plan first, none with the rules first). Where the regression
-found every condition, no other way to the goal exists in the learned model, so nothing follows
-the rules (FAILURE: the robot stops and asks); where ``MAX_RULE_NODES`` cut it short, the plan
-follows them.
+blocksworld runs looped with the plan first, none with the rules first). Behind the rules come
+the learner's general exceptions (the teacher's steps where no rule fits), then, only where
+``MAX_RULE_NODES`` cut the regression short, the plan; where it found every condition, no other
+way to the goal exists in the learned model, so nothing more (FAILURE: the robot stops and asks).
 
 A pure function of the ``PlanView``, like the plan. The rules are evaluated by bitmask tests
 (``PlanWithRules``) and become nodes only when the tree is assembled.
@@ -25,6 +25,7 @@ A pure function of the ``PlanView``, like the plan. The rules are evaluated by b
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 from teach.bt.nodes import Action, Inverter, Node, Sequence, Status
@@ -116,8 +117,8 @@ SMALL_DOMAIN = 12
 class PlanWithRules:
     """The compiled plan, then the first rule whose literals hold (or, ``rules_first``, the goal
     check, the rules, then the plan): what the regression node does, by bitmask tests instead of
-    compiled code (a domain of 20 conditions has up to 400 rules of 20 literals: compiling them on
-    every replan cost 0.5 s)."""
+    compiled code (a logistics instance of 26 conditions has 600 rules: compiling rules on every
+    replan cost 0.5 s at 400 rules of 20 literals)."""
 
     def __init__(self, plan: CompiledTree, rules: list[Rule], goal: tuple[Lit, ...] = (), rules_first: bool = False,
                  complete: bool = False):
@@ -131,21 +132,32 @@ class PlanWithRules:
         self._goal_true, self._goal_false = literal_masks(goal)
         self.node: Node | None = None
         """The regression node (plan and rules in their order), once the tree was assembled."""
+        self.rule_nodes: tuple[Node, ...] | None = None
+        """Rules first: the goal check's and the rules' nodes, built once (the learner puts its later
+        exceptions behind them, ``node_later`` the ones in ``node``)."""
+        self.node_later: tuple[Node, ...] = ()
 
     def __call__(self, state: tuple[bool, ...]) -> tuple[Status, str | None]:
         if self.rules_first:
-            mask = state_mask(state)
-            if mask & self._goal_true == self._goal_true and not mask & self._goal_false:
-                return Status.SUCCESS, None
-            rule = self.first(mask)
-            if rule is not None:
-                return Status.RUNNING, rule.action
-            return (Status.FAILURE, None) if self.complete else self.plan(state)
+            decided = self.decided(state_mask(state))
+            return decided if decided is not None else self.behind_rules(state)
         status, action = self.plan(state)
         if status is not Status.FAILURE:
             return status, action
         rule = self.first(state_mask(state))
         return (Status.FAILURE, None) if rule is None else (Status.RUNNING, rule.action)
+
+    def decided(self, mask: int) -> tuple[Status, str | None] | None:
+        """Rules first: SUCCESS where the goal holds, else the first rule's action; None where neither."""
+        if mask & self._goal_true == self._goal_true and not mask & self._goal_false:
+            return Status.SUCCESS, None
+        rule = self.first(mask)
+        return None if rule is None else (Status.RUNNING, rule.action)
+
+    def behind_rules(self, state: tuple[bool, ...]) -> tuple[Status, str | None]:
+        """Rules first, where neither the goal nor a rule decides: the plan, or FAILURE if the rules
+        are complete."""
+        return (Status.FAILURE, None) if self.complete else self.plan(state)
 
     def first(self, mask: int) -> Rule | None:
         for rule in self.rules:
@@ -169,32 +181,38 @@ def with_rules(view: PlanView, plan: CompiledTree, width: int) -> PlanWithRules:
 
 def goal_node(goal: tuple[Lit, ...], names: tuple[str, ...], roles: dict[int, Role]) -> Node:
     """``Sequence(goal literals...)``: SUCCESS where the goal holds, before any rule is tried."""
-    kids = []
-    for literal in goal:
+    sequence = Sequence(tuple(_literal_nodes(goal, names, roles, lambda literal: Role("goal", literal))))
+    roles[sequence.uid] = Role("goal-check")
+    return sequence
+
+
+def _literal_nodes(literals: Iterable[Lit], names: tuple[str, ...], roles: dict[int, Role],
+                   role: Callable[[Lit], Role]) -> list[Node]:
+    """A node per literal (an Inverter for a false one), each with its ``role`` in ``roles``."""
+    nodes: list[Node] = []
+    for literal in literals:
         node = literal_node(names, literal)
-        roles[node.uid] = Role("goal", literal)
+        roles[node.uid] = role(literal)
         if isinstance(node, Inverter):
             roles[node.child.uid] = roles[node.uid]
-        kids.append(node)
-    sequence = Sequence(tuple(kids))
-    roles[sequence.uid] = Role("goal-sequence")
-    return sequence
+        nodes.append(node)
+    return nodes
+
+
+def _rule_role(rule: Rule) -> Callable[[Lit], Role]:
+    """A rule's literal is the action's precondition or what the goal still needs after it."""
+    def role(literal: Lit) -> Role:
+        return Role("precondition" if literal in rule.needs else "subgoal", literal, rule.action)
+    return role
 
 
 def rule_nodes(rules: list[Rule], names: tuple[str, ...], roles: dict[int, Role]) -> list[Node]:
     """``Sequence(literals..., action)`` for each rule, with the role of every node in ``roles``."""
     nodes: list[Node] = []
     for rule in rules:
-        kids: list[Node] = []
-        for index in range(len(names)):
-            if (rule.true | rule.false) >> index & 1:
-                literal = (index, bool(rule.true >> index & 1))
-                node = literal_node(names, literal)
-                role = Role("precondition" if literal in rule.needs else "subgoal", literal, rule.action)
-                roles[node.uid] = role
-                if isinstance(node, Inverter):
-                    roles[node.child.uid] = role
-                kids.append(node)
+        literals = [(index, bool(rule.true >> index & 1)) for index in range(len(names))
+                    if (rule.true | rule.false) >> index & 1]
+        kids = _literal_nodes(literals, names, roles, _rule_role(rule))
         action = Action(rule.action)
         roles[action.uid] = Role("achiever", rule.makes, rule.action)
         sequence = Sequence((*kids, action))

@@ -112,7 +112,7 @@ class Learning:
             conflict = next(c for c in self.learner.conflicts if c.state == question.state)
             shown = tuple(dict.fromkeys("" if answer is None else answer for answer, _ in conflict.labels))
         return Question(question.state, 1.0, expected=((question.tree_does, 1.0),), shown=shown, kind=question.kind,
-                        action=question.action, settles=question.settles)
+                        action=question.action, settles=question.settles, like=self._known_from(question.action))
 
     def question_where_stuck(self, state: State) -> Question | None:
         """The safe learner, stopped in ``state``: what it was unsure of there, as a question."""
@@ -120,7 +120,11 @@ class Learning:
         if question is None:
             return None
         return Question(state, 1.0, expected=(("nothing", 1.0),), kind=question.kind, action=question.action,
-                        settles=question.settles)
+                        settles=question.settles, like=self._known_from(question.action))
+
+    def _known_from(self, action: str | None) -> str:
+        """The step of its kind an action asked about is known from, if it was never done itself."""
+        return "" if action is None else self.learner.model[action].known_from
 
     def rule_out(self, state: State, source: str) -> None:
         """The teacher said the asked-about situation cannot happen: it is never asked again."""
