@@ -1,11 +1,13 @@
 """Write one of the safety bench's planning domains as a demonstration set teach reads.
 
-    .venv/bin/python tools/export_planning_demos.py blocksworld demos/blocksworld --demos 2
+    .venv/bin/python tools/export_planning_demos.py blocksworld demos/blocksworld --demos 2 --held-out 20
 
 Writes FOLDER/domain.toml (every fact a condition and every operator an action, each with its
-``form``, and the true model as ``pre``/``ram``; no goal, so it is learned) and FOLDER/two/
-(or the count given) with the optimal plans from random reachable starts as CSV files. The
-learner reads neither ``pre`` nor ``ram``; tests judge its tree against them.
+``form``, and the true model as ``pre``/``ram``; no goal, so it is learned), FOLDER/true-model.toml
+(the same with the instance's goal: an oracle for ``teach bench-teach --oracle-model``), FOLDER/two/
+(or the count given) with the optimal plans from random reachable starts as CSV files, and
+FOLDER/held-out/ with plans from other starts. The learner reads neither ``pre`` nor ``ram``;
+tests judge its tree against them.
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ def action_phrase(form: tuple[str, ...]) -> str:
     return " ".join(words)
 
 
-def domain_toml(task: Task) -> str:
+def domain_toml(task: Task, with_goal: bool = False) -> str:
     model, domain = task.model, task.domain
 
     def strings(values: list[str] | tuple[str, ...]) -> str:
@@ -48,7 +50,10 @@ def domain_toml(task: Task) -> str:
         return [name if value else f"!{name}" for name, value in sorted(model.literals(true, false))]
 
     out = [f"# {task.name}, grounded from bench/foreign/pddl by tools/export_planning_demos.py.",
-           f'name = "{task.name}"', ""]
+           f'name = "{task.name}"']
+    if with_goal:
+        out.append(f"goal = {strings(literals(model.goal_true, model.goal_false))}")
+    out.append("")
     for condition in domain.conditions:
         out += ["[[condition]]", f'name = "{condition.name}"', f'en = "{condition.en}"',
                 f"form = {strings(condition.form)}", ""]
@@ -66,18 +71,21 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("domain", choices=ipc.DOMAINS)
     parser.add_argument("folder", type=Path)
     parser.add_argument("--demos", type=int, default=2, help="how many demonstrations (default 2)")
+    parser.add_argument("--held-out", type=int, default=20, help="how many held-out demonstrations (default 20)")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args(argv)
     task = ipc.load(args.domain)
     args.folder.mkdir(parents=True, exist_ok=True)
     (args.folder / "domain.toml").write_text(domain_toml(task))
-    demos = args.folder / COUNT_WORDS.get(args.demos, str(args.demos))
-    demos.mkdir(exist_ok=True)
+    (args.folder / "true-model.toml").write_text(domain_toml(task, with_goal=True))
     starts = task.starts()
     random.Random(args.seed).shuffle(starts)
-    for i, start in enumerate(starts[:args.demos]):
-        write_demonstration(demos / f"d{i + 1:02d}.csv", demonstration(task, start, f"d{i + 1:02d}"))
-    print(f"{args.folder}/domain.toml and {args.demos} demonstrations in {demos}")
+    for folder, chosen in ((COUNT_WORDS.get(args.demos, str(args.demos)), starts[:args.demos]),
+                           ("held-out", starts[args.demos:args.demos + args.held_out])):
+        (args.folder / folder).mkdir(exist_ok=True)
+        for i, start in enumerate(chosen):
+            write_demonstration(args.folder / folder / f"d{i + 1:02d}.csv", demonstration(task, start, f"d{i + 1:02d}"))
+        print(f"{len(chosen)} demonstrations in {args.folder / folder}")
 
 
 if __name__ == "__main__":

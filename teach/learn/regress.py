@@ -83,7 +83,10 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
             masks[0 if value else 1] |= 1 << index
     steps = [_Step(name, pre, *literal_masks(pre), *effects[name]) for name, pre in preconditions if name in effects]
     start = literal_masks(goal)
-    kept = [start]
+    shift = max([start[0] | start[1], *(s.pre_true | s.pre_false | s.add | s.delete for s in steps)]).bit_length()
+    kept = [start[0] | start[1] << shift]
+    """Each condition found as one int (true literals, then false ones above ``shift``): a new one
+    is skipped if it implies a kept one, tested for all of them at C speed (map and all)."""
     frontier = [start]
     found: list[Rule] = []
     nodes = 0
@@ -96,9 +99,10 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
                     continue
                 need_true = true & ~step.add | step.pre_true
                 need_false = false & ~step.delete | step.pre_false
-                if need_true & need_false or any(t & ~need_true == 0 and f & ~need_false == 0 for t, f in kept):
+                both = need_true | need_false << shift
+                if need_true & need_false or not all(map((~both).__and__, kept)):
                     continue
-                kept.append((need_true, need_false))
+                kept.append(both)
                 reached.append((need_true, need_false))
                 index = (useful & -useful).bit_length() - 1
                 nodes += rule_nodes_count(need_true, need_false)
