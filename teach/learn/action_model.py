@@ -177,6 +177,8 @@ class ActionModel:
         self.full = (1 << width) - 1
         self.actions = {name: ActionKnowledge(name, i, self.full) for i, name in enumerate(action_names)}
         self._renamings: dict[str, tuple[Renaming, ...]] = {}
+        self.lifted = lifting is not None
+        """Whether the domain has parameterised actions (``teach.learn.lifting``)."""
         if lifting is not None:
             self._renamings = lifting.renamings
             for name, own in lifting.own.items():

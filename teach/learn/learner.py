@@ -391,7 +391,7 @@ class Learner:
         self._plan, self._roles = plan(self._view, self.names)
         self._compiled = compile_tree(self._plan, self.names) if self._plan is not None else None
         if self._compiled is not None and self._view.regression:
-            self._compiled = with_rules(self._view, self._compiled, self._n)
+            self._compiled = with_rules(self._view, self._compiled, self._n, self.model.lifted)
         self._tree = None
 
     def _plan_output(self, mask: int) -> Answer | str:
