@@ -8,18 +8,18 @@ a *rule* "where these literals hold, do A" (A's required preconditions plus what
 needs after A). A rule runs A only where every precondition the learner has not ruled out
 holds, so the rules are exactly as safe as the plan; nearest the goal come first.
 
-In a small domain (every state can be tried) the plan comes first and only the rules that fire
-where it finds no action are kept: the tree reads as the thesis's PA-BT with its gaps filled.
-In a larger one the rules come first (after a check that the goal holds): the nearest-the-goal
-rule that fires leads, in the learned model, to a state where a rule nearer the goal fires, so
-the robot never goes round in circles there, which achieving goal literals one at a time does
-where they interact (planning domains declared with forms, ``teach.learn.lifting``: 24% of
-blocksworld runs looped with the plan first, none with the rules first). So do they in a small
-domain with parameterised actions, whose model licenses acting in many states nobody showed
-(miconic, 10 conditions: 9–13% of runs looped with the plan first). Behind the rules come
-the learner's general exceptions (the teacher's steps where no rule fits), then, only where
-``MAX_RULE_NODES`` cut the regression short, the plan; where it found every condition, no other
-way to the goal exists in the learned model, so nothing more (FAILURE: the robot stops and asks).
+Without parameterised actions the plan comes first and the rules fill its gaps: in a small
+domain (every state can be tried) only the rules that fire where it finds no action are kept, so
+the tree reads as the thesis's PA-BT with its gaps filled. Where the domain declares forms
+(``teach.learn.lifting``) the model licenses acting in many states nobody showed, and there the
+rules come first (after a check that the goal holds): the nearest-the-goal rule that fires leads,
+in the learned model, to a state where a rule nearer the goal fires, so the robot never goes
+round in circles there, which achieving goal literals one at a time does where they interact
+(with the plan first 24% of blocksworld runs after 2 demonstrations looped, and 9–13% of miconic
+runs, 10 conditions, after 5 or 20; none with the rules first). Behind the rules come the
+learner's general exceptions (the teacher's steps where no rule fits), then, only where the
+budget cut the regression short, the plan; where it found every condition, no other way to the
+goal exists in the learned model, so nothing more (FAILURE: the robot stops and asks).
 
 A pure function of the ``PlanView``, like the plan. The rules are evaluated by bitmask tests
 (``PlanWithRules``) and become nodes only when the tree is assembled.
@@ -42,6 +42,12 @@ under a third of what a tree file may hold (``teach.limits.MAX_TREE_NODES``), th
 the plan and the exceptions; it also bounds a replan's time (about 0.1 s in the logistics
 instance, 0.35 s in visitall). Measured on logistics, 3 seeds, after 2 / 5 / 20 demonstrations:
 at 20,000 nodes 65 / 81 / 94% of held-out starts reached, at 30,000 74 / 98 / 100%."""
+
+
+GAP_RULE_NODES = 10_000
+"""The budget where the plan comes first and the rules only fill its gaps (no forms): about the 400
+rules of 20 literals kept before the budget was counted in nodes; a larger one doubled the time of
+a replan in a 20-condition domain (330 -> 600 ms) for rules the plan rarely leaves to act."""
 
 
 def rule_nodes_count(true: int, false: int) -> int:
@@ -73,10 +79,11 @@ class _Step:
 
 
 def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tuple[Lit, ...]], ...],
-                     achievers: tuple[tuple[Lit, tuple[str, ...]], ...]) -> tuple[list[Rule], bool]:
+                     achievers: tuple[tuple[Lit, tuple[str, ...]], ...],
+                     budget: int = MAX_RULE_NODES) -> tuple[list[Rule], bool]:
     """The goal regressed breadth-first through every action with effects (a ``PlanView``'s
     fields), skipping conditions no weaker than one found before; and whether that is all of
-    them (False: ``MAX_RULE_NODES`` cut the regression short)."""
+    them (False: the ``budget`` of nodes cut the regression short)."""
     if not goal:
         return [], True
     effects: dict[str, list[int]] = {}
@@ -109,7 +116,7 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
                 reached.append((need_true, need_false))
                 index = (useful & -useful).bit_length() - 1
                 nodes += rule_nodes_count(need_true, need_false)
-                if nodes > MAX_RULE_NODES:
+                if nodes > budget:
                     return found, False
                 found.append(Rule(need_true, need_false, step.name, (index, bool((step.add & true) >> index & 1)),
                                   frozenset(step.pre)))
@@ -178,9 +185,12 @@ def with_rules(view: PlanView, plan: CompiledTree, width: int, lifted: bool = Fa
     some state where the plan does not act (a rule that never fires would only be read: "if …,
     I …" where I never do); in a larger one, or one with parameterised actions (``lifted``), the
     rules first (module docstring)."""
-    rules, complete = regression_rules(view.goal, view.preconditions, view.achievers)
-    if width > SMALL_DOMAIN or lifted:
+    budget = MAX_RULE_NODES if lifted else GAP_RULE_NODES
+    rules, complete = regression_rules(view.goal, view.preconditions, view.achievers, budget)
+    if lifted:
         return PlanWithRules(plan, rules, view.goal, rules_first=bool(rules), complete=complete)
+    if width > SMALL_DOMAIN:
+        return PlanWithRules(plan, rules)
     both = PlanWithRules(plan, rules)
     used = {id(rule) for rule in (both.first(mask) for mask in range(1 << width)
                                   if plan(mask_state(mask, width))[0] is Status.FAILURE) if rule is not None}
