@@ -274,7 +274,7 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
 
     conditions: list[ConditionDef] = []
     cond_names: set[str] = set()
-    forms: dict[tuple[str, ...], str] = {}
+    condition_forms: dict[tuple[str, ...], str] = {}
     for i, raw in enumerate(raw_conditions):
         line = cond_lines[i] if i < len(cond_lines) else None
         if not isinstance(raw, dict):
@@ -292,7 +292,7 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
         if any(len(label) > limits.MAX_LABEL_CHARS for label in labels):
             fail(f"condition {cname}: a label is longer than {limits.MAX_LABEL_CHARS} characters", line)
         en, de, en_false, de_false = labels
-        form = _form(raw, f"condition {cname}", forms, fail, lines.key("form", line))
+        form = _form(raw, f"condition {cname}", condition_forms, fail, lines.key("form", line))
         conditions.append(ConditionDef(cname, en, de, en_false, de_false, form))
         cond_names.add(cname)
 
@@ -313,6 +313,7 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
         return tuple(result)
 
     actions: list[ActionDef] = []
+    action_forms: dict[tuple[str, ...], str] = {}
     action_names: set[str] = set()
     action_ids: set[int] = set()
     for i, raw in enumerate(raw_actions):
@@ -348,14 +349,14 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
             phrases[lang] = tuple(value)
         pre = literals(raw.get("pre", []), f"action {aname}: 'pre'", line)
         ram = literals(raw.get("ram", []), f"action {aname}: 'ram'", line)
-        form = _form(raw, f"action {aname}", forms, fail, lines.key("form", line))
+        form = _form(raw, f"action {aname}", action_forms, fail, lines.key("form", line))
         actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram, form))  # type: ignore[arg-type]
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 
     formed = next((a.name for a in actions if a.form), None)
-    for i, condition in enumerate(conditions):
-        if formed is not None and not condition.form:
+    for i, condition in enumerate(conditions if formed is not None else ()):
+        if not condition.form:
             fail(f"condition {condition.name} has no 'form' but action {formed} has one: give every condition "
                  f"its form (form = [\"{condition.name}\"] if it is about no object)",
                  cond_lines[i] if i < len(cond_lines) else None)
@@ -370,7 +371,8 @@ MAX_FORM_OBJECTS = 8
 def _form(raw: dict, what: str, seen: dict[tuple[str, ...], str], fail: Callable[[str, int | None], NoReturn],
           line: int | None) -> tuple[str, ...]:
     """The optional ``form = ["kind", "object", ...]`` of a condition or action, checked: identifiers,
-    at most ``MAX_FORM_OBJECTS`` objects, no two conditions (or two actions) of the same form."""
+    at most ``MAX_FORM_OBJECTS`` objects, none the same as one in ``seen`` (the forms of the other
+    conditions, or of the other actions, so far)."""
     value = raw.get("form")
     if value is None:
         return ()
@@ -379,10 +381,9 @@ def _form(raw: dict, what: str, seen: dict[tuple[str, ...], str], fail: Callable
         fail(f"{what}: 'form' must be a list of a kind and up to {MAX_FORM_OBJECTS} objects, each an identifier "
              f"(letters, digits, _), like [\"on\", \"a\", \"b\"]; got {shown(value)}", line)
     form = tuple(value)
-    key = (what.split(" ")[0], *form)
-    if key in seen:
-        fail(f"{what} has the same 'form' as {seen[key]}", line)
-    seen[key] = what
+    if form in seen:
+        fail(f"{what} has the same 'form' as {seen[form]}", line)
+    seen[form] = what
     return form
 
 

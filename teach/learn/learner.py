@@ -334,8 +334,7 @@ class Learner:
         if self._tree is None:
             self._tree = self._assemble()
         return explain_node(uid, self._root_uid, [*self._exceptions, *self._later], self._roles, self._plan is not None,
-                            self.model,
-                            self.goal, self.names)
+                            self.model, self.goal, self.names)
 
     def explain(self, uid: int) -> str:
         return self.why(uid).text
@@ -409,8 +408,8 @@ class Learner:
         for exception in self._exceptions:
             if mask & exception.mask == exception.value:
                 return exception.answer
-        both = self._compiled
-        if isinstance(both, PlanWithRules) and both.rules_first:
+        both = self._rules_first()
+        if both is not None:
             decided = both.decided(mask)
             if decided is None:
                 later = next((e for e in self._later if mask & e.mask == e.value), None)
@@ -473,7 +472,7 @@ class Learner:
         self._exceptions = []
         self._later = []
         self._tree = None
-        if isinstance(self._compiled, PlanWithRules) and self._compiled.rules_first:
+        if self._rules_first() is not None:
             self._fix(list(self._situations))
             return
         covered = 0
@@ -491,12 +490,17 @@ class Learner:
             situation = self._situations[mask]
             if self._output(mask) in situation.allowed:
                 continue
-            both = self._compiled
-            if isinstance(both, PlanWithRules) and both.rules_first:
+            both = self._rules_first()
+            if both is not None:
                 self._add_behind_rules(mask, situation, both)
             else:
                 self._exceptions.insert(0, self._exception(mask, situation))
             self._tree = None
+
+    def _rules_first(self) -> PlanWithRules | None:
+        """The regressed rules, if they come before the plan (``teach.learn.regress``)."""
+        both = self._compiled
+        return both if isinstance(both, PlanWithRules) and both.rules_first else None
 
     def _add_behind_rules(self, mask: int, situation: Situation, both: PlanWithRules) -> None:
         """In a rules-first tree an exception never overrides the goal check or a rule except in its

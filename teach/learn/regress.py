@@ -94,9 +94,9 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
     steps = [_Step(name, pre, *literal_masks(pre), *effects[name]) for name, pre in preconditions if name in effects]
     start = literal_masks(goal)
     shift = max([start[0] | start[1], *(s.pre_true | s.pre_false | s.add | s.delete for s in steps)]).bit_length()
+    # each condition found as one int (true literals, then false ones above ``shift``): a new one
+    # is skipped if it implies a kept one, tested against all of them at C speed (map and all)
     kept = [start[0] | start[1] << shift]
-    """Each condition found as one int (true literals, then false ones above ``shift``): a new one
-    is skipped if it implies a kept one, tested for all of them at C speed (map and all)."""
     frontier = [start]
     found: list[Rule] = []
     nodes = 0
@@ -183,8 +183,8 @@ class PlanWithRules:
 def with_rules(view: PlanView, plan: CompiledTree, width: int, lifted: bool = False) -> PlanWithRules:
     """The plan followed by the view's regressed rules; in a small domain only those that fire in
     some state where the plan does not act (a rule that never fires would only be read: "if …,
-    I …" where I never do); in a larger one, or one with parameterised actions (``lifted``), the
-    rules first (module docstring)."""
+    I …" where I never do); with parameterised actions (``lifted``) the rules first (module
+    docstring)."""
     budget = MAX_RULE_NODES if lifted else GAP_RULE_NODES
     rules, complete = regression_rules(view.goal, view.preconditions, view.achievers, budget)
     if lifted:
