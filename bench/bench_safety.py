@@ -10,8 +10,11 @@ docstring). The teacher plans optimally in the true model; the learners see only
 conditions and actions (no action model, no goal) and the teacher's demonstrations from
 random starts. Judged from held-out starts, disjoint from the training starts, in the true
 model (``bench/foreign/judge.py``): reached / false done / stuck / unsafe / loop; beside it the
-strict replay of the teacher's held-out demonstrations and the information ceiling (the
-share of held-out starts whose optimal plan uses only actions seen in training).
+strict replay of the teacher's held-out demonstrations, the information ceiling (the
+share of held-out starts whose optimal plan uses only actions seen in training) and the safe
+ceiling (the share from which the goal can be reached acting only on what the demonstrations
+prove: ``foreign.teaching.safe_ceiling``; no learner that never acts on a guess does better
+without questions).
 
 Learners, on the same demonstrations: the default learner (``learn_online``), the same with up
 to 5 of its own questions answered from the true model (``bench/foreign/questions.py``), a
@@ -43,7 +46,7 @@ from foreign.loop import MAX_ROUNDS, TARGET, TRAINING_STARTS, Progress, session_
 from foreign.model import Task  # noqa: E402
 from foreign.questions import Answered, ask  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
-from foreign.teaching import ceiling, demonstration, split_starts  # noqa: E402
+from foreign.teaching import ceiling, demonstration, safe_ceiling, split_starts  # noqa: E402
 
 from teach.learn.learner import Learner, learn_online  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
@@ -72,6 +75,7 @@ class Cell:
 class Results:
     cells: dict[tuple[str, int, str], Cell] = field(default_factory=dict)
     ceilings: dict[tuple[str, int], list[float]] = field(default_factory=dict)
+    safe_ceilings: dict[tuple[str, int], list[float]] = field(default_factory=dict)
     held: dict[str, list[int]] = field(default_factory=dict)
     answers: dict[str, list[Answered]] = field(default_factory=dict)
     """By where they were asked: after k demonstrations, or in the session loop."""
@@ -93,6 +97,7 @@ def measure(task: Task, seed: int, held_out: int, results: Results) -> None:
     for k in TRAIN_SIZES:
         train = [demonstration(task, s, f"d{i}") for i, s in enumerate(pool[:k])]
         results.ceilings.setdefault((task.name, k), []).append(ceiling(task, train, starts))
+        results.safe_ceilings.setdefault((task.name, k), []).append(safe_ceiling(task, train, starts))
         for row in ROWS:
             if row == "learner+5q":
                 learner = learn_online(task.domain, train)
@@ -117,7 +122,7 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
     held = {name: min(counts) for name, counts in results.held.items()}
     print(f"task success from held-out starts in the true model, mean over {seeds} seed(s); "
           f"{HELD_OUT} held-out starts per seed (fewer where the world has fewer: n)")
-    heads = ("reached", "false", "stuck", "unsafe", "loop", "replay", "ceiling", "refused")
+    heads = ("reached", "false", "stuck", "unsafe", "loop", "replay", "ceiling", "safe", "refused")
     print(f"{'domain':<12} {'n':>4} {'demos':>5} {'learner':<11} " + " ".join(f"{h:>7}" for h in heads))
     for name in names:
         for k in TRAIN_SIZES:
@@ -127,6 +132,7 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
                     continue
                 values = [_pct(cell.share(o)) for o in OUTCOMES]
                 values += [_pct(statistics.mean(cell.replay)), _pct(statistics.mean(results.ceilings[(name, k)])),
+                           _pct(statistics.mean(results.safe_ceilings[(name, k)])),
                            f"{cell.refused}/{len(cell.outcomes)}" if row in ("detect", "specialize") else ""]
                 print(f"{name:<12} {held[name]:>4} {k:>5} {row:<11} " + " ".join(f"{v:>7}" for v in values))
     print("\nanswers to the learner's questions, from the true model")
@@ -164,11 +170,13 @@ def verdict(results: Results, names: list[str]) -> None:
         if not cells:
             continue
         worst = {o: max(cells.items(), key=lambda item, o=o: item[1].share(o)) for o in ("unsafe", "false done")}
-        short = [n for (n, k), c in cells.items()
-                 if k == max(TRAIN_SIZES) and c.share("reached") < statistics.mean(results.ceilings[(n, k)]) - 0.1]
+        shorts = [[n for (n, k), c in cells.items()
+                   if k == max(TRAIN_SIZES) and c.share("reached") < statistics.mean(ceilings[(n, k)]) - 0.1]
+                  for ceilings in (results.ceilings, results.safe_ceilings)]
         text = "; ".join(f"{o} {_pct(c.share(o))} ({n}, {k})" for o, ((n, k), c) in worst.items())
         print(f"  {row:<11} worst {text}; 20 demonstrations more than 10 points under the ceiling in "
-              f"{len(short)} of {len(names)}")
+              f"{len(shorts[0])} of {len(names)} ({', '.join(shorts[0]) or '-'}), under the safe ceiling in "
+              f"{len(shorts[1])} ({', '.join(shorts[1]) or '-'})")
     gains = [results.cells[(n, 2, "learner+5q")].share("reached") - results.cells[(n, 2, "learner")].share("reached")
              for n in names if (n, 2, "learner") in results.cells]
     if gains:

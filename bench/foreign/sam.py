@@ -53,6 +53,11 @@ class SamLearner:
     def update(self, demo: Demonstration, source: str | None = None) -> bool:
         """Learn one demonstration; True if the tree changed."""
         before = self.tree
+        self.learn(demo)
+        return self.tree != before
+
+    def learn(self, demo: Demonstration) -> None:
+        """Learn one demonstration's model (the tree is built when next asked for)."""
         steps = demo.steps
         for i, step in enumerate(steps):
             mask = state_mask(step.state)
@@ -69,7 +74,6 @@ class SamLearner:
                 self._learn(renaming.sibling, renaming.mask(mask), None if after is None else renaming.mask(after),
                             renaming.image)
         self._tree = None
-        return self.tree != before
 
     def _learn(self, name: str, mask: int, after: int | None, known_bits: int) -> None:
         """One application of ``name`` in ``mask`` (then ``after``), saying nothing outside ``known_bits``."""
@@ -80,6 +84,17 @@ class SamLearner:
         if after is not None:
             known.add |= after & ~mask & known_bits
             known.delete |= mask & ~after & known_bits
+
+    def successors(self, state: int) -> list[int]:
+        """What the learned actions make of ``state`` where all their SAM preconditions hold. In a
+        STRIPS world these are true successors: an effect never seen held before and after every
+        time, so it is a precondition that holds here too."""
+        return [(state & ~k.delete) | k.add for k in self.known.values()
+                if state & k.pre_true == k.pre_true and not state & k.pre_false]
+
+    def done(self, state: int) -> bool:
+        """Whether every literal common to the demonstrations' goal states holds in ``state``."""
+        return self.goal is not None and state & self.goal[0] == self.goal[0] and not state & self.goal[1]
 
     @property
     def tree(self) -> Node:
