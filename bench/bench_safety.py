@@ -145,8 +145,8 @@ def report(results: Results, names: list[str], seeds: int, rounds: int) -> None:
     verdict(results, names)
     print(f"\nsession loop: rounds until the robot reaches the goal from {_pct(TARGET)} of held-out starts "
           f"(cap {rounds} rounds), mean over seeds")
-    heads = ("hit", "rounds", "demos", "lines", "questions", "reached", "unsafe", "false")
-    print(f"{'domain':<12} {'learner':<17} " + " ".join(f"{h:>9}" for h in heads))
+    loop_heads = ("hit", "rounds", "demos", "lines", "questions", "reached", "unsafe", "false")
+    print(f"{'domain':<12} {'learner':<17} " + " ".join(f"{h:>9}" for h in loop_heads))
     for name in names:
         for row, _make, _questions in LOOPS:
             runs = results.loops.get((name, row))
