@@ -85,6 +85,10 @@ def _explain_role(uid: int, role: Role, model: ActionModel, goal: GoalLearner, n
                            f"makes it hold", None, literal)
     assert role.action is not None
     knowledge = model[role.action]
+    if role.kind == "pursued":
+        return Explanation(uid, role.kind, f"{literal} does not hold yet: the goal needs it and no action undoes "
+                           f"it, so it is worked towards on its own, {role.action} a step on the way",
+                           role.action, literal)
     if role.kind == "subgoal":
         return Explanation(uid, role.kind, f"{literal} with {role.action}: the goal still needs it after "
                            f"{role.action}", role.action, literal)

@@ -50,6 +50,11 @@ rules of 20 literals kept before the budget was counted in nodes; a larger one d
 a replan in a 20-condition domain (330 -> 600 ms) for rules the plan rarely leaves to act."""
 
 
+SUBGOAL_RULE_NODES = 10_000
+"""Nodes the goal literals' own rules may add where the goal's regression was cut short
+(``subgoal_rules``)."""
+
+
 def rule_nodes_count(true: int, false: int) -> int:
     """The nodes of a rule's Sequence: a Condition per true literal, an Inverter and a Condition per
     false one, the Action and the Sequence."""
@@ -66,6 +71,9 @@ class Rule:
     action: str
     makes: Lit
     needs: frozenset[Lit]
+    pursues: Lit | None = None
+    """A goal literal this rule works towards on its own (``subgoal_rules``): it fires only while
+    that literal does not hold."""
 
 
 @dataclass(frozen=True)
@@ -86,14 +94,53 @@ def regression_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tupl
     them (False: the ``budget`` of nodes cut the regression short)."""
     if not goal:
         return [], True
+    steps = _steps(preconditions, achievers)
+    return _regress(literal_masks(goal), steps, _shift(goal, steps), budget)
+
+
+def subgoal_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tuple[Lit, ...]], ...],
+                  achievers: tuple[tuple[Lit, tuple[str, ...]], ...],
+                  budget: int = SUBGOAL_RULE_NODES) -> list[Rule]:
+    """Where the goal's regression was cut short: each goal literal no action undoes, in the goal's
+    order, regressed alone, its rules firing only while it does not hold (``Rule.pursues``). The
+    robot then achieves those literals one at a time, the first in order it has a rule for first;
+    as none is ever undone and each rule leads to a state where a rule nearer its literal fires,
+    it never goes round in circles. All within ``budget`` nodes."""
+    steps = _steps(preconditions, achievers)
+    undone = {(index, not value) for (index, value), names in achievers if names}
+    found: list[Rule] = []
+    for literal in goal:
+        if literal in undone:
+            continue
+        single = literal_masks((literal,))
+        rules, _complete = _regress(single, steps, _shift(goal, steps), budget)
+        pursued = [Rule(rule.true | single[1], rule.false | single[0], rule.action, rule.makes, rule.needs, literal)
+                   for rule in rules if not (rule.true & single[0] or rule.false & single[1])]
+        budget -= sum(rule_nodes_count(rule.true, rule.false) for rule in pursued)
+        if budget < 0:
+            break
+        found += pursued
+    return found
+
+
+def _steps(preconditions: tuple[tuple[str, tuple[Lit, ...]], ...],
+           achievers: tuple[tuple[Lit, tuple[str, ...]], ...]) -> list[_Step]:
     effects: dict[str, list[int]] = {}
     for (index, value), names in achievers:
         for name in names:
             masks = effects.setdefault(name, [0, 0])
             masks[0 if value else 1] |= 1 << index
-    steps = [_Step(name, pre, *literal_masks(pre), *effects[name]) for name, pre in preconditions if name in effects]
+    return [_Step(name, pre, *literal_masks(pre), *effects[name]) for name, pre in preconditions if name in effects]
+
+
+def _shift(goal: tuple[Lit, ...], steps: list[_Step]) -> int:
+    """Above every condition any step or the goal mentions: where a condition's false literals start
+    in its one-int form."""
     start = literal_masks(goal)
-    shift = max([start[0] | start[1], *(s.pre_true | s.pre_false | s.add | s.delete for s in steps)]).bit_length()
+    return max([start[0] | start[1], *(s.pre_true | s.pre_false | s.add | s.delete for s in steps)]).bit_length()
+
+
+def _regress(start: tuple[int, int], steps: list[_Step], shift: int, budget: int) -> tuple[list[Rule], bool]:
     # each condition found as one int (true literals, then false ones above ``shift``): a new one
     # is skipped if it implies a kept one, tested against all of them at C speed (map and all)
     kept = [start[0] | start[1] << shift]
@@ -188,6 +235,8 @@ def with_rules(view: PlanView, plan: CompiledTree, width: int, lifted: bool = Fa
     budget = MAX_RULE_NODES if lifted else GAP_RULE_NODES
     rules, complete = regression_rules(view.goal, view.preconditions, view.achievers, budget)
     if lifted:
+        if not complete:
+            rules += subgoal_rules(view.goal, view.preconditions, view.achievers)
         return PlanWithRules(plan, rules, view.goal, rules_first=bool(rules), complete=complete)
     if width > SMALL_DOMAIN:
         return PlanWithRules(plan, rules)
@@ -218,8 +267,13 @@ def _literal_nodes(literals: Iterable[Lit], names: tuple[str, ...], roles: dict[
 
 
 def _rule_role(rule: Rule) -> Callable[[Lit], Role]:
-    """A rule's literal is the action's precondition or what the goal still needs after it."""
+    """A rule's literal is the action's precondition, what the goal still needs after it, or the
+    goal literal it works towards on its own not holding yet."""
+    pursued = None if rule.pursues is None else (rule.pursues[0], not rule.pursues[1])
+
     def role(literal: Lit) -> Role:
+        if literal == pursued:
+            return Role("pursued", rule.pursues, rule.action)
         return Role("precondition" if literal in rule.needs else "subgoal", literal, rule.action)
     return role
 
