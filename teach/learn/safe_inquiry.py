@@ -18,21 +18,27 @@ literals one "yes" rules out. In order:
    only teach that something else.) Measured on other data than the ball task it was first
    looked at on: ``bench/bench_snacks_draws.py``;
 3. **hypotheses**, first those whose "yes" would let the robot act (or finish) in the most
-   situations it could meet (every state of a small domain; in a large one the states the
-   learned effects lead to, ``predicted``), then the most literals settled (ties: the goal,
-   then the action shown most often). For an action: a situation where every literal it
-   needs holds but a group of its unsure ones does not — in a large domain a predicted state
-   (so not an impossible one), else a state where it was shown with the group made false
-   ("If …, may I still grasp the ball?"); for the goal: a goal state with its unsure literals
-   made false ("… is the task done?"). A yes rules all of them out at once. A no (or "that
-   cannot happen") splits the group: the next question about that action tests half of it,
-   so a needed literal is found in log2(n) questions (group testing) and then kept for good.
-   Literals the data gives a reason for (the step before made them hold; the action undoes
-   them) are asked about only when no other group is left: they are usually needed, so that
-   answer would change nothing;
-4. **unmet goal**: a situation, nearest the labelled ones first, where the domain's declared
-   goal does not hold and the tree would do nothing;
-5. **gaps**: a state next to a labelled one where the tree does nothing.
+   situations it could meet where it now does nothing (for the goal: is not done), then the
+   most literals settled (ties: the goal, then the action shown most often). The situations
+   counted are every state of a small domain without forms; in a large one, or one with forms
+   (objects), the states the learned effects lead to (``predicted``), as a state made by
+   changing conditions at random mostly cannot happen there. For an action: a situation where
+   every literal it needs holds but a group of its unsure ones does not — with ``predicted``
+   states one of them (so not an impossible one), where the robot does nothing now if there is
+   one, else a state where it was shown with the group made false ("If …, may I still grasp
+   the ball?"); for the goal: a goal state with its unsure literals made false ("… is the task
+   done?"). A yes rules all of them out at once. A no (or "that cannot happen") splits the
+   group: the next question about that action tests half of it, so a needed literal is found
+   in log2(n) questions (group testing) and then kept for good. A question about an action
+   whose yes would let it run nowhere the robot now does nothing, asked where the robot does
+   something, is not asked: its answer would be what it does anyway. Literals the data gives a
+   reason for (the step before made them hold; the action undoes them) are asked about only
+   when no other group is left, and only where the robot does nothing: they are usually
+   needed, so elsewhere the answer would change nothing;
+4. **unmet goal**: a situation, nearest the labelled ones first (with ``predicted`` states,
+   one of them), where the domain's declared goal does not hold and the tree would do nothing;
+5. **gaps**: a state next to a labelled one where the tree does nothing (small domains without
+   forms only).
 
 These kinds are chosen by what their answer settles, not tuned to one generator: measured on
 standard planning domains and independent random domains in ``bench/bench_safety.py``.
@@ -80,14 +86,22 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
-    unmet = list(itertools.islice(unmet_goal_situations(learner, does, flipped), MAX_UNMET))
+    # in a domain too large to try every state, or one with objects (forms), only states the learned
+    # effects lead to: one made by changing conditions at random mostly cannot happen (a block on
+    # one held; miconic's 10 conditions: 34 of 36 such questions were about impossible states)
+    everything = 1 << len(names) <= MAX_PROBED and not learner.model.lifted
+    reachable = None if everything else predicted(learner)
+    probes = None if reachable is None else (learner.state_of(mask) for mask in reachable)
+    unmet = list(itertools.islice(unmet_goal_situations(learner, does, flipped, probes), MAX_UNMET))
     yield from (question for question in unmet if question.tree_does == "done")  # an answer taught a wrong "done"
-    settling = _most_settling(learner, does, skip)
+    settling = _most_settling(learner, does, skip) if everything else None
     if settling is not None:
         yield settling
-    yield from _hypotheses(learner, does, skip, reasoned=False)
+    yield from _hypotheses(learner, does, skip, reachable, reasoned=False)
     yield from (question for question in unmet if question.tree_does != "done")
-    yield from _hypotheses(learner, does, skip, reasoned=True)
+    yield from _hypotheses(learner, does, skip, reachable, reasoned=True)
+    if reachable is not None:
+        return
     probed = 0
     for state in learner.situations:
         for index in range(len(names)):
@@ -99,10 +113,12 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
                 yield SituationQuestion(probe, "gap", tree_does="nothing")
 
 
-def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State],
+def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State], reachable: list[int] | None,
                 reasoned: bool) -> Iterable[SituationQuestion]:
     """Group questions about unsure literals, the most settled by one yes first (module docstring).
-    ``reasoned``: the literals the data gives a reason for (asked last), else the others."""
+    ``reachable``: in a large domain the ``predicted`` states, the only ones asked about (None:
+    the domain is small); ``reasoned``: the literals the data gives a reason for (asked last),
+    else the others."""
     names = learner.names
     width = len(names)
     groups: list[tuple[int, int, int, str | None, list[Lit]]] = []
@@ -125,26 +141,42 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
             literals = literals_of(pos & ~have_pos, neg & ~have_neg, width)
         groups.append((1, -knowledge.applied.count, knowledge.order, name, literals))
     bases = _bases(learner)
-    small = 1 << width <= MAX_PROBED
-    probes = [mask for mask in (range(1 << width) if small else predicted(learner)) if learner.possible(mask)]
+    small = reachable is None
+    probes = [mask for mask in (range(1 << width) if reachable is None else reachable) if learner.possible(mask)]
     done_true, done_false = literal_masks(goal.required()) if goal.known else (0, 0)
     stuck = [mask for mask in probes
              if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
+    idle: dict[int, bool] = {}  # state -> the robot does nothing there (ticked only when asked)
+
+    def does_nothing(mask: int) -> bool:
+        if mask not in idle:
+            idle[mask] = does(learner.state_of(mask)) == "nothing"
+        return idle[mask]
+
     labelled = learner.labelled_masks()
-    plausible = [] if small else [state for state in (learner.state_of(mask) for mask in probes
-                                                      if mask not in labelled) if state not in skip]
+    skipped = {learner.state_mask(state) for state in skip}
+    plausible = [] if small else [mask for mask in probes if mask not in labelled and mask not in skipped]
     found: list[tuple[tuple[int, int, int, int, int], SituationQuestion]] = []
     for rank, evidence, order, action, literals in groups:
         question = None
         for group in learner.untested(action, literals):
-            question = _plausible_question(learner, does, plausible, action, group) if plausible else None
-            question = question or _group_question(learner, does, skip, bases.get(action, ()), action, group)
+            if small:
+                question = _group_question(learner, does, skip, bases.get(action, ()), action, group)
+            else:
+                question = _plausible_question(learner, does, does_nothing, plausible, action, group)
+            if reasoned and question is not None and question.tree_does != "nothing":
+                question = None  # usually needed: a no there would be what the robot does anyway
             if question is not None:
                 literals = [(learner.names.index(name), value) for name, value in question.settles]
                 break
         if question is None:
             continue
-        unblocked = _unblocked(learner, action, literals, stuck)
+        # an action counts only the states where the robot now does nothing: where it does something
+        # else, a yes changes nothing it does (logistics after 20 demonstrations: 3 of 5 answers)
+        unblocked = len(_unblocked(learner, action, literals, stuck)) if action is None else \
+            sum(map(does_nothing, _unblocked(learner, action, literals, stuck)))
+        if not unblocked and action is not None and question.tree_does != "nothing":
+            continue
         found.append(((-unblocked, -len(literals), rank, evidence, order), question))
     found.sort(key=lambda item: item[0])
     for _key, question in found:
@@ -233,20 +265,26 @@ def _false_in(state: State, literals: list[Lit]) -> list[Lit]:
     return [(index, value) for index, value in literals if state[index] != value]
 
 
-def _plausible_question(learner: Learner, does: Callable[[State], str], plausible: list[State],
-                        action: str | None, literals: list[Lit]) -> SituationQuestion | None:
+def _plausible_question(learner: Learner, does: Callable[[State], str], does_nothing: Callable[[int], bool],
+                        plausible: list[int], action: str | None, literals: list[Lit]) -> SituationQuestion | None:
     """The question about as many of ``literals`` as one predicted state can settle: one where
-    every other required literal holds and the most of ``literals`` do not."""
-    required = learner.required_of(action)
-    group = set(literals)
-    best: tuple[int, State, list[Lit]] | None = None
-    for state in plausible:
-        false = [(i, v) for i, v in required if state[i] != v]
-        if false and all(lit in group for lit in false) and (best is None or len(false) > best[0]):
-            best = (len(false), state, false)
+    every other required literal holds and the most of ``literals`` do not, first one where the
+    robot does nothing now (any answer there is new: where it acts, the answer is often what it
+    would have done anyway)."""
+    need_true, need_false = literal_masks(learner.required_of(action))
+    group_true, group_false = literal_masks(literals)
+    best: tuple[bool, int, int] | None = None
+    for mask in plausible:
+        false_true, false_false = need_true & ~mask, need_false & mask  # required literals false there
+        if (false_true or false_false) and not false_true & ~group_true and not false_false & ~group_false:
+            key = (does_nothing(mask), false_true.bit_count() + false_false.bit_count())
+            if best is None or key > best[:2]:
+                best = (*key, mask)
     if best is None:
         return None
-    return may_i(learner, best[1], action, best[2], does(best[1]))
+    state = learner.state_of(best[2])
+    false = [(i, v) for i, v in learner.required_of(action) if state[i] != v]
+    return may_i(learner, state, action, false, does(state))
 
 
 def may_i(learner: Learner, state: State, action: str | None, literals: list[Lit], does: str) -> SituationQuestion:
@@ -300,17 +338,17 @@ def predicted(learner: Learner) -> list[int]:
     return list(seen)
 
 
-def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck: list[int]) -> int:
-    """How many probed states where the tree does not say done would a yes let ``action`` run in
+def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck: list[int]) -> list[int]:
+    """The probed states where the tree does not say done that a yes would let ``action`` run in
     (``action`` None: let the tree say done in): those whose false required literals are all
     among ``literals``."""
     required = learner.required_of(action)
     group = set(literals)
     others_true, others_false = literal_masks([lit for lit in required if lit not in group])
     inside_true, inside_false = literal_masks([lit for lit in required if lit in group])
-    return sum(1 for mask in stuck
-               if mask & others_true == others_true and not mask & others_false
-               and (mask & inside_true != inside_true or mask & inside_false))
+    return [mask for mask in stuck
+            if mask & others_true == others_true and not mask & others_false
+            and (mask & inside_true != inside_true or mask & inside_false)]
 
 
 def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:

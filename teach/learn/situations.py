@@ -65,16 +65,30 @@ def flipped(state: State, index: int) -> State:
 
 
 def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
-                          flipped: Callable[[State, int], State]) -> Iterable[SituationQuestion]:
+                          flipped: Callable[[State, int], State],
+                          probes: Iterable[State] | None = None) -> Iterable[SituationQuestion]:
     """Situations where the declared goal does not hold and the tree says "done" or does nothing,
     searched outwards from the labelled ones (one condition changed, then two, ...), so the
-    first found are those a teacher most likely meets. Without a declared goal, only "nothing"."""
+    first found are those a teacher most likely meets; or among ``probes`` (not labelled), in
+    their order. Without a declared goal, only "nothing"."""
     position = {name: index for index, name in enumerate(learner.names)}
     goal = [(position[literal.name], literal.value) for literal in learner.domain.goal]
 
     def unmet(state: State) -> bool:
         return any(state[index] != value for index, value in goal)
 
+    def worth_asking(probe: State) -> SituationQuestion | None:
+        now = does(probe)
+        if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
+            return SituationQuestion(probe, "unmet-goal", tree_does=now)
+        return None
+
+    if probes is not None:
+        labelled = learner.situations
+        for probe in probes:
+            if probe not in labelled and (question := worth_asking(probe)) is not None:
+                yield question
+        return
     frontier = list(learner.situations)
     seen = set(frontier)
     while frontier and len(seen) < MAX_PROBED:
@@ -90,7 +104,6 @@ def unmet_goal_situations(learner: Learner, does: Callable[[State], str],
                 reached.append(probe)
                 if not learner.possible_when_made(learner.state_mask(probe)):
                     continue
-                now = does(probe)
-                if (now == "nothing" and (unmet(probe) or not goal)) or (now == "done" and unmet(probe)):
-                    yield SituationQuestion(probe, "unmet-goal", tree_does=now)
+                if (question := worth_asking(probe)) is not None:
+                    yield question
         frontier = reached
