@@ -25,6 +25,7 @@ from teach.errors import FormatError  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
 from teach.learn.lifting import lifting_of  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
+from teach.session.arguments import condition_named  # noqa: E402
 from teach.symbolic import missing_preconditions  # noqa: E402
 
 BLOCKS = Path(__file__).resolve().parent.parent / "demos" / "blocksworld"
@@ -257,3 +258,13 @@ def test_a_question_about_an_action_never_done_says_which_step_it_is_known_from(
     text = question.text(domain)
     assert text.startswith(f"I have not done “{domain.action(never).label()}” yet, but every time I did a step like it")
     assert "Every time I did" not in text
+
+
+def test_a_condition_named_by_its_name_is_that_condition_word_for_word() -> None:
+    """Dropping filler words read "on_b_a" ("on b a" without its "a") as "on_a_b", so
+    `start on_b_a` put a on b; word for word first, and a loose reading only where it names one."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    assert [condition_named(domain, text) for text in ("on_b_a", "On B A", "on_a_b", "on a b")] == \
+        ["on_b_a", "on_b_a", "on_a_b", "on_a_b"]
+    ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
+    assert condition_named(ball, "ballfound") == condition_named(ball, "Ball Found") == "BallFound"

@@ -157,6 +157,11 @@ def _words(text: str) -> list[str]:
     return re.findall(r"[a-z0-9]+", text)
 
 
+def plain(text: str) -> str:
+    """Lower case, no accents, no punctuation, every word kept (``normalize`` drops filler words)."""
+    return " ".join(_words(text))
+
+
 def normalize(text: str) -> str:
     """Lower case, no accents (ä → a, ß → ss), no punctuation, no filler words."""
     return " ".join(w for w in _words(text) if w not in _FILLERS)

@@ -5,9 +5,10 @@ by name in any case."""
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 from teach import messages as m
-from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize, plain
 from teach.domain import Domain
 from teach.errors import TeachError
 from teach.messages import Lang
@@ -57,12 +58,21 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
 
 
 def condition_named(domain: Domain, text: str) -> str | None:
-    key = normalize(text)
-    for condition in domain.conditions:
-        if key in {normalize(condition.name), normalize(_spelled(condition.name)), normalize(condition.en),
-                   normalize(condition.de)}:
-            return condition.name
-    return None
+    """The condition ``text`` names: first word for word (so "on_b_a" is never "on_a_b"), else
+    without filler words if that reading names one condition only ("the ball is found"; "on b a"
+    without its "a" reads "on a b" too: then None)."""
+    exact = _conditions_read(domain, text, plain)
+    if exact:
+        return exact[0]
+    loose = _conditions_read(domain, text, normalize)
+    return loose[0] if len(loose) == 1 else None
+
+
+def _conditions_read(domain: Domain, text: str, read: Callable[[str], str]) -> list[str]:
+    """The conditions whose name, name spelled out or label reads as ``text`` does."""
+    key = read(text)
+    return [c.name for c in domain.conditions
+            if key in {read(c.name), read(_spelled(c.name)), read(c.en), read(c.de)}]
 
 
 def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic: str | None) -> str:
