@@ -32,10 +32,10 @@ literals one "yes" rules out. In order:
    in log2(n) questions (group testing) and then kept for good. Where every state is counted, a
    question about an action whose yes would let it run nowhere the robot now does nothing,
    asked where the robot does something, is not asked: its answer would be what it does anyway
-   (the predicted states are only some of the states the robot meets, so there it is asked). Literals the data gives a
-   reason for (the step before made them hold; the action undoes them) are asked about only
-   when no other group is left, and only where the robot does nothing: they are usually
-   needed, so elsewhere the answer would change nothing;
+   (the predicted states are only some of the states the robot meets, so there it is asked).
+   Literals the data gives a reason for (the step before made them hold; the action undoes
+   them) are asked about only when no other group is left, and only where the robot does
+   nothing: they are usually needed, so elsewhere the answer would change nothing;
 4. **unmet goal**: a situation, nearest the labelled ones first (with ``predicted`` states,
    one of them), where the domain's declared goal does not hold and the tree would do nothing;
 5. **gaps**: a state next to a labelled one where the tree does nothing (small domains without
