@@ -264,6 +264,7 @@ CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and 
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
+NOTHING_ELSE = Text(", and nothing else", ", sonst nichts")
 
 # --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
 QUOTED = Text("“{text}”", "„{text}“")

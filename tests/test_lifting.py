@@ -19,11 +19,12 @@ from foreign.model import Task  # noqa: E402
 from foreign.sam import SamLearner  # noqa: E402
 
 from teach.demos import parse_demonstration, read_demo_set  # noqa: E402
-from teach.dialogue.questions import Question  # noqa: E402
+from teach.dialogue.questions import Question, describe_situation  # noqa: E402
 from teach.domain import Domain, load_domain  # noqa: E402
 from teach.errors import FormatError  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
 from teach.learn.lifting import lifting_of  # noqa: E402
+from teach.messages import Lang  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 from teach.session.arguments import condition_named  # noqa: E402
 from teach.symbolic import missing_preconditions  # noqa: E402
@@ -268,3 +269,14 @@ def test_a_condition_named_by_its_name_is_that_condition_word_for_word() -> None
         ["on_b_a", "on_b_a", "on_a_b", "on_a_b"]
     ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
     assert condition_named(ball, "ballfound") == condition_named(ball, "Ball Found") == "BallFound"
+
+
+def test_a_situation_with_many_objects_says_what_holds_and_nothing_else() -> None:
+    """Blocksworld's questions listed 25 false conditions ("not: on a a, not: on a b, …"); what holds
+    and "and nothing else" is what a person can read. The ball's five conditions are all named."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    state = domain.state(["clear_a", "handempty", "on_a_b", "ontable_b"])
+    assert describe_situation(domain, state) == "clear a, handempty, on a b and ontable b, and nothing else"
+    assert describe_situation(domain, state, Lang.DE).endswith("und ontable_b, sonst nichts")
+    ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
+    assert " but " in describe_situation(ball, ball.state(["BallFound"]))

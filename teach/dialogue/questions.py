@@ -129,11 +129,18 @@ class Question:
         return m.SITUATION_QUESTION(lang, situation=situation)
 
 
+MAX_FALSE_NAMED = 8
+"""More conditions false than this are not named one by one (in blocksworld 25 of 29 are: "not:
+on a a, not: on a b, …"): what holds, "and nothing else". `state full` shows every value."""
+
+
 def describe_situation(domain: Domain, state: State, lang: Lang = Lang.EN) -> str:
-    """A state in plain words: what holds, then ``but`` what does not."""
+    """A state in plain words: what holds, then ``but`` what does not (or "and nothing else")."""
     true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
     but = m.BUT(lang)
+    if true and len(false) > MAX_FALSE_NAMED:
+        return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}"
     if true and false:
         return f"{join_words(true, lang)},{but}{join_words(false, lang)}"
     return join_words(true or false, lang)
