@@ -507,10 +507,14 @@ class Learner:
         own state: there the teacher's step is done (a rule that tests every condition, in front),
         elsewhere only where no rule fits (a general one, behind the rules). A general one in front
         would turn the robot away from the rules' way to the goal in states nobody showed, and could
-        lead it round in circles (logistics, 2 demonstrations: 13–25% of runs)."""
+        lead it round in circles (logistics, 2 demonstrations: 13–25% of runs). Where the rules are
+        complete (the model knows every way to the goal), the one behind them is exact too: a step
+        from a state the model knows no way from, generalised by what set that state apart, is a
+        guess about where else it helps, and two such guesses flew logistics' plane back and forth
+        (5% of runs after 2 demonstrations and 5 answers; 74% reached without them, 76% with)."""
         if both.decided(mask) is not None:
             self._exceptions.insert(0, self._exception(mask, situation, exact=True))
-        self._later.insert(0, self._exception(mask, situation))
+        self._later.insert(0, self._exception(mask, situation, exact=both.complete))
 
     def _exception(self, mask: int, situation: Situation, exact: bool = False) -> ExceptionRule:
         return exception_rule(mask, situation.answer, situation.sources[-1], self._labels.columns, self.names,

@@ -19,7 +19,11 @@ round in circles there, which achieving goal literals one at a time does where t
 runs, 10 conditions, after 5 or 20; none with the rules first). Behind the rules come the
 learner's general exceptions (the teacher's steps where no rule fits), then, only where the
 budget cut the regression short, the plan; where it found every condition, no other way to the
-goal exists in the learned model, so nothing more (FAILURE: the robot stops and asks).
+goal exists in the learned model, so nothing more (FAILURE: the robot stops and asks). Where the
+budget cut it short, the rules are followed by each goal literal no action undoes, worked back
+on its own and pursued one at a time (``subgoal_rules``: visitall's goal, every cell visited,
+regresses into more conditions than the budget holds; pursued cell by cell it is reached from
+every start).
 
 A pure function of the ``PlanView``, like the plan. The rules are evaluated by bitmask tests
 (``PlanWithRules``) and become nodes only when the tree is assembled.
@@ -107,13 +111,14 @@ def subgoal_rules(goal: tuple[Lit, ...], preconditions: tuple[tuple[str, tuple[L
     as none is ever undone and each rule leads to a state where a rule nearer its literal fires,
     it never goes round in circles. All within ``budget`` nodes."""
     steps = _steps(preconditions, achievers)
+    shift = _shift(goal, steps)
     undone = {(index, not value) for (index, value), names in achievers if names}
     found: list[Rule] = []
     for literal in goal:
         if literal in undone:
             continue
         single = literal_masks((literal,))
-        rules, _complete = _regress(single, steps, _shift(goal, steps), budget)
+        rules, _complete = _regress(single, steps, shift, budget)
         pursued = [Rule(rule.true | single[1], rule.false | single[0], rule.action, rule.makes, rule.needs, literal)
                    for rule in rules if not (rule.true & single[0] or rule.false & single[1])]
         budget -= sum(rule_nodes_count(rule.true, rule.false) for rule in pursued)

@@ -117,8 +117,8 @@ def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestio
 def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State], reachable: list[int] | None,
                 reasoned: bool) -> Iterable[SituationQuestion]:
     """Group questions about unsure literals, the most settled by one yes first (module docstring).
-    ``reachable``: in a large domain the ``predicted`` states, the only ones asked about (None:
-    the domain is small); ``reasoned``: the literals the data gives a reason for (asked last),
+    ``reachable``: in a large domain or one with forms the ``predicted`` states, the only ones
+    asked about (None: every state is); ``reasoned``: the literals the data gives a reason for (asked last),
     else the others."""
     names = learner.names
     width = len(names)
@@ -312,10 +312,11 @@ def _group_question(learner: Learner, does: Callable[[State], str], skip: set[St
 
 
 def predicted(learner: Learner) -> list[int]:
-    """The states a question's worth is counted on in a domain too large to count them all, as
-    bitmasks: the labelled ones and, breadth-first, what each demonstrated action's learned
-    effects make of them where all its required preconditions hold (at most ``MAX_PROBED``); in
-    STRIPS-like worlds that prediction is sound, as the safe tree's actions are.
+    """The states a question's worth is counted on in a domain too large to count them all (or one
+    with forms, where most of them cannot happen), as bitmasks: the labelled ones and,
+    breadth-first, what each demonstrated action's learned effects make of them where all its
+    required preconditions hold (at most ``MAX_PROBED``); in STRIPS-like worlds that prediction
+    is sound, as the safe tree's actions are.
     A question about one of these is not about a state that cannot happen, as one made by
     changing conditions at random often is (a ferry at two places)."""
     actions = []
