@@ -26,6 +26,7 @@ from foreign.teaching import ceiling, demonstration, safe_ceiling, split_starts 
 
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, walk  # noqa: E402
 from teach.bt.tick import compile_tree  # noqa: E402
+from teach.demos import Demonstration  # noqa: E402
 from teach.learn.inquiry import SituationQuestion, next_question  # noqa: E402
 from teach.learn.learner import Learner  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
@@ -182,16 +183,23 @@ def test_no_safe_learner_passes_the_safe_ceiling_without_questions(k: int) -> No
     assert safe <= ceiling(task, demos, tests)
 
 
+def taught(name: str, seed: int, k: int) -> tuple[Task, list[Demonstration], list[int], Learner]:
+    """The planning task, ``k`` demonstrations from its seed's training starts, its held-out starts
+    and the learner that learned the demonstrations one by one."""
+    task = ipc.load(name)
+    train, tests = split_starts(task, seed, k, 100)
+    demos = [demonstration(task, start, f"d{i}") for i, start in enumerate(train)]
+    learner = Learner(task.domain)
+    for demo in demos:
+        learner.update(demo)
+    return task, demos, tests, learner
+
+
 def test_visitall_is_reached_goal_literal_by_goal_literal() -> None:
     """Visitall's goal (every cell visited) regresses past the rules' budget; its literals are
     never undone, so they are worked towards one at a time, and the robot gets there from every
     held-out start (before: 72% after 5 demonstrations, stuck elsewhere), never unsafe."""
-    task = ipc.load("visitall")
-    train, tests = split_starts(task, 0, 5, 100)
-    demos = [demonstration(task, s, f"d{i}") for i, s in enumerate(train)]
-    learner = Learner(task.domain)
-    for demo in demos:
-        learner.update(demo)
+    task, _demos, tests, learner = taught("visitall", 0, 5)
     assert judge(task, learner.tree, tests).share("reached") == 1.0
     pursued = [why for why in map(learner.why, (node.uid for node in walk(learner.tree))) if why.kind == "pursued"]
     assert pursued and "does not hold yet: the goal needs it and no action undoes it" in pursued[0].text
@@ -200,12 +208,7 @@ def test_visitall_is_reached_goal_literal_by_goal_literal() -> None:
 def test_teachers_steps_outside_complete_rules_do_not_send_the_robot_round_in_circles() -> None:
     """Logistics, 2 demonstrations (one never loads the plane), 5 answers: generalised, a shown
     flight and an answered one flew the plane back and forth from 16 of 100 starts."""
-    task = ipc.load("logistics")
-    train, tests = split_starts(task, 1, 2, 100)
-    demos = [demonstration(task, start, f"d{i}") for i, start in enumerate(train)]
-    learner = Learner(task.domain)
-    for demo in demos:
-        learner.update(demo)
+    task, demos, tests, learner = taught("logistics", 1, 2)
     ask(learner, task, 5)
     outcomes = judge(task, learner.tree, tests)
     assert outcomes.share("loop") == 0 and outcomes.share("unsafe") == 0
@@ -218,11 +221,7 @@ def test_questions_with_forms_are_about_states_that_can_happen() -> None:
     is what the robot would have done anyway."""
     answers = []
     for name in ("blocksworld", "miconic", "logistics"):
-        task = ipc.load(name)
-        train, _tests = split_starts(task, 0, 2, 100)
-        learner = Learner(task.domain)
-        for i, start in enumerate(train):
-            learner.update(demonstration(task, start, f"d{i}"))
+        task, _demos, _tests, learner = taught(name, 0, 2)
         answers += ask(learner, task, 5)
     assert answers and not [a for a in answers if a.said == "impossible"]
     assert sum(not a.changed for a in answers) <= len(answers) / 5, answers
