@@ -399,10 +399,7 @@ class Learner:
     def _plan_does(self, state: State) -> Answer | str:
         if self._compiled is None:
             return FAILED
-        status, action = self._compiled(state)
-        if status is Status.RUNNING:
-            return action
-        return None if status is Status.SUCCESS else FAILED
+        return _answer(*self._compiled(state))
 
     def _output(self, mask: int) -> Answer | bool:
         for exception in self._exceptions:
@@ -416,10 +413,8 @@ class Learner:
                 if later is not None:
                     return later.answer
                 decided = both.behind_rules(self._state(mask))
-            status, action = decided
-            if status is Status.RUNNING:
-                return action
-            return None if status is Status.SUCCESS else False
+            answer = _answer(*decided)
+            return False if answer == FAILED else answer
         result = self._plan_output(mask)
         return False if result == FAILED else result
 
@@ -514,6 +509,8 @@ class Learner:
         (5% of runs after 2 demonstrations and 5 answers; 74% reached without them, 76% with)."""
         if both.decided(mask) is not None:
             self._exceptions.insert(0, self._exception(mask, situation, exact=True))
+            if both.complete:
+                return  # an exact one behind it would never fire
         self._later.insert(0, self._exception(mask, situation, exact=both.complete))
 
     def _exception(self, mask: int, situation: Situation, exact: bool = False) -> ExceptionRule:
@@ -570,6 +567,13 @@ class Learner:
 
     def _state(self, mask: int) -> State:
         return mask_state(mask, self._n)
+
+
+def _answer(status: Status, action: str | None) -> Answer | str:
+    """What a tick says to do: the action it left running, None for SUCCESS, ``FAILED`` for FAILURE."""
+    if status is Status.RUNNING:
+        return action
+    return None if status is Status.SUCCESS else FAILED
 
 
 def learn_online(domain: Domain, demos: Seq[Demonstration], safe: bool = True) -> Learner:

@@ -99,9 +99,6 @@ def lifting_of(domain: Domain) -> Lifting | None:
                         theirs = index.get((form[0], *(rename[o] for o in form[1:])))
                         if theirs is not None:
                             pairs.append((i, theirs))
-                image = 0
-                for _mine, theirs in pairs:
-                    image |= 1 << theirs
-                found.append(Renaming(sibling, tuple(pairs), image))
+                found.append(Renaming(sibling, tuple(pairs), sum(1 << theirs for _mine, theirs in pairs)))
             renamings[name] = tuple(found)
     return Lifting(own, renamings)

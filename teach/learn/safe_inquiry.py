@@ -81,9 +81,12 @@ def next_safe_question(learner: Learner, asked: Iterable[State] = ()) -> Situati
 
 def _candidates(learner: Learner, skip: set[State]) -> Iterable[SituationQuestion]:
     names = learner.names
+    done: dict[State, str] = {}  # every question kind ticks states; each is ticked once
 
     def does(state: State) -> str:
-        return tree_does(learner, state)
+        if state not in done:
+            done[state] = tree_does(learner, state)
+        return done[state]
 
     for conflict in learner.conflicts:
         yield SituationQuestion(conflict.state, "conflict", tree_does=does(conflict.state))
@@ -147,12 +150,9 @@ def _hypotheses(learner: Learner, does: Callable[[State], str], skip: set[State]
     done_true, done_false = literal_masks(goal.required()) if goal.known else (0, 0)
     stuck = [mask for mask in probes
              if not goal.known or mask & done_true != done_true or mask & done_false]  # the tree is not done there
-    idle: dict[int, bool] = {}  # state -> the robot does nothing there (ticked only when asked)
 
     def does_nothing(mask: int) -> bool:
-        if mask not in idle:
-            idle[mask] = does(learner.state_of(mask)) == "nothing"
-        return idle[mask]
+        return does(learner.state_of(mask)) == "nothing"
 
     labelled = learner.labelled_masks()
     skipped = {learner.state_mask(state) for state in skip}
