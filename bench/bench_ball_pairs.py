@@ -15,7 +15,9 @@ then up to 5 questions are asked and answered by the Table 6.1 tree
 - whether both training demonstrations are still reproduced strictly.
 
 Reported as mean and worst over all pairs and over the pairs that between them show all
-five actions, with the share of answers that changed nothing in the tree.
+five actions, with the share of answers that changed nothing in the tree. Beside the safe
+learner's figure for those pairs: the same budget of questions chosen knowing their answers
+(``bench/question_ceiling.py``), which tells a chooser's wrong predictions from a budget too small.
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 from oracle_answers import Answered, ReferenceTeacher, ask, unchanged_share  # noqa: E402
+from question_ceiling import knowing_the_answers  # noqa: E402
 from task_outcomes import OUTCOMES, from_every_state  # noqa: E402
 
 from teach.bt.xml import read_tree  # noqa: E402
@@ -169,6 +172,24 @@ def report_learner(ball: Ball, pairs: list[tuple[Demonstration, Demonstration]],
         met = statistics.mean(five) >= TARGET_MEAN and min(five) >= TARGET_WORST
         print(f"issue 18's target, pairs showing all five actions with <= {QUESTIONS} questions: mean >= "
               f"{TARGET_MEAN}/{total} and worst >= {TARGET_WORST}/{total}: {'met' if met else 'not met'}")
+    if safe:
+        every_action = {a.id for a in ball.domain.actions}
+        print(ceiling(ball, [pair for pair in chosen if actions_shown(list(pair)) == every_action]))
+
+
+def ceiling(ball: Ball, pairs: list[tuple[Demonstration, Demonstration]]) -> str:
+    """The pairs' Δ5 after ``QUESTIONS`` questions chosen knowing their answers."""
+    reproduced = []
+    for number, pair in enumerate(pairs, start=1):
+        best = knowing_the_answers(learn_online(ball.domain, list(pair)), ball.teacher, QUESTIONS)
+        reproduced.append(count_reproduced(best.tree, ball.domain, ball.delta5))
+        print(f"\rknowing the answers: pair {number}/{len(pairs)}", end="", file=sys.stderr, flush=True)
+    print(file=sys.stderr)
+    if not reproduced:
+        return "(no pair shows all five actions)"
+    return (f"the same {len(pairs)} pairs with <= {QUESTIONS} questions chosen knowing their answers "
+            f"(bench/question_ceiling.py): Δ5 mean {statistics.mean(reproduced):5.2f}/{len(ball.delta5)} "
+            f"worst {min(reproduced)}/{len(ball.delta5)}")
 
 
 def breakdown(rows: list[Measured]) -> str:

@@ -17,7 +17,9 @@ The learner sees the domain with its ``goal`` removed, so it must learn the goal
 demonstrations. Rows: 10 demonstrations with 0 and with up to 5 questions; the first 3 with 0
 and with up to 5 questions; questions answered by the reference tree (``bench/oracle_answers.py``). Each row is the
 strict replay of the held-out set; beside it the committed draw (its first 10 training
-demonstrations and its 26 held-out ones).
+demonstrations and its 26 held-out ones). For the safe learner, the 3 + 5 row once more with
+the questions chosen knowing their answers (``bench/question_ceiling.py``): where that too
+falls short, the 3 demonstrations leave more open than 5 questions can settle.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 from oracle_answers import Answered, ReferenceTeacher, ask, unchanged_share  # noqa: E402
+from question_ceiling import knowing_the_answers  # noqa: E402
 from task_outcomes import OUTCOMES, every_state, tally  # noqa: E402
 
 from teach.bt.xml import read_tree  # noqa: E402
@@ -163,14 +166,23 @@ def main(argv: list[str] | None = None) -> None:
 def report_learner(goalless: Domain, teacher: ReferenceTeacher, sets: list[Draw], quiet: HiddenStateWorld,
                    domain: Domain, safe: bool) -> None:
     results: list[list[Row]] = []
-    print(f"{'draw':<10}" + "".join(f"{f'{c} demos, <= {b} q':>22}" for c, b in ROWS) + f"{'unchanged answers':>20}")
+    known: list[float] = []
+    print(f"{'draw':<10}" + "".join(f"{f'{c} demos, <= {b} q':>22}" for c, b in ROWS) + f"{'unchanged answers':>20}"
+          + (f"{'knowing answers':>16}" if safe else ""))
     for data in sets:
         rows = measure(goalless, teacher, data, quiet, domain.goal, safe)
         if data.name != "committed":
             results.append(rows)
         answers = [a for row in rows for a in row.answers]
         cells = "".join(f"{f'{r.reproduced}/{r.total} ({r.asked} asked)':>22}" for r in rows)
-        print(f"{data.name:<10}{cells}{f'{100 * unchanged_share(answers):.0f}% of {len(answers)}':>20}")
+        line = f"{data.name:<10}{cells}{f'{100 * unchanged_share(answers):.0f}% of {len(answers)}':>20}"
+        if safe:
+            best = knowing_the_answers(learn_online(goalless, data.train[:FEW]), teacher, QUESTIONS)
+            reproduced = count_reproduced(best.tree, goalless, data.held_out)
+            line += f"{f'{reproduced}/{len(data.held_out)}':>16}"
+            if data.name != "committed":
+                known.append(reproduced / len(data.held_out))
+        print(line)
     print(f"over the {len(results)} new draws: held-out reproduced mean (worst); task success from "
           f"{len(starts(goalless))} starts in the hidden-state world")
     for index, (count, budget) in enumerate(ROWS):
@@ -183,6 +195,9 @@ def report_learner(goalless: Domain, teacher: ReferenceTeacher, sets: list[Draw]
             f"  | target >= {100 * target:.0f}% on every draw: {'met' if min(shares) >= target else 'not met'}"
         print(f"  {count:>2} demonstrations, <= {budget} questions: {100 * statistics.mean(shares):3.0f}% "
               f"({100 * min(shares):3.0f}%)  | {success}{verdict}")
+    if known:
+        print(f"   {FEW} demonstrations, <= {QUESTIONS} questions chosen knowing their answers "
+              f"(bench/question_ceiling.py): {100 * statistics.mean(known):3.0f}% ({100 * min(known):3.0f}%)")
 
 
 if __name__ == "__main__":
