@@ -91,6 +91,8 @@ CANNOT_LEARN = Text("I cannot learn this demonstration: {why} Say 'undo' to take
 DETAILS = Text("({details})", "({details})")
 FINISH_FIRST = Text("Finish or cancel the open demonstration first.",
                     "Beende oder verwirf zuerst die laufende Vorführung.")
+WHICH_CONDITION = Text("which condition is {name!r}: {some}?",
+                       "welche Bedingung ist {name!r}: {some}?")
 UNKNOWN_CONDITION = Text("unknown condition {name!r} (known: {known})",
                          "unbekannte Bedingung {name!r} (bekannt: {known})")
 

@@ -21,12 +21,12 @@ from foreign.sam import SamLearner  # noqa: E402
 from teach.demos import parse_demonstration, read_demo_set  # noqa: E402
 from teach.dialogue.questions import Question, describe_situation  # noqa: E402
 from teach.domain import Domain, load_domain  # noqa: E402
-from teach.errors import FormatError  # noqa: E402
+from teach.errors import FormatError, TeachError  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
 from teach.learn.lifting import lifting_of  # noqa: E402
 from teach.messages import Lang  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
-from teach.session.arguments import condition_named  # noqa: E402
+from teach.session.arguments import condition_named, condition_names  # noqa: E402
 from teach.symbolic import missing_preconditions  # noqa: E402
 
 BLOCKS = Path(__file__).resolve().parent.parent / "demos" / "blocksworld"
@@ -269,6 +269,20 @@ def test_a_condition_named_by_its_name_is_that_condition_word_for_word() -> None
         ["on_b_a", "on_b_a", "on_a_b", "on_a_b"]
     ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
     assert condition_named(ball, "ballfound") == condition_named(ball, "Ball Found") == "BallFound"
+
+
+def test_the_first_words_of_several_conditions_name_none_of_them() -> None:
+    """"clear" without the filler "a" of "clear a" read as clear_a; it begins clear b, c and d too,
+    so 'start clear' asks which one is meant."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    assert condition_named(domain, "clear") is None
+    assert condition_named(domain, "clear a") == "clear_a"
+    with pytest.raises(TeachError, match=r"^which condition is 'clear': clear a, clear b, clear c, clear d\?$"):
+        condition_names(domain, "handempty, clear", Lang.EN)
+    with pytest.raises(TeachError, match=r"^unknown condition 'cleer'"):
+        condition_names(domain, "cleer", Lang.EN)
+    ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
+    assert condition_names(ball, "the ball is in my hand, BinClose", Lang.EN) == ["BallGrasped", "BinClose"]
 
 
 def test_a_situation_with_many_objects_says_what_holds_and_nothing_else() -> None:

@@ -51,6 +51,10 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
         for word in [part] if whole is not None else part.split():  # else names side by side
             found = condition_named(domain, word)
             if found is None:
+                family = _begun_by(domain, word)
+                if len(family) > 1:
+                    raise TeachError(m.WHICH_CONDITION(lang, name=word.strip(), some=", ".join(
+                        domain.condition(name).label(lang) for name in family)))
                 known = ", ".join(c.label(lang) for c in domain.conditions)
                 raise TeachError(m.UNKNOWN_CONDITION(lang, name=word.strip(), known=known))
             names.append(found)
@@ -60,12 +64,25 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
 def condition_named(domain: Domain, text: str) -> str | None:
     """The condition ``text`` names: first word for word (so "on_b_a" is never "on_a_b"), else
     without filler words if that reading names one condition only ("the ball is found"; "on b a"
-    without its "a" reads "on a b" too: then None)."""
+    without its "a" reads "on a b" too: then None), and ``text`` is not the first words of several
+    ("clear" without the "a" of "clear a" would read as "clear a", but "clear b" begins so too)."""
     exact = _conditions_read(domain, text, plain)
     if exact:
         return exact[0]
+    if len(_begun_by(domain, text)) > 1:
+        return None
     loose = _conditions_read(domain, text, normalize)
     return loose[0] if len(loose) == 1 else None
+
+
+def _begun_by(domain: Domain, text: str) -> list[str]:
+    """The conditions whose name or label, word for word, begins with ``text``'s words and goes on."""
+    key = plain(text).split()
+    if not key:
+        return []
+    return [c.name for c in domain.conditions
+            if any(words[:len(key)] == key and len(words) > len(key)
+                   for words in (plain(r).split() for r in (c.name, _spelled(c.name), c.en, c.de)))]
 
 
 def _conditions_read(domain: Domain, text: str, read: Callable[[str], str]) -> list[str]:
