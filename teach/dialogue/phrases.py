@@ -258,6 +258,10 @@ class PhraseBook:
         self._display: dict[str, dict[str, str]] = {"en": {}, "de": {}}
         self._labels: dict[tuple[str, str], str] = {}
         self._nouns: list[str] = []
+        # an object the domain names by a word a line otherwise drops ("a" of "stack b a") is kept
+        forms = [c.form for c in domain.conditions] + [a.form for a in domain.actions]
+        objects = {word for form in forms for thing in form[1:] for word in _words(thing)}
+        self._ignored = _IGNORED - objects
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
         for name, (english, german) in sorted(events.items()):
@@ -288,7 +292,7 @@ class PhraseBook:
 
     def _enter(self, entry: _Entry) -> None:
         """The first phrase of each kind keeps a key: an action and an event may share one."""
-        key = phrase_key(entry.phrase)
+        key = self._key(entry.phrase)
         if key:
             entries = self._entries.setdefault(key, [])
             if all(e.kind != entry.kind for e in entries):
@@ -297,7 +301,7 @@ class PhraseBook:
     def _note_nouns(self, phrase: str) -> None:
         """Objects the phrases name (the word after an article), in order of first mention."""
         for article, noun in pairwise(_words(phrase)):
-            if article in _ARTICLES and noun not in _IGNORED | _ARTICLES | _PRONOUNS and noun not in self._nouns:
+            if article in _ARTICLES and noun not in self._ignored | _ARTICLES | _PRONOUNS and noun not in self._nouns:
                 self._nouns.append(noun)
 
     def phrases(self, lang: Lang = Lang.EN) -> list[str]:
@@ -306,13 +310,13 @@ class PhraseBook:
 
     def topic_in(self, text: str) -> str | None:
         """The object a line names last ("start ball found": the ball), or None."""
-        return self._last_noun(phrase_key(text))
+        return self._last_noun(self._key(text))
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """The object named last in ``tokens``: what "it" means in the next line."""
         topic = None
         for token in tokens:
-            topic = self._last_noun(phrase_key(token.text)) or topic
+            topic = self._last_noun(self._key(token.text)) or topic
         return topic
 
     # --- parsing ------------------------------------------------------------------------------------
@@ -337,14 +341,14 @@ class PhraseBook:
         later part of the line)."""
         candidate = replace(suggestion.candidate, guessed=False)
         tokens = [*suggestion.before, candidate]
-        topic = self._last_noun(phrase_key(candidate.text)) or suggestion.topic
+        topic = self._last_noun(self._key(candidate.text)) or suggestion.topic
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
     def _read(self, chunks: list[str], lang: Lang, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = phrase_key(chunk)
+            words = self._key(chunk)
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -358,7 +362,7 @@ class PhraseBook:
                 if typo is None:
                     raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
                 tokens.append(typo)
-                topic = self._last_noun(phrase_key(typo.text)) or topic
+                topic = self._last_noun(self._key(typo.text)) or topic
                 continue
             for number, piece in enumerate(pieces):
                 said = chunk if len(pieces) == 1 else " ".join(piece.words)
@@ -537,10 +541,9 @@ class PhraseBook:
         return all(self._shared(said, other.phrase) < shared for r, other in self._ranked(said)
                    if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, None))
 
-    @staticmethod
-    def _shared(said: str, phrase: str) -> int:
+    def _shared(self, said: str, phrase: str) -> int:
         """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
-        theirs = [w for w in phrase_key(phrase) if w not in _ARTICLES]
+        theirs = [w for w in self._key(phrase) if w not in _ARTICLES]
         return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
 
     def _text(self, entry: _Entry, lang: Lang) -> str:
@@ -548,6 +551,10 @@ class PhraseBook:
         if entry.lang == lang:
             return entry.phrase
         return self._labels.get((entry.name, lang)) or self._labels.get((entry.name, "en")) or entry.phrase
+
+    def _key(self, text: str) -> tuple[str, ...]:
+        """``phrase_key`` for this domain: its objects' words are kept even where they are fillers."""
+        return tuple(w for w in _words(text) if w not in self._ignored)
 
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
