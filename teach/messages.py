@@ -55,6 +55,7 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
+AND_MORE = Text(" and {count} more like them", " und {count} weitere solche")
 AND = Text(" and ", " und ")
 OR = Text(" or ", " oder ")
 
@@ -267,6 +268,8 @@ CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and 
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
 NOTHING_ELSE = Text(", and nothing else", ", sonst nichts")
+NONE_OF = Text("none of: {conditions}", "keine von: {conditions}")
+NOTHING_HOLDS = Text("none of the {count} conditions holds", "keine der {count} Bedingungen gilt")
 
 # --- questions about the action definitions (teach/dialogue/model_repair.py) -------------------
 QUOTED = Text("“{text}”", "„{text}“")

@@ -131,7 +131,8 @@ class Question:
 
 MAX_FALSE_NAMED = 8
 """More conditions false than this are not named one by one (in blocksworld 25 of 29 are: "not:
-on a a, not: on a b, …"): what holds, "and nothing else". `state full` shows every value."""
+on a a, not: on a b, …"): what holds, "and nothing else" (or "none of the 29 conditions holds").
+`state full` shows every value."""
 
 
 def describe_situation(domain: Domain, state: State, lang: Lang = Lang.EN) -> str:
@@ -139,8 +140,8 @@ def describe_situation(domain: Domain, state: State, lang: Lang = Lang.EN) -> st
     true = [c.label(lang) for c, v in zip(domain.conditions, state, strict=True) if v]
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
     but = m.BUT(lang)
-    if true and len(false) > MAX_FALSE_NAMED:
-        return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}"
+    if len(false) > MAX_FALSE_NAMED:
+        return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}" if true else m.NOTHING_HOLDS(lang, count=len(false))
     if true and false:
         return f"{join_words(true, lang)},{but}{join_words(false, lang)}"
     return join_words(true or false, lang)

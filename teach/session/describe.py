@@ -1,5 +1,5 @@
 """Learner results in the teacher's words: what an update changed, why a demonstration was
-refused, which goal conditions are still missing."""
+refused, which goal conditions are still missing; and the actions a greeting names."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import re
 from typing import TYPE_CHECKING
 
 from teach import messages as m
-from teach.domain import Domain, Literal, State
+from teach.domain import ActionDef, Domain, Literal, State
 from teach.errors import LearnError
 from teach.messages import Lang
 
@@ -90,3 +90,24 @@ def unmet_goal(domain: Domain, state: State, lang: Lang) -> str:
     """The domain's goal conditions that do not hold, in words ("" when the goal holds)."""
     missing = [lit for lit in domain.goal if not domain.holds(lit, state)]
     return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
+
+
+MAX_ACTIONS_NAMED = 12
+"""More actions than this (blocksworld's 40) are not all named in the greeting and help: one of
+each kind (``form``), or the first ones."""
+
+
+def some_actions(domain: Domain, lang: Lang, say_more: bool = True) -> str:
+    """The domain's actions in the teacher's words: every one or, beyond ``MAX_ACTIONS_NAMED``, one
+    of each kind on objects all different ("stack a b", not "stack a a"), then "and 36 more like
+    them" (``say_more``; 'help' and Tab completion know them all)."""
+    actions = domain.actions
+    if len(actions) <= MAX_ACTIONS_NAMED:
+        return ", ".join(a.label(lang) for a in actions)
+    kinds: dict[str, ActionDef] = {}
+    for action in actions:
+        if action.form and len(set(action.form[1:])) == len(action.form) - 1:
+            kinds.setdefault(action.form[0], action)
+    shown = list(kinds.values())[:MAX_ACTIONS_NAMED] or list(actions[:MAX_ACTIONS_NAMED])
+    more = m.AND_MORE(lang, count=len(actions) - len(shown)) if say_more else ""
+    return ", ".join(a.label(lang) for a in shown) + more

@@ -59,7 +59,7 @@ from teach.session.commands import (
 )
 from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
-from teach.session.describe import unmet_goal, why_refused
+from teach.session.describe import some_actions, unmet_goal, why_refused
 from teach.session.guiding import Guiding
 from teach.session.journal import DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
@@ -146,8 +146,7 @@ class SessionManager(CompatMembers):
     # --- the driver's interface -----------------------------------------------------------
 
     def greet(self) -> list[Reply]:
-        actions = ", ".join(a.label(self.lang) for a in self.domain.actions)
-        replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=actions))]
+        replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         if not self.demos:  # a resumed session names itself in RESUMED_COUNTED
             replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
         else:
@@ -264,7 +263,7 @@ class SessionManager(CompatMembers):
     def cmd_help(self, rest: str) -> list[Reply]:
         lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" if len(c.usage(self.lang)) <= 28
                  else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang)}" for c in COMMANDS]
-        examples = ", ".join(a.label(self.lang) for a in self.domain.actions)  # one demonstration's words
+        examples = some_actions(self.domain, self.lang, say_more=False)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
     def cmd_guide(self, rest: str) -> list[Reply]:

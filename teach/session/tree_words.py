@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
-from teach.dialogue.questions import join_words
+from teach.dialogue.questions import MAX_FALSE_NAMED, join_words
 from teach.domain import Domain
 from teach.messages import Lang
 
@@ -66,7 +66,7 @@ def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
         goal.append(rules.pop(0))
     if goal:  # the checks the root's Fallback tries first
         lines.append(m.WORDS_DONE_WHEN(lang, condition=m.OR(lang).join(
-            _check_words(rule.condition[0], domain, lang) for rule in goal)))
+            _all_words(rule.condition, domain, lang) for rule in goal)))
     if not rules:
         lines.append((m.WORDS_OTHERWISE_NOTHING if goal else m.WORDS_NOTHING)(lang))
         return lines
@@ -74,8 +74,7 @@ def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
     for number, rule in enumerate(rules):
         what = _what(rule, domain, lang)
         if rule.condition:
-            condition = join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in rule.condition)), lang)
-            text = m.WORDS_IF(lang, condition=condition, what=what)
+            text = m.WORDS_IF(lang, condition=_all_words(rule.condition, domain, lang), what=what)
         else:
             text = (m.WORDS_OTHERWISE if number else m.WORDS_FIRST)(lang, what=what)
         lines.append(m.WORDS_BULLET(lang, text=text))
@@ -188,6 +187,23 @@ def _what(rule: _Rule, domain: Domain, lang: Lang) -> str:
 
 def _action_label(name: str, domain: Domain, lang: Lang) -> str:
     return domain.action(name).label(lang) if domain.has_action(name) else name
+
+
+def _all_words(checks: tuple[_Check, ...], domain: Domain, lang: Lang) -> str:
+    """Checks that must all hold. Where more than ``MAX_FALSE_NAMED`` of them are conditions that
+    must be false (a rule of blocksworld's 29 conditions), what must hold is named and then the
+    rest at once: "and nothing else" where every condition is tested, else "and none of: …"."""
+    flat = [part for check in checks for part in (check.parts if check.kind == "all" else (check,))]
+    false = list(dict.fromkeys(c.name for c in flat if c.kind == "literal" and not c.value and
+                               domain.has_condition(c.name)))
+    if len(false) <= MAX_FALSE_NAMED:
+        return join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in checks)), lang)
+    rest = list(dict.fromkeys(_check_words(c, domain, lang) for c in flat
+                              if not (c.kind == "literal" and not c.value and c.name in false)))
+    if len(rest) + len(false) == len(domain.conditions) and all(c.kind == "literal" for c in flat):
+        return f"{join_words(rest, lang)}{m.NOTHING_ELSE(lang)}" if rest else m.NOTHING_HOLDS(lang, count=len(false))
+    none_of = m.NONE_OF(lang, conditions=", ".join(domain.condition(name).label(lang) for name in false))
+    return f"{join_words(rest, lang)}, {none_of}" if rest else none_of
 
 
 def _check_words(check: _Check, domain: Domain, lang: Lang) -> str:
