@@ -11,6 +11,7 @@ from strategies import trees
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Sequence, walk
 from teach.bt.xml import read_tree
 from teach.demos import read_demo_set
+from teach.domain import load_domain
 from teach.learn.learner import learn_online
 from teach.session.tree_words import tree_lines
 
@@ -84,3 +85,18 @@ def test_a_rule_an_earlier_one_always_comes_before_is_not_said(ball):
         "  – if the bin is out of reach, I go to the bin",
         "  – otherwise, I put the ball in the bin",
     ]
+
+
+def test_rules_of_a_domain_with_many_conditions_name_what_holds():
+    """Blocksworld's rules tested 25 false conditions each, said as "not: on a a and not: on a b …"."""
+    blocks = load_domain(BALL.parent / "blocksworld" / "domain.toml")
+    exact = Sequence((*(Condition(c.name) if c.name in ("clear_a", "handempty", "ontable_a") else
+                        Inverter(Condition(c.name)) for c in blocks.conditions), Action("pick_up_a")))
+    some = Sequence((Condition("clear_a"), *(Inverter(Condition(f"on_{x}_a")) for x in "abcd"),
+                     *(Inverter(Condition(f"holding_{x}")) for x in "abcd"), Inverter(Condition("on_a_b")),
+                     Action("pick_up_a")))
+    assert tree_lines(exact, blocks, "en")[1].endswith(
+        "if clear a, handempty and ontable a, and nothing else, I pick up object a")
+    assert "none of: on a a, on b a, on c a, on d a, holding a, holding b, holding c, holding d, on a b" in \
+        tree_lines(some, blocks, "en")[1]
+    assert "not: " not in "\n".join(tree_lines(exact, blocks, "en") + tree_lines(some, blocks, "en"))
