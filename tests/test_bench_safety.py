@@ -233,3 +233,20 @@ def test_the_bench_prints_its_tables(capsys: pytest.CaptureFixture[str]) -> None
     for row in bench_safety.ROWS:
         assert f"miconic        10     2 {row}" in out
     assert "session loop" in out and "miconic      sam" in out
+
+
+def test_questions_where_the_robot_does_nothing_come_first() -> None:
+    """After 20 demonstrations a "may I still …?" asked where the robot acts was mostly answered
+    with what it does there (changing nothing: 47% of the answers); where it does nothing any
+    answer is new. strips-8x6, seed 2: its second to fourth questions were asked where it acts."""
+    task = strips.random_task(8, 6, 2)
+    train, _tests = split_starts(task, 2, 20, 100)
+    learner = Learner(task.domain)
+    for number, start in enumerate(train):
+        learner.update(demonstration(task, start, f"d{number}"))
+    asked: list[tuple[bool, ...]] = []
+    for number in range(4):
+        question = next_question(learner, asked)
+        assert question is not None and question.tree_does == "nothing"
+        asked.append(question.state)
+        answer_question(learner, question, task, f"question {number + 1}")
