@@ -106,6 +106,22 @@ def test_no_with_nothing_asked_says_how_to_undo(ball, tmp_path, lang, no, hint):
     assert hint in said(manager, no) and open_actions(manager) == [1]
 
 
+@pytest.mark.parametrize(("lang", "yes", "reply"), [("en", "yes", "No question is open."),
+                                                     ("de", "ja", "Es ist keine Frage offen.")])
+def test_yes_with_nothing_asked_says_so(ball, tmp_path, lang, yes, reply):
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    assert said(manager, yes) == reply and open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize("line", ["thats it", "that's it", "im finished"])
+def test_done_as_people_type_it(ball, tmp_path, line):
+    manager = session(ball, tmp_path, "en")
+    said(manager, WHOLE["en"])
+    said(manager, line)
+    assert open_actions(manager) == [] and len(manager.demos) == 1
+
+
 def test_no_still_answers_a_did_you_mean(ball, tmp_path):
     manager = session(ball, tmp_path, "en")
     said(manager, "finding")

@@ -94,8 +94,11 @@ class Verb(Enum):
 
     @property
     def names(self) -> tuple[str, ...]:
-        """The words and sayings that name it in either language, normalized (see ``normalize``)."""
-        return tuple(dict.fromkeys(normalize(word) for word in (*self.value.en, *self.value.de)))
+        """The words and sayings that name it in either language, normalized (see ``normalize``), each
+        also without its apostrophes, as people type them ("thats it", "das wars")."""
+        sayings = (*self.value.en, *self.value.de)
+        return tuple(dict.fromkeys(normalize(spelled) for word in sayings
+                                   for spelled in (word, word.replace("'", ""))))
 
     @property
     def usage(self) -> Text:

@@ -254,6 +254,8 @@ class SessionManager(CompatMembers):
         self.asking.in_a_row = 0
         if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
+        if command is None and is_yes(line, self.lang):  # "yes" to nothing asked (it was "I don't know 'yes'")
+            return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
         if command is None:
             return self._teach_actions(line)
         return self._handler(command)(rest)
