@@ -96,7 +96,7 @@ def test_rules_of_a_domain_with_many_conditions_name_what_holds():
                      *(Inverter(Condition(f"holding_{x}")) for x in "abcd"), Inverter(Condition("on_a_b")),
                      Action("pick_up_a")))
     assert tree_lines(exact, blocks, "en")[1].endswith(
-        "if clear a, handempty and ontable a, and nothing else, I pick up object a")
+        "if clear a, handempty and ontable a, and nothing else, I pick up a")
     assert "none of: on a a, on b a, on c a, on d a, holding a, holding b, holding c, holding d, on a b" in \
         tree_lines(some, blocks, "en")[1]
     assert "not: " not in "\n".join(tree_lines(exact, blocks, "en") + tree_lines(some, blocks, "en"))

@@ -26,18 +26,14 @@ from foreign.model import Task  # noqa: E402
 from foreign.teaching import demonstration  # noqa: E402
 
 from teach.demos import write_demonstration  # noqa: E402
-from teach.dialogue.phrases import phrase_key  # noqa: E402
 
 COUNT_WORDS = {1: "one", 2: "two", 3: "three", 5: "five", 20: "twenty"}
 
 
 def action_phrase(form: tuple[str, ...]) -> str:
-    """``("stack", "b", "a")`` -> ``"stack b object a"``: an object a teacher's line would lose as a
-    filler word ("a") is named as an object, so no two actions read the same."""
-    words = [form[0].replace("_", " ")]
-    for thing in form[1:]:
-        words.append(thing if phrase_key(thing) else f"object {thing}")
-    return " ".join(words)
+    """``("stack", "b", "a")`` -> ``"stack b a"``: a phrase book keeps the words a domain's forms
+    name as objects, filler words ("a") too, so no two actions read the same."""
+    return " ".join([form[0].replace("_", " "), *form[1:]])
 
 
 def domain_toml(task: Task, with_goal: bool = False) -> str:

@@ -167,11 +167,6 @@ def normalize(text: str) -> str:
     return " ".join(w for w in _words(text) if w not in _FILLERS)
 
 
-def phrase_key(text: str) -> tuple[str, ...]:
-    """The words of a phrase that matter for matching: two phrases with one key read the same."""
-    return tuple(w for w in _words(text) if w not in _IGNORED)
-
-
 def _ratio(a: str, b: str) -> float:
     return difflib.SequenceMatcher(None, a, b).ratio()
 
@@ -292,7 +287,7 @@ class PhraseBook:
 
     def _enter(self, entry: _Entry) -> None:
         """The first phrase of each kind keeps a key: an action and an event may share one."""
-        key = self._key(entry.phrase)
+        key = self.key(entry.phrase)
         if key:
             entries = self._entries.setdefault(key, [])
             if all(e.kind != entry.kind for e in entries):
@@ -310,13 +305,13 @@ class PhraseBook:
 
     def topic_in(self, text: str) -> str | None:
         """The object a line names last ("start ball found": the ball), or None."""
-        return self._last_noun(self._key(text))
+        return self._last_noun(self.key(text))
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """The object named last in ``tokens``: what "it" means in the next line."""
         topic = None
         for token in tokens:
-            topic = self._last_noun(self._key(token.text)) or topic
+            topic = self._last_noun(self.key(token.text)) or topic
         return topic
 
     # --- parsing ------------------------------------------------------------------------------------
@@ -341,14 +336,14 @@ class PhraseBook:
         later part of the line)."""
         candidate = replace(suggestion.candidate, guessed=False)
         tokens = [*suggestion.before, candidate]
-        topic = self._last_noun(self._key(candidate.text)) or suggestion.topic
+        topic = self._last_noun(self.key(candidate.text)) or suggestion.topic
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
     def _read(self, chunks: list[str], lang: Lang, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = self._key(chunk)
+            words = self.key(chunk)
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -362,7 +357,7 @@ class PhraseBook:
                 if typo is None:
                     raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
                 tokens.append(typo)
-                topic = self._last_noun(self._key(typo.text)) or topic
+                topic = self._last_noun(self.key(typo.text)) or topic
                 continue
             for number, piece in enumerate(pieces):
                 said = chunk if len(pieces) == 1 else " ".join(piece.words)
@@ -543,7 +538,7 @@ class PhraseBook:
 
     def _shared(self, said: str, phrase: str) -> int:
         """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
-        theirs = [w for w in self._key(phrase) if w not in _ARTICLES]
+        theirs = [w for w in self.key(phrase) if w not in _ARTICLES]
         return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
 
     def _text(self, entry: _Entry, lang: Lang) -> str:
@@ -552,8 +547,9 @@ class PhraseBook:
             return entry.phrase
         return self._labels.get((entry.name, lang)) or self._labels.get((entry.name, "en")) or entry.phrase
 
-    def _key(self, text: str) -> tuple[str, ...]:
-        """``phrase_key`` for this domain: its objects' words are kept even where they are fillers."""
+    def key(self, text: str) -> tuple[str, ...]:
+        """The words of a phrase that matter for matching (two phrases with one key read the same):
+        fillers dropped, but not the words this domain's forms name as objects (block "a")."""
         return tuple(w for w in _words(text) if w not in self._ignored)
 
     def _last_noun(self, words: Iterable[str]) -> str | None:
