@@ -15,7 +15,6 @@ is tried, each on a copy of the learner).
 from __future__ import annotations
 
 import copy
-import itertools
 
 from oracle_answers import DONE, SKIP, ReferenceTeacher
 
@@ -32,7 +31,7 @@ def idle_states(learner: Learner, states: list[State]) -> int:
 def knowing_the_answers(learner: Learner, teacher: ReferenceTeacher, budget: int) -> Learner:
     """``learner`` after up to ``budget`` questions chosen knowing their answers (a copy; the
     argument is not changed)."""
-    states = [tuple(s) for s in itertools.product((False, True), repeat=len(learner.names))]
+    states = list(teacher.does)  # every state of the domain
     learner = copy.deepcopy(learner)
     for _ in range(budget):
         best: tuple[int, Learner] | None = None

@@ -141,10 +141,16 @@ def describe_situation(domain: Domain, state: State, lang: Lang = Lang.EN) -> st
     false = [c.label(lang, False) for c, v in zip(domain.conditions, state, strict=True) if not v]
     but = m.BUT(lang)
     if len(false) > MAX_FALSE_NAMED:
-        return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}" if true else m.NOTHING_HOLDS(lang, count=len(false))
+        return only_these(true, len(false), lang)
     if true and false:
         return f"{join_words(true, lang)},{but}{join_words(false, lang)}"
     return join_words(true or false, lang)
+
+
+def only_these(true: list[str], false: int, lang: Lang) -> str:
+    """What holds, "and nothing else" (the ``false`` other conditions not named one by one), or
+    "none of the N conditions holds" when nothing does."""
+    return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}" if true else m.NOTHING_HOLDS(lang, count=false)
 
 
 def join_words(items: list[str], lang: Lang) -> str:

@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize, plain
-from teach.domain import Domain
+from teach.domain import ConditionDef, Domain
 from teach.errors import TeachError
 from teach.messages import Lang
 
@@ -82,14 +82,18 @@ def _begun_by(domain: Domain, text: str) -> list[str]:
         return []
     return [c.name for c in domain.conditions
             if any(words[:len(key)] == key and len(words) > len(key)
-                   for words in (plain(r).split() for r in (c.name, _spelled(c.name), c.en, c.de)))]
+                   for words in (plain(r).split() for r in _readings(c)))]
 
 
 def _conditions_read(domain: Domain, text: str, read: Callable[[str], str]) -> list[str]:
     """The conditions whose name, name spelled out or label reads as ``text`` does."""
     key = read(text)
-    return [c.name for c in domain.conditions
-            if key in {read(c.name), read(_spelled(c.name)), read(c.en), read(c.de)}]
+    return [c.name for c in domain.conditions if key in {read(r) for r in _readings(c)}]
+
+
+def _readings(condition: ConditionDef) -> tuple[str, str, str, str]:
+    """What a teacher may call a condition: its name, the name spelled out, its labels."""
+    return condition.name, _spelled(condition.name), condition.en, condition.de
 
 
 def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic: str | None) -> str:

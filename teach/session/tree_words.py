@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 from teach import messages as m
 from teach.bt.nodes import Action, Condition, Fallback, Inverter, Node, Sequence, walk
-from teach.dialogue.questions import MAX_FALSE_NAMED, join_words
+from teach.dialogue.questions import MAX_FALSE_NAMED, join_words, only_these
 from teach.domain import Domain
 from teach.messages import Lang
 
@@ -201,7 +201,7 @@ def _all_words(checks: tuple[_Check, ...], domain: Domain, lang: Lang) -> str:
     rest = list(dict.fromkeys(_check_words(c, domain, lang) for c in flat
                               if not (c.kind == "literal" and not c.value and c.name in false)))
     if len(rest) + len(false) == len(domain.conditions) and all(c.kind == "literal" for c in flat):
-        return f"{join_words(rest, lang)}{m.NOTHING_ELSE(lang)}" if rest else m.NOTHING_HOLDS(lang, count=len(false))
+        return only_these(rest, len(false), lang)
     none_of = m.NONE_OF(lang, conditions=", ".join(domain.condition(name).label(lang) for name in false))
     return f"{join_words(rest, lang)}, {none_of}" if rest else none_of
 
