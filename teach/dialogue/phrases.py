@@ -37,6 +37,8 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du"}
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+_LINKS = {"on", "onto", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
+"""Words that link a step's objects ("stack b on a"), left out where a line reads no other way."""
 # the word after one of these in a phrase names an object a pronoun may stand for
 _ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
              "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
@@ -257,6 +259,7 @@ class PhraseBook:
         forms = [c.form for c in domain.conditions] + [a.form for a in domain.actions]
         objects = {word for form in forms for thing in form[1:] for word in _words(thing)}
         self._ignored = _IGNORED - objects
+        self._objects = frozenset(objects)
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
         for name, (english, german) in sorted(events.items()):
@@ -348,6 +351,8 @@ class PhraseBook:
                 continue
             later = ", ".join(chunks[index + 1:])
             pieces = self._segment(words, perturb)
+            if pieces is None and self._unlinked(words) != words:
+                pieces = self._segment(self._unlinked(words), perturb)
             guessed = False
             if pieces is None:
                 pieces = self._corrected(words, perturb)
@@ -551,6 +556,12 @@ class PhraseBook:
         """The words of a phrase that matter for matching (two phrases with one key read the same):
         fillers dropped, but not the words this domain's forms name as objects (block "a")."""
         return tuple(w for w in _words(text) if w not in self._ignored)
+
+    def _unlinked(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """``words`` without the linking words before an object the domain's forms name ("stack b
+        on a": "stack b a"): how people say a step whose phrase lists its objects bare."""
+        return tuple(word for word, after in zip(words, (*words[1:], None), strict=True)
+                     if not (word in _LINKS and after in self._objects))
 
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
