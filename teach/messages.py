@@ -105,6 +105,10 @@ FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first
 RUNNING_ACTION = Text("→ {action}", "→ {action}")
 NOTHING_TO_DO = Text("There is nothing to do: the task is already finished. Say 'reset' for a new start.",
                      "Es gibt nichts zu tun: die Aufgabe ist schon erledigt. Sag 'neu' für einen neuen Start.")
+NO_STEP_POSSIBLE = Text("Nothing can be done from here in this world. Set up a situation with 'start' and "
+                        "what holds; 'reset' then starts anew from there.",
+                        "Von hier aus lässt sich in dieser Welt nichts tun. Stell mit 'situation' und dem, was "
+                        "gilt, eine Lage her; 'neu' beginnt dann von dort aus neu.")
 I_DID = Text("I did: {actions}.", "Ich habe gemacht: {actions}.")
 TASK_FINISHED = Text("Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")
 STOPPED = Text("Stopped. Show me how to go on from here, then say 'done'.",

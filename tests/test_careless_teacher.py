@@ -18,6 +18,7 @@ from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
 from teach.cli import main
 from teach.demos import read_demo_set
+from teach.domain import load_domain
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings, WorldKind
 from teach.sim.world import World
@@ -137,3 +138,29 @@ def test_the_careless_dialogue_teaches_the_task_in_the_symbolic_world(tmp_path, 
     # done; the answers are written for the questions asked in MuJoCo)
     assert all(ok or run.end is RunEnd.FAILURE for ok, run in zip(reached, runs, strict=True))
     assert sum(reached) >= SYMBOLIC_REACHED
+
+
+def test_a_new_start_in_blocksworld_is_one_the_world_can_be_in(tmp_path):
+    """Blocksworld's state where nothing holds (no block on the table, the hand neither empty nor
+    full) allows no action: a session there was a dead end, and 'reset' always went back to it.
+    The session says how to leave it; after a 'start' a new start walks from there, 'reset N' the
+    same each time; the ball's start (where nothing holds and it can look for the ball) stays."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    settings = Settings("blocks", base=tmp_path, world="symbolic", record=False)
+    manager = SessionManager(settings, domain, SymbolicWorld(domain))
+    told = "\n".join(r.text for r in manager.greet())
+    assert "none of the 29 conditions holds" in told and "Set up a situation with 'start'" in told
+    manager.handle("start clear a, clear b, clear c, clear d, handempty, ontable a, ontable b, ontable c, ontable d")
+    starts = []
+    for line in ("reset 2", "reset 3", "reset 2"):
+        replies = manager.handle(line)
+        assert not any("Set up a situation" in r.text for r in replies)
+        state = manager.world.state()
+        assert any(not missing_preconditions(domain, state, a.name) for a in domain.actions)
+        starts.append(state)
+    assert starts[0] == starts[2]
+    ball = load_domain(ROOT / "demos" / "ball" / "domain.toml")
+    world = SymbolicWorld(ball)
+    world.arrange(ball.state(["BallFound", "BallClose"]))
+    world.reset(2)
+    assert world.state() == ball.state([])

@@ -74,6 +74,7 @@ from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
+from teach.symbolic import missing_preconditions
 from teach.world.protocol import TeachingWorld
 
 
@@ -160,7 +161,7 @@ class SessionManager(CompatMembers):
                 replies.append(self._tree_reply(self.pruned))
         replies += self.restored
         self.restored = []
-        replies.append(self._state_reply())
+        replies += self._start_replies()
         self.turn.begin()
         return self.turn.close(replies)
 
@@ -391,7 +392,7 @@ class SessionManager(CompatMembers):
         seed = whole_number(rest, self.lang)
         self.world.reset(seed)
         self.record.add(Situated(state_text(self.world.state()), "reset", seed))  # on disk before the teacher sees it
-        return [self._state_reply()]
+        return self._start_replies()
 
     def cmd_ask(self, rest: str) -> list[Reply]:
         if self.definitions.unusable:
@@ -534,6 +535,16 @@ class SessionManager(CompatMembers):
         """The tree in sentences of the session's language; the symbols too for a facilitator or 'show full'."""
         words = "" if full or self.facilitator else "\n".join(tree_lines(tree, self.domain, self.lang))
         return Reply(ReplyKind.TREE, words, tree=tree)
+
+    def _start_replies(self) -> list[Reply]:
+        """The situation a session or a new start begins in; where the domain's action model allows
+        no action there and the task is not done (blocksworld's state where nothing holds), how to
+        leave it."""
+        domain, state = self.domain, self.world.state()
+        done = bool(domain.goal) and all(domain.holds(literal, state) for literal in domain.goal)
+        stuck = domain.has_model and not done and \
+            all(missing_preconditions(domain, state, action.name) for action in domain.actions)
+        return [self._state_reply()] + ([Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))] if stuck else [])
 
     def _state_reply(self, full: bool = False) -> Reply:
         """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""

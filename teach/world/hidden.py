@@ -336,6 +336,8 @@ class HiddenStateWorld(SymbolicWorld):
     """``SymbolicWorld`` (the domain's visible ``pre``/``ram``) with hidden variables, derived
     conditions and events from a ``world.toml``."""
 
+    walks_to_a_start = False  # the world.toml declares its start
+
     def __init__(self, domain: Domain, spec: WorldSpec, seed: int = 0, observer: Observer | None = None,
                  events_in_runs: bool = True):
         super().__init__(domain, seed, observer)

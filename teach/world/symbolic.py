@@ -1,5 +1,10 @@
 """Any domain with an action model (``pre``/``ram`` in domain.toml), simulated symbolically:
-an action whose preconditions hold makes its ramifications true."""
+an action whose preconditions hold makes its ramifications true.
+
+A new start (``reset``) is the state where nothing holds, the ball task's start. In a domain where
+nothing can be done there (blocksworld: no block on the table, the hand neither empty nor full)
+that start is impossible; there a new start is a random walk through the action model from a
+situation the teacher set up (``start …``), so it is one the world can be in."""
 
 from __future__ import annotations
 
@@ -9,16 +14,22 @@ from collections.abc import Callable
 from teach.bt.nodes import Node, Status
 from teach.bt.run import Outcome
 from teach.bt.tick import always_running
-from teach.domain import Domain
+from teach.domain import Domain, State
 from teach.observe.hook import Observer
 from teach.symbolic import apply_action, assign, missing_preconditions
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import ActResult, RunResult, WorldEvent
 
+WALK = 8
+"""The most random steps a new start walks from a situation the teacher set up."""
+
 
 class SymbolicWorld(OfflineWorld):
     """Any domain with an action model, simulated symbolically (no physics)."""
 
+    walks_to_a_start = True
+    """Where nothing can be done in the state where nothing holds, a new start walks from a
+    situation the teacher set up (module docstring)."""
     events = {
         "toggle": (("change something",), ("etwas ändern",)),
     }
@@ -30,11 +41,30 @@ class SymbolicWorld(OfflineWorld):
         super().__init__(domain)
         self.observer = observer or Observer()
         self._rng = random.Random(seed)
+        self._set_up: list[State] = []
+        """Situations the teacher set up, in order: where a new start may begin."""
+
+    def arrange(self, state: State) -> None:
+        super().arrange(state)
+        if tuple(state) not in self._set_up:
+            self._set_up.append(tuple(state))
 
     def reset(self, seed: int | None = None) -> None:
         if seed is not None:
             self._rng = random.Random(seed)
         super().reset(seed)
+        if self.walks_to_a_start and self._set_up and not self.possible_actions(self._state):
+            state = self._rng.choice(self._set_up)
+            for _ in range(self._rng.randrange(WALK + 1)):
+                possible = self.possible_actions(state)
+                if not possible:
+                    break
+                state = apply_action(self.domain, state, self._rng.choice(possible))
+            self._state = state
+
+    def possible_actions(self, state: State) -> list[str]:
+        """The actions whose preconditions hold in ``state``."""
+        return [a.name for a in self.domain.actions if not missing_preconditions(self.domain, state, a.name)]
 
     def act(self, action: str) -> ActResult:
         before = self._state
