@@ -37,8 +37,9 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du"}
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
-_LINKS = {"on", "onto", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
-"""Words that link a step's objects ("stack b on a"), left out where a line reads no other way."""
+_LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
+"""Words that link a step's objects ("stack b on a", "on top of a"), left out where a line reads no
+other way."""
 # the word after one of these in a phrase names an object a pronoun may stand for
 _ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
              "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
@@ -559,9 +560,12 @@ class PhraseBook:
 
     def _unlinked(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """``words`` without the linking words before an object the domain's forms name ("stack b
-        on a": "stack b a"): how people say a step whose phrase lists its objects bare."""
-        return tuple(word for word, after in zip(words, (*words[1:], None), strict=True)
-                     if not (word in _LINKS and after in self._objects))
+        on top of a": "stack b a"): how people say a step whose phrase lists its objects bare."""
+        kept: list[str] = []
+        for word in reversed(words):
+            if not (word in _LINKS and kept and kept[-1] in self._objects):
+                kept.append(word)
+        return tuple(reversed(kept))
 
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
