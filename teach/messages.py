@@ -55,6 +55,7 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
+MORE_ACTIONS = Text("{count} more like them (Tab)", "{count} weitere solche (Tab)")
 AND_MORE = Text(" and {count} more like them", " und {count} weitere solche")
 AND = Text(" and ", " und ")
 OR = Text(" or ", " oder ")

@@ -20,6 +20,7 @@ from teach.cli import main
 from teach.demos import read_demo_set
 from teach.domain import load_domain
 from teach.session.machine import SessionManager
+from teach.session.replies import ReplyKind
 from teach.session.settings import Settings, WorldKind
 from teach.sim.world import World
 from teach.symbolic import RunEnd, missing_preconditions, run_to_goal
@@ -164,3 +165,19 @@ def test_a_new_start_in_blocksworld_is_one_the_world_can_be_in(tmp_path):
     world.arrange(ball.state(["BallFound", "BallClose"]))
     world.reset(2)
     assert world.state() == ball.state([])
+
+
+def test_a_question_in_blocksworld_offers_one_action_of_each_kind(tmp_path):
+    """The answers offered under a question listed all 40 blocksworld actions, "stack a a" and
+    "unstack d d" among them, over five lines; now one of each kind and how many more (Tab)."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    settings = Settings("blocks", base=tmp_path, world="symbolic", record=False, questions=5)
+    manager = SessionManager(settings, domain, SymbolicWorld(domain))
+    manager.greet()
+    manager.handle("start clear a, clear b, clear c, handempty, on a d, ontable b, ontable c, ontable d")
+    for line in ("pick up b", "stack b on a", "done"):
+        manager.handle(line)
+    asked = [r.text for r in manager.handle("ask") if r.kind is ReplyKind.QUESTION]
+    assert asked, "the robot asks something after one demonstration"
+    options = asked[0].splitlines()[-1]
+    assert "36 more like them (Tab)" in options and "stack a a" not in options and "skip" in options

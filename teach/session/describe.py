@@ -99,15 +99,22 @@ each kind (``form``), or the first ones."""
 
 def some_actions(domain: Domain, lang: Lang, say_more: bool = True) -> str:
     """The domain's actions in the teacher's words: every one or, beyond ``MAX_ACTIONS_NAMED``, one
-    of each kind on objects all different ("stack a b", not "stack a a"), then "and 36 more like
-    them" (``say_more``; 'help' and Tab completion know them all)."""
+    of each kind (``actions_to_name``), then "and 36 more like them" (``say_more``; 'help' and Tab
+    completion know them all)."""
+    shown = actions_to_name(domain)
+    more = m.AND_MORE(lang, count=len(domain.actions) - len(shown)) if say_more and len(shown) < len(domain.actions) \
+        else ""
+    return ", ".join(a.label(lang) for a in shown) + more
+
+
+def actions_to_name(domain: Domain) -> list[ActionDef]:
+    """Every action of the domain or, beyond ``MAX_ACTIONS_NAMED``, one of each kind on objects all
+    different ("stack a b", not "stack a a"): what a line that offers them can hold."""
     actions = domain.actions
     if len(actions) <= MAX_ACTIONS_NAMED:
-        return ", ".join(a.label(lang) for a in actions)
+        return list(actions)
     kinds: dict[str, ActionDef] = {}
     for action in actions:
         if action.form and len(set(action.form[1:])) == len(action.form) - 1:
             kinds.setdefault(action.form[0], action)
-    shown = list(kinds.values())[:MAX_ACTIONS_NAMED] or list(actions[:MAX_ACTIONS_NAMED])
-    more = m.AND_MORE(lang, count=len(actions) - len(shown)) if say_more else ""
-    return ", ".join(a.label(lang) for a in shown) + more
+    return list(kinds.values())[:MAX_ACTIONS_NAMED] or list(actions[:MAX_ACTIONS_NAMED])
