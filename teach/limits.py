@@ -41,8 +41,9 @@ MAX_SET_LINES = 500_000
 MAX_TREE_BYTES = 5 * MIB
 MAX_TREE_NODES = 60_000
 """Elements of a tree file: a policy regressed in a planning domain (``teach.learn.regress``) has up to
-30,000 nodes of rules besides its plan and exceptions (60,000 elements are about 1.5 MB of XML). Not
-more: libxml2 numbers lines only up to 65,535, and every error names its line."""
+40,000 nodes of rules and 10,000 of its goal literals' own besides its exceptions (60,000 elements
+are about 1.5 MB of XML). Not more: libxml2 numbers lines only up to 65,535, and every error names
+its line."""
 MAX_TREE_DEPTH = 200
 
 MAX_DIALOGUE_BYTES = 1 * MIB

@@ -215,6 +215,18 @@ def test_teachers_steps_outside_complete_rules_do_not_send_the_robot_round_in_ci
     assert outcomes.share("reached") >= safe_ceiling(task, demos, tests)  # the answers cost no reach
 
 
+def test_where_no_rule_fits_the_robot_stops_rather_than_goes_round_in_circles() -> None:
+    """Logistics, 5 demonstrations: at 30,000 nodes the goal's regression was cut short, and the plan
+    that followed the rules achieved goal literals one at a time: it unloaded a parcel from a truck
+    for one goal literal and loaded it back for another, for ever, from 5 of 100 held-out starts.
+    Where no rule fits the robot now stops and asks (without the plan at 30,000 nodes: 88 reached,
+    12 stuck); the rules' budget of 40,000 nodes holds the whole regression here."""
+    task, _demos, tests, learner = taught("logistics", 1, 5)
+    outcomes = judge(task, learner.tree, tests)
+    assert outcomes.share("loop") == 0 and outcomes.share("unsafe") == 0
+    assert outcomes.share("reached") >= 0.95
+
+
 def test_questions_with_forms_are_about_states_that_can_happen() -> None:
     """With forms only states the learned effects lead to are asked about (before: 50 of 51
     answers in blocksworld were "impossible"), and after 2 demonstrations at most 1 answer in 5

@@ -50,7 +50,7 @@ class Role:
     """Why a node of the plan exists: ``kind`` is one of goal, achieve, precondition,
     achiever, last-resort, goal-sequence, and for the regressed rules (``teach.learn.regress``)
     regression (the plan and the rules), regression-first and regression-complete (rules first,
-    with or without the plan behind them), goal-check, rule, subgoal, pursued (a goal literal
+    cut short by their budget or every one of them), goal-check, rule, subgoal, pursued (a goal literal
     worked towards on its own); ``literal`` the literal it
     checks or achieves, ``action`` the action involved."""
 

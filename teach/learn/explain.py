@@ -66,11 +66,12 @@ def _explain_role(uid: int, role: Role, model: ActionModel, goal: GoalLearner, n
         return Explanation(uid, role.kind, "the plan, then the ways to the goal it does not take: the goal "
                            "worked back through the actions, one rule per step")
     if role.kind in ("regression-first", "regression-complete"):
-        behind = ("nothing more: where no rule fits, the model knows no way to the goal"
-                  if role.kind == "regression-complete" else "the plan, where no rule fits")
+        behind = ("the model knows no way to the goal" if role.kind == "regression-complete" else
+                  "the ways worked back so far do not reach")
         return Explanation(uid, role.kind, "done if the goal holds, else the ways to the goal, nearest first: "
                            "the goal worked back through the actions, one rule per step; then the exceptions "
-                           f"for states no rule fits, then {behind}")
+                           f"for states no rule fits; nothing more: where none fits, {behind}, so the robot "
+                           "stops and asks")
     if role.kind == "goal-check":
         return Explanation(uid, role.kind, "the goal: done where every goal literal holds")
     assert role.literal is not None and literal is not None

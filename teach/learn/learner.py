@@ -410,9 +410,7 @@ class Learner:
             decided = both.decided(mask)
             if decided is None:
                 later = next((e for e in self._later if mask & e.mask == e.value), None)
-                if later is not None:
-                    return later.answer
-                decided = both.behind_rules(self._state(mask))
+                return False if later is None else later.answer
             answer = _answer(*decided)
             return False if answer == FAILED else answer
         result = self._plan_output(mask)
@@ -544,8 +542,7 @@ class Learner:
                 if both.rule_nodes is None:
                     both.rule_nodes = (goal_node(both.goal, self.names, self._roles),
                                        *rule_nodes(both.rules, self.names, self._roles))
-                behind = () if both.complete else (self._plan,)
-                both.node, both.node_later = Fallback((*both.rule_nodes, *later, *behind)), later
+                both.node, both.node_later = Fallback((*both.rule_nodes, *later)), later
                 self._roles[both.node.uid] = Role("regression-complete" if both.complete else "regression-first")
         elif both.node is None:
             both.node = Fallback((self._plan, *rule_nodes(both.rules, self.names, self._roles)))
