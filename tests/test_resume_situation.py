@@ -11,10 +11,10 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import BALL_DOMAIN, journal_data
+from conftest import BALL_DOMAIN, ROOT, journal_data
 
 from teach import messages as m
-from teach.domain import Domain
+from teach.domain import Domain, load_domain
 from teach.session.machine import SessionManager
 from teach.session.replies import Reply
 from teach.session.settings import Settings, WorldKind
@@ -195,3 +195,18 @@ def test_every_step_shown_while_a_line_runs_is_on_disk(ball, tmp_path):
     again, said = resumed(ball, tmp_path)
     assert again.open is not None and [s.action for s in again.open.steps] == [1, 2]
     assert m.OPEN_RESTORED("en", steps="2 steps") in said
+
+
+def test_a_new_start_walked_from_a_set_up_situation_comes_back_exactly(tmp_path):
+    """Blocksworld: 'reset 2' walks from the situation a 'start' set up, which a resumed world does
+    not have yet; the situation is put back by its conditions, and in the symbolic world that is
+    exact (it was told as "the simulation placed everything anew", MuJoCo's words)."""
+    blocks = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = session(blocks, tmp_path)
+    manager.handle("start clear a, clear b, clear c, clear d, handempty, ontable a, ontable b, ontable c, ontable d")
+    manager.handle("reset 2")
+    left = manager.world.state()
+    assert left != blocks.state()
+    again, told = resumed(blocks, tmp_path)
+    assert again.world.state() == left
+    assert m.SITUATION_RESTORED.en in told and m.SITUATION_RESTORED_ANEW.en not in told

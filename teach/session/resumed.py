@@ -28,11 +28,13 @@ def restore_situation(record: SessionRecord, world: TeachingWorld, domain: Domai
         return []
     state = record.state(last.state, f"events[{record.journal.events.index(last)}]: state", domain)
     try:
-        if last.seed is not None:
+        made_again = False
+        if last.seed is not None:  # a new start that depends on the session's set-ups may differ now
             world.reset(last.seed)
-            exact = world.state() == state
-        if not exact or world.state() != state:
+            made_again = world.state() == state
+        if not made_again:
             world.arrange(state)
+        exact = exact or made_again
     except TeachError:  # the world cannot be put in that situation
         situation = describe_situation(domain, state, lang)
         return [Reply(ReplyKind.INFO, m.SITUATION_NOT_RESTORED(lang, situation=situation))]
