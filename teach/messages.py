@@ -162,6 +162,7 @@ GENERATION_PLAIN_NOT_THE_ONE = Text("Generation {generation} saved: I cannot yet
                                     "Generation {generation} gespeichert: deine Vorführung kann ich noch nicht so "
                                     "nachmachen, wie du sie gezeigt hast.")
 LEARNED_STEPS = Text("I learned the steps {steps}", "ich habe die Schritte {steps} gelernt")
+LEARNED_STEP = Text("I learned the step {steps}", "ich habe den Schritt {steps} gelernt")
 ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{action}“ auch, wenn gilt: {when}")
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
 ANYWAY = Text("That is what I would have done anyway.", "Das hätte ich sowieso getan.")

@@ -8,6 +8,9 @@ import pytest
 from test_session import teach_two_demonstrations
 
 from teach.demos import read_demo_set
+from teach.learn.learner import Update
+from teach.messages import Lang
+from teach.session.describe import describe_update
 from teach.session.machine import SessionManager
 from teach.session.replies import ReplyKind
 from teach.session.settings import Settings
@@ -136,3 +139,11 @@ def test_wrong_to_an_open_question_is_no_answer_and_no_undo(ball, tmp_path):
     assert manager.pending is not None  # two demonstrations: a question is open
     reply = said(manager, "wrong")
     assert manager.pending is not None and len(manager.demos) == 2 and "undo" not in reply.lower()
+
+
+def test_one_step_learned_is_said_as_one(ball):
+    """"I learned the steps unstack c b" for one step: one step is "the step", several "the steps"."""
+    changed = Update("question 1", tree_changed=True)
+    assert describe_update(changed, ["GraspBall"], ball, Lang.EN) == "I learned the step grasp the ball."
+    assert describe_update(changed, ["FindBall", "GraspBall"], ball, Lang.EN).startswith("I learned the steps ")
+    assert describe_update(changed, ["GraspBall"], ball, Lang.DE).startswith("Ich habe den Schritt ")
