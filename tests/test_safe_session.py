@@ -74,9 +74,12 @@ def test_a_run_that_gets_stuck_asks_about_what_it_was_unsure_of_there(ball, tmp_
     assert text.startswith("Every time I did “") and "may I still do it?" in text
     asked = text.split("“")[1].split("”")[0]
     replies = session.handle("yes")
-    assert any(r.text.startswith("Thank you") for r in replies)
+    said = [r.text for r in replies]
+    assert any(text.startswith("Thank you") for text in said)
+    assert f"✓ {asked}" in said  # asked where it stopped: the yes is the next step, and the robot takes it
     while session.pending is not None:
         session.handle("skip")
+    session.handle("cancel")
     session.handle("start BallGrasped")
     assert session.handle("run")[0].text == f"→ {asked}"
 
@@ -104,14 +107,15 @@ def test_after_a_yes_that_unblocks_it_run_tries_again_from_there(ball, tmp_path)
     session.handle("start BinClose")
     replies = session.handle("run")
     assert "(yes / find the ball" in question_text(replies)  # a yes answers it
-    session.handle("yes")  # may I still find the ball with the bin close by? yes
+    said = [r.text for r in session.handle("yes")]  # may I still find the ball with the bin close by? yes
+    assert "✓ find the ball" in said  # and it does, as the next step of the run it stopped in
     while session.pending is not None:
         session.handle("skip")
-    replies = session.handle("run")  # it finds the ball, then stops again: may I still go to the ball?
+    replies = session.handle("run")  # it goes on from there, and stops again: may I still go to the ball?
     said = [r.text for r in replies]
-    assert "→ find the ball" in said and "go to the ball" in question_text(replies)
-    session.handle("yes")
+    assert said[0].startswith("I try again from here") and "go to the ball" in question_text(replies)
+    assert "✓ go to the ball" in [r.text for r in session.handle("yes")]
     while session.pending is not None:
         session.handle("skip")
-    again = [r.text for r in session.handle("run")]  # only its own step is open: it tries again
-    assert again[0].startswith("I try again from here") and "→ go to the ball" in again
+    again = session.handle("run")  # only its own steps are open: it goes on from there, to the next unsure step
+    assert again[0].text.startswith("I try again from here") and "grasp the ball" in question_text(again)

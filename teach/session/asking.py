@@ -39,12 +39,13 @@ MIN_DEMOS_BEFORE_ASKING = 2
 class Asking:
     """The question budget, the question open now, and the answers to it.
 
-    ``after_learning(started)`` is the machine's: an answer learned is pruned, saved, shown and
-    replayed there like a demonstration (and it may ask the next question)."""
+    ``after_learning(started, answered)`` is the machine's: an answer learned is pruned, saved,
+    shown and replayed there like a demonstration (and it may ask the next question); ``answered``
+    is the situation asked about and the action the teacher named there (None: no action)."""
 
     def __init__(self, record: SessionRecord, learning: Learning, vocabulary: Vocabulary, turn: Turn, lang: Lang,
                  world_state: Callable[[], State], seed: int, questions: int,
-                 after_learning: Callable[[float], list[Reply]]):
+                 after_learning: Callable[[float, tuple[State, str] | None], list[Reply]]):
         self.record, self.learning, self.vocabulary, self.turn, self.lang = record, learning, vocabulary, turn, lang
         self.world_state, self.seed = world_state, seed
         self.after_learning = after_learning
@@ -176,7 +177,7 @@ class Asking:
         self.record.observer.on_answer(text, said, change)
         self.learning.report("answer", update, self.lang)
         head = self.turn.say([Reply(ReplyKind.INFO, m.THANKS(self.lang, change=change))])
-        return head + self.after_learning(started)
+        return head + self.after_learning(started, None if answer is None else (question.state, answer))
 
     def none_text(self) -> str:
         """Why no question is asked now."""

@@ -96,7 +96,8 @@ class SessionManager(CompatMembers):
         self.showing = Showing(self.record, self.turn, world, self.vocabulary, self.lang)
         self.learning = Learning(domain, self.store, self.observer, settings.safe, world.can_happen)
         self.asking = Asking(self.record, self.learning, self.vocabulary, self.turn, self.lang, world.state,
-                             settings.seed, settings.questions, lambda started: self._after_learning(True, started))
+                             settings.seed, settings.questions,
+                             lambda started, answered: self._after_learning(True, started, answered=answered))
         self.definitions = Definitions(self.record, self.learning, lambda: self.budget, self.lang, self._tree_reply)
         self.relearning = Relearning(self.record, self.learning, self.definitions, self.asking, self.vocabulary,
                                      settings.questions, self.lang)
@@ -482,12 +483,12 @@ class SessionManager(CompatMembers):
 
     # --- learning results -------------------------------------------------------------------
 
-    def _after_learning(self, ask: bool, started: float | None = None,
-                        events: list[Event] | None = None) -> list[Reply]:
-        """Commit ``events`` to the journal, then prune, save the generation, show, replay and
-        maybe ask. Journal first, as for answers: a kill between the two leaves a learned event
-        whose generation the teacher never saw (a resume learns it again), never a generation
-        file no journalled event explains."""
+    def _after_learning(self, ask: bool, started: float | None = None, events: list[Event] | None = None,
+                        answered: tuple[State, str] | None = None) -> list[Reply]:
+        """Commit ``events`` to the journal, then prune, save the generation, show, replay, go on
+        from an ``answered`` question (``_go_on``) and maybe ask. Journal first, as for answers: a
+        kill between the two leaves a learned event whose generation the teacher never saw (a
+        resume learns it again), never a generation file no journalled event explains."""
         from teach.replay import replay
 
         if events:
@@ -503,8 +504,25 @@ class SessionManager(CompatMembers):
             self.lang, generation=self.generation, nodes=size(pruned), unpruned=size(self.learning.tree), path=path,
             reproduced=report.reproduced, total=report.total)
         replies = self.turn.say([self._tree_reply(pruned), Reply(ReplyKind.INFO, summary)])
+        if answered is not None:
+            replies += self._go_on(*answered)
         if ask:
             replies += self.asking.maybe_ask(len(self.demos))
+        return replies
+
+    def _go_on(self, state: State, action: str) -> list[Reply]:
+        """An answer naming the step to take in the situation a correction stopped in is that step:
+        the robot takes it, as the correction's next step (it was only learned: a teacher who
+        answered "go to the bin" then said "put the ball in the bin", and the robot, still far
+        from the bin, refused). While the correction holds only the run's steps it is the robot's
+        step too, so 'run' goes on from there."""
+        opened = self.open
+        if opened is None or self.world.state() != state:
+            return []
+        robots_only = len(opened.steps) == opened.robot_steps
+        replies = self._act([Token("action", action, self.domain.action(action).label(self.lang))])
+        if robots_only:
+            opened.robot_steps = len(opened.steps)
         return replies
 
     # --- resume ---------------------------------------------------------------------------
