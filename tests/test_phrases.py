@@ -521,11 +521,13 @@ def test_an_object_named_like_a_filler_word_is_kept():
 def test_words_linking_a_steps_objects_may_be_said():
     """"stack b on a" was "I don't know": the phrase lists its objects bare ("stack b a"). A linking
     word right before an object the domain names ("on", "on top of") is left out where the line
-    reads no other way; other words are not."""
+    reads no other way, and a phrasal verb's particle after its object is read before it ("put c
+    down"); other words are not."""
     blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
-    said = ["stack b on a", "unstack c from a", "stack a onto the d", "put down a", "stack b on top of a"]
+    said = ["stack b on a", "unstack c from a", "stack a onto the d", "put down a", "stack b on top of a",
+            "put c down", "pick the b up"]
     assert [[t.name for t in blocks.parse(line)] for line in said] == \
-        [["stack_b_a"], ["unstack_c_a"], ["stack_a_d"], ["put_down_a"], ["stack_b_a"]]
+        [["stack_b_a"], ["unstack_c_a"], ["stack_a_d"], ["put_down_a"], ["stack_b_a"], ["put_down_c"], ["pick_up_b"]]
     assert not any(t.guessed for line in said for t in blocks.parse(line))
     with pytest.raises(UnknownPhrase):
         blocks.parse("stack b next to a")

@@ -37,6 +37,8 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du"}
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+_PARTICLES = {"up", "down", "away", "off", "out", "back"}
+"""Particles of phrasal verbs, which people put after the object ("pick b up", "put c down")."""
 _LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
 """Words that link a step's objects ("stack b on a", "on top of a"), left out where a line reads no
 other way."""
@@ -352,8 +354,9 @@ class PhraseBook:
                 continue
             later = ", ".join(chunks[index + 1:])
             pieces = self._segment(words, perturb)
-            if pieces is None and self._unlinked(words) != words:
-                pieces = self._segment(self._unlinked(words), perturb)
+            for other in self._rephrased(words):
+                if pieces is None:
+                    pieces = self._segment(other, perturb)
             guessed = False
             if pieces is None:
                 pieces = self._corrected(words, perturb)
@@ -557,6 +560,17 @@ class PhraseBook:
         """The words of a phrase that matter for matching (two phrases with one key read the same):
         fillers dropped, but not the words this domain's forms name as objects (block "a")."""
         return tuple(w for w in _words(text) if w not in self._ignored)
+
+    def _rephrased(self, words: tuple[str, ...]) -> list[tuple[str, ...]]:
+        """Other orders of ``words`` people use for a step, tried where the line reads no other way:
+        without linking words before objects ("stack b on a"), the particle of a phrasal verb after
+        its object moved back ("put c down": "put down c")."""
+        unlinked = self._unlinked(words)
+        found = [unlinked] if unlinked != words else []
+        for said in (words, unlinked):
+            if len(said) >= 3 and said[-1] in _PARTICLES and said[1] not in _PARTICLES:
+                found.append((said[0], said[-1], *said[1:-1]))
+        return found
 
     def _unlinked(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """``words`` without the linking words before an object the domain's forms name ("stack b
