@@ -165,6 +165,23 @@ def test_a_yes_rules_a_whole_group_out_and_a_no_splits_it() -> None:
     assert pair[1] in learner.model["GraspBall"].confirmed  # so the other one is needed, for good
 
 
+def test_a_yes_given_as_the_action_itself_also_leaves_the_last_literal_of_a_refused_group_needed() -> None:
+    """The same group testing through ``answer_question`` (the session's and the benches' way: the
+    teacher names what to do there). A "yes" given as the action asked about, or a demonstration,
+    rules literals out like ``settle`` does, so what is left of a refused group is needed at once
+    (it was inferred only at the next "no": snacks, the request before taking the tray; miconic
+    after 2 demonstrations and 5 answers 79 -> 93% reached)."""
+    domain, demos = ball("delta4")
+    learner = learn_online(domain, demos, safe=True)
+    unsure = literals_of(*learner.model["GraspBall"].unsure, len(domain.conditions))
+    pair = [lit for lit in unsure if lit[0] in (0, 3)]
+    refused = group_question(learner, "GraspBall", pair)
+    learner.answer_question(refused.state, "GraspBall", "FindBall", "q1")  # no: find the ball there
+    allowed = group_question(learner, "GraspBall", pair[:1])
+    learner.answer_question(allowed.state, "GraspBall", "GraspBall", "q2")  # yes, with only the first false
+    assert pair[1] in learner.model["GraspBall"].confirmed
+
+
 def group_question(learner: Learner, action: str | None, literals: list[tuple[int, bool]]) -> SituationQuestion:
     """"May I still do ``action``?" where it was shown, with ``literals`` made false."""
     shown = learner.shown_states()[action] if action else next(s for s, a in learner.situations.items() if None in a)

@@ -243,7 +243,6 @@ class Learner:
         else:
             assert action is not None
             self.model.applied(action, mask, source)
-            self._refusals.infer_needed()  # what is left of a group refused before may be one literal now
         return self._finish(source, [], [])
 
     def answer_question(self, state: State, asked_about: str | None, answer: Answer, source: str) -> Update:
@@ -348,6 +347,10 @@ class Learner:
     # --- the tree: when to replan, repair and add exceptions ----------------------------------
 
     def _finish(self, source: str, touched: list[int], new_conflicts: list[int]) -> Update:
+        # what a demonstration or an answer ruled out may leave one literal of a group the teacher
+        # refused before: that one is needed (snacks: "no" to taking the tray where neither a request
+        # nor a partner was, then "yes" where a partner was: the request is needed)
+        self._refusals.infer_needed()
         before = self._tree if self._tree is not None else self._assemble()
         view = self._view
         if self._current_view() != view:
