@@ -83,3 +83,17 @@ def test_replay_is_byte_identical_to_the_golden_files(name, tmp_path, monkeypatc
     for file, data in outputs.items():
         assert data == golden[file], file
 
+
+
+def test_the_readmes_session_is_the_german_golden_abridged() -> None:
+    """README's "A session" shows ``dialogues/deutsch.dialogue`` as it replays: every line of it
+    but the "…" that mark cuts is a line of the golden transcript, in the same order (it had kept
+    trees and answers of an earlier learner)."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = readme.index("```\nSitzung deutsch")
+    shown = readme[start + 4:readme.index("```", start + 4)].splitlines()
+    golden = iter((GOLDEN / "deutsch-mujoco" / "transcript.txt").read_text(encoding="utf-8").splitlines())
+    cuts = {"…", "│   …                                                                         │"}
+    for line in shown:
+        if line not in cuts:
+            assert any(line == later for later in golden), f"README session line not in the golden, in order: {line!r}"
