@@ -27,7 +27,7 @@ def describe_update(update: Update, learned: list[str], domain: Domain, lang: La
     """What an update changed, in the teacher's words (``learned``: actions new in the tree)."""
     parts: list[str] = []
     if learned:
-        said = (m.LEARNED_STEP if len(learned) == 1 else m.LEARNED_STEPS)
+        said = m.LEARNED_STEP if len(learned) == 1 else m.LEARNED_STEPS
         parts.append(said(lang, steps=" → ".join(domain.action(a).label(lang) for a in learned)))
     elif update.tree_changed:
         parts.append(m.CHANGED(lang))
