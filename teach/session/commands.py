@@ -72,8 +72,8 @@ class Verb(Enum):
                       Text("put the world in a situation (named conditions true)",
                            "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"))
     RESET = _Declared(("reset",), ("neu",), Text("reset [N]", "neu [N]"),
-                      Text("new random start (N: start number N, the same each time)",
-                           "neuer zufälliger Start (N: Start Nummer N, jedes Mal derselbe)"))
+                      Text("a new start (random in MuJoCo; N: start number N, the same each time)",
+                           "ein neuer Start (in MuJoCo zufällig; N: Start Nummer N, jedes Mal derselbe)"))
     ASK = _Declared(("ask",), ("frag", "frage"), Text("ask", "frag"),
                     Text("let the robot ask a question", "den Roboter fragen lassen"))
     MODEL = _Declared(("model",), ("modell",), Text("model FILE", "modell DATEI"),
