@@ -29,6 +29,11 @@ def missing_preconditions(domain: Domain, state: State, action: str) -> list[Lit
     return [lit for lit in domain.action(action).pre if not domain.holds(lit, state)]
 
 
+def possible_actions(domain: Domain, state: State) -> list[str]:
+    """The actions whose preconditions hold in ``state`` by ``domain``'s action model."""
+    return [a.name for a in domain.actions if not missing_preconditions(domain, state, a.name)]
+
+
 class RunEnd(Enum):
     SUCCESS = auto()
     FAILURE = auto()

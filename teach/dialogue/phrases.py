@@ -354,9 +354,10 @@ class PhraseBook:
                 continue
             later = ", ".join(chunks[index + 1:])
             pieces = self._segment(words, perturb)
-            for other in self._rephrased(words):
-                if pieces is None:
-                    pieces = self._segment(other, perturb)
+            for other in () if pieces is not None else self._rephrased(words):  # only where it reads no other way
+                pieces = self._segment(other, perturb)
+                if pieces is not None:
+                    break
             guessed = False
             if pieces is None:
                 pieces = self._corrected(words, perturb)

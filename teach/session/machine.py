@@ -74,7 +74,7 @@ from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
-from teach.symbolic import missing_preconditions
+from teach.symbolic import possible_actions
 from teach.world.protocol import TeachingWorld
 
 
@@ -560,8 +560,7 @@ class SessionManager(CompatMembers):
         leave it."""
         domain, state = self.domain, self.world.state()
         done = bool(domain.goal) and all(domain.holds(literal, state) for literal in domain.goal)
-        stuck = domain.has_model and not done and \
-            all(missing_preconditions(domain, state, action.name) for action in domain.actions)
+        stuck = domain.has_model and not done and not possible_actions(domain, state)
         return [self._state_reply()] + ([Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))] if stuck else [])
 
     def _state_reply(self, full: bool = False) -> Reply:

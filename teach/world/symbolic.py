@@ -16,7 +16,7 @@ from teach.bt.run import Outcome
 from teach.bt.tick import always_running
 from teach.domain import Domain, State
 from teach.observe.hook import Observer
-from teach.symbolic import apply_action, assign, missing_preconditions
+from teach.symbolic import apply_action, assign, missing_preconditions, possible_actions
 from teach.world.offline import OfflineWorld
 from teach.world.protocol import ActResult, RunResult, WorldEvent
 
@@ -53,18 +53,14 @@ class SymbolicWorld(OfflineWorld):
         if seed is not None:
             self._rng = random.Random(seed)
         super().reset(seed)
-        if self.walks_to_a_start and self._set_up and not self.possible_actions(self._state):
+        if self.walks_to_a_start and self._set_up and not possible_actions(self.domain, self._state):
             state = self._rng.choice(self._set_up)
             for _ in range(self._rng.randrange(WALK + 1)):
-                possible = self.possible_actions(state)
+                possible = possible_actions(self.domain, state)
                 if not possible:
                     break
                 state = apply_action(self.domain, state, self._rng.choice(possible))
             self._state = state
-
-    def possible_actions(self, state: State) -> list[str]:
-        """The actions whose preconditions hold in ``state``."""
-        return [a.name for a in self.domain.actions if not missing_preconditions(self.domain, state, a.name)]
 
     def act(self, action: str) -> ActResult:
         before = self._state
