@@ -19,7 +19,9 @@ and with up to 5 questions; questions answered by the reference tree (``bench/or
 strict replay of the held-out set; beside it the committed draw (its first 10 training
 demonstrations and its 26 held-out ones). For the safe learner, the 3 + 5 row once more with
 the questions chosen knowing their answers (``bench/question_ceiling.py``): where that too
-falls short, the 3 demonstrations leave more open than 5 questions can settle.
+falls short, the 3 demonstrations leave more open than 5 questions can settle. Beside the rows
+without questions, the safe ceiling (``safe_ceiling``): the most of the held-out set any learner
+that never acts on a guess can reproduce from those demonstrations.
 """
 
 from __future__ import annotations
@@ -48,7 +50,7 @@ from task_outcomes import OUTCOMES, every_state, tally  # noqa: E402
 
 from teach.bt.xml import read_tree  # noqa: E402
 from teach.demos import Demonstration, read_demo_set  # noqa: E402
-from teach.domain import Domain, Literal, State, load_domain  # noqa: E402
+from teach.domain import GOAL_ACTION, Domain, Literal, State, load_domain  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 from teach.world.hidden import HiddenStateWorld, load_world  # noqa: E402
@@ -106,6 +108,37 @@ def committed(domain: Domain) -> Draw:
     _, train = read_demo_set(SNACKS / "train", domain)
     _, held_out = read_demo_set(SNACKS / "heldout", domain)
     return Draw("committed", train[:TRAIN], held_out)
+
+
+def safe_ceiling(train: list[Demonstration], held_out: list[Demonstration]) -> float:
+    """The share of ``held_out`` a learner that never acts on a guess can reproduce strictly from
+    ``train`` alone: each step's action is proved to run there (every literal that held each time
+    it was shown holds: SAM's preconditions; any other might be needed), the task is proved done
+    at its end (every literal common to the training demonstrations' last states holds: any
+    other might be part of the goal) and not before. An upper bound: it also counts a held-out
+    demonstration that a visible state alone cannot tell from another (the tray's hidden count)."""
+    proved: dict[int, set[tuple[int, bool]]] = {}
+    goal: set[tuple[int, bool]] | None = None
+    for demo in train:
+        for step in demo.steps:
+            literals = set(enumerate(step.state))
+            if step.action > 0:
+                proved[step.action] = proved.get(step.action, literals) & literals
+            elif step.action == GOAL_ACTION:
+                goal = literals if goal is None else goal & literals
+
+    def holds(literals: set[tuple[int, bool]] | None, state: State) -> bool:
+        return literals is not None and all(state[index] == value for index, value in literals)
+
+    def reproducible(demo: Demonstration) -> bool:
+        for step in demo.steps:
+            if step.action > 0 and (not holds(proved.get(step.action), step.state) or holds(goal, step.state)):
+                return False
+            if step.action == GOAL_ACTION and not holds(goal, step.state):
+                return False
+        return True
+
+    return sum(map(reproducible, held_out)) / len(held_out)
 
 
 @dataclass(frozen=True)
@@ -198,6 +231,10 @@ def report_learner(goalless: Domain, teacher: ReferenceTeacher, sets: list[Draw]
     if known:
         print(f"   {FEW} demonstrations, <= {QUESTIONS} questions chosen knowing their answers "
               f"(bench/question_ceiling.py): {100 * statistics.mean(known):3.0f}% ({100 * min(known):3.0f}%)")
+        for count in (TRAIN, FEW):
+            shares = [safe_ceiling(data.train[:count], data.held_out) for data in sets if data.name != "committed"]
+            print(f"  {count:>2} demonstrations, the safe ceiling (no learner that never acts on a guess reproduces "
+                  f"more without questions): {100 * statistics.mean(shares):3.0f}% ({100 * min(shares):3.0f}%)")
 
 
 if __name__ == "__main__":

@@ -108,6 +108,13 @@ def test_snacks_smallest_draw_is_the_generator_s_own_behaviour():
     assert tally(reference, quiet, domain.goal, starts) == ({"reached": 64}, {})
     learner = learn_online(goalless, data.train)
     assert count_reproduced(learner.tree, goalless, data.train) == 10  # every training demonstration, strictly
+    # no learner that never acts on a guess reproduces more of the held-out set than the safe
+    # ceiling; ours reproduces exactly that much (27 of 40 on this draw), the guessing one more
+    ceiling = bench_snacks_draws.safe_ceiling(data.train, data.held_out)
+    assert count_reproduced(learner.tree, goalless, data.held_out) == round(ceiling * 40) == 27
+    guessing = learn_online(goalless, data.train, safe=False)
+    assert count_reproduced(guessing.tree, goalless, data.held_out) > 27
+    assert bench_snacks_draws.safe_ceiling(data.train, data.train) == 1.0
 
 
 def test_questions_chosen_knowing_their_answers_reach_what_the_chooser_does_not():
