@@ -265,9 +265,10 @@ MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situ
                           "(yes, or tell me what to do there)",
                           "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "
                           "Ist die Aufgabe dann erledigt? (ja, oder sag mir, was ich dort tun soll)")
-RUN_AGAIN = Text("I try again from here (what I did in the last run is not kept as a demonstration).",
-                 "Ich versuche es von hier aus noch einmal (was ich im letzten Lauf getan habe, wird keine "
-                 "Vorführung).")
+RUN_AGAIN = Text("I try again from here (the steps of the last run are not kept as a demonstration; "
+                 "whatever you answered is learned already).",
+                 "Ich versuche es von hier aus noch einmal (die Schritte des letzten Laufs werden keine "
+                 "Vorführung; was du geantwortet hast, ist schon gelernt).")
 WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
 CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
