@@ -22,7 +22,7 @@ from teach.domain import State
 from teach.errors import LearnError
 from teach.messages import Lang
 from teach.session.commands import DONE_WORDS, IMPOSSIBLE_WORDS, SKIP_WORDS
-from teach.session.describe import actions_to_name, unmet_goal, why_refused
+from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
 from teach.session.journal import Answered, Asked, state_text
 from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.record import IMPOSSIBLE, SessionRecord
@@ -101,8 +101,8 @@ class Asking:
         yes = [m.YES_WORD(self.lang)] if question.kind in MUST_KINDS else []
         domain = self.vocabulary.domain
         named = actions_to_name(domain)  # blocksworld's 40, "stack a a" among them, filled five lines
-        more = [m.MORE_ACTIONS(self.lang, count=len(domain.actions) - len(named))] if len(named) < len(domain.actions) \
-            else []
+        left = unnamed(domain, named)
+        more = [m.MORE_ACTIONS(self.lang, count=left)] if left else []
         options = " / ".join(yes + [a.label(self.lang) for a in named] + more +
                              [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
         return Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")

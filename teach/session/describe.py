@@ -103,9 +103,14 @@ def some_actions(domain: Domain, lang: Lang, say_more: bool = True) -> str:
     of each kind (``actions_to_name``), then "and 36 more like them" (``say_more``; 'help' and Tab
     completion know them all)."""
     shown = actions_to_name(domain)
-    more = m.AND_MORE(lang, count=len(domain.actions) - len(shown)) if say_more and len(shown) < len(domain.actions) \
-        else ""
+    left = unnamed(domain, shown)
+    more = m.AND_MORE(lang, count=left) if say_more and left else ""
     return ", ".join(a.label(lang) for a in shown) + more
+
+
+def unnamed(domain: Domain, named: list[ActionDef]) -> int:
+    """How many of the domain's actions ``named`` (``actions_to_name``) leaves out: the "36 more like them"."""
+    return len(domain.actions) - len(named)
 
 
 def actions_to_name(domain: Domain) -> list[ActionDef]:
