@@ -531,3 +531,20 @@ def test_words_linking_a_steps_objects_may_be_said():
     assert not any(t.guessed for line in said for t in blocks.parse(line))
     with pytest.raises(UnknownPhrase):
         blocks.parse("stack b next to a")
+
+
+def test_it_is_the_block_a_step_handles_and_any_block_a_form_names_even_a():
+    """After "unstack a from c" the block held is a: "put it down" puts down a, not c (the last
+    named, which cannot be put down: the robot holds a); block "a", an article to the phrase
+    reader, may be "it" too; "stack b on it" and a misspelt "unstak a from c" read as well."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    unstacked = blocks.parse("unstack a from c")
+    assert blocks.topic(unstacked) == "a"
+    assert [t.name for t in blocks.parse("put it down", topic=blocks.topic(unstacked))] == ["put_down_a"]
+    assert [t.name for t in blocks.parse("unstack a from c and put it down")] == ["unstack_a_c", "put_down_a"]
+    assert [t.name for t in blocks.parse("pick up b, stack it on a")] == ["pick_up_b", "stack_b_a"]
+    assert [t.name for t in blocks.parse("stack b on it", topic="a")] == ["stack_b_a"]
+    misspelt = blocks.parse("unstak a from c")
+    assert [(t.name, t.guessed) for t in misspelt] == [("unstack_a_c", True)]
+    ball = PhraseBook(load_domain(ROOT / "demos" / "ball" / "domain.toml"))
+    assert ball.topic(ball.parse("go to the ball")) == "ball"  # no forms: the object named last, as before

@@ -265,6 +265,11 @@ class PhraseBook:
         self._objects = frozenset(objects)
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
+        # a form's objects are what "it" may mean too, block "a" among them (an article to _note_nouns)
+        self._nouns += [word for word in dict.fromkeys(word for form in forms for thing in form[1:]
+                                                         for word in _words(thing)) if word not in self._nouns]
+        self._handles = {action.name: _words(action.form[1])[-1] for action in domain.actions
+                         if len(action.form) > 1 and _words(action.form[1])}
         for name, (english, german) in sorted(events.items()):
             self._add("event", name, tuple(english), tuple(german))
         self._vocabulary = {kind: sorted({w for key, entries in self._entries.items()
@@ -314,10 +319,11 @@ class PhraseBook:
         return self._last_noun(self.key(text))
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
-        """The object named last in ``tokens``: what "it" means in the next line."""
+        """What "it" means in the next line: the object the last of ``tokens`` handles, its form's
+        first (after "unstack a c" the block held is a, not c), or else the object it names last."""
         topic = None
         for token in tokens:
-            topic = self._last_noun(self.key(token.text)) or topic
+            topic = self._about(token.name, self.key(token.text)) or topic
         return topic
 
     # --- parsing ------------------------------------------------------------------------------------
@@ -342,7 +348,7 @@ class PhraseBook:
         later part of the line)."""
         candidate = replace(suggestion.candidate, guessed=False)
         tokens = [*suggestion.before, candidate]
-        topic = self._last_noun(self.key(candidate.text)) or suggestion.topic
+        topic = self._about(candidate.name, self.key(candidate.text)) or suggestion.topic
         chunks = [c.strip() for c in _SPLIT.split(suggestion.rest) if c and c.strip()]
         return self._read(chunks, suggestion.lang, suggestion.perturb, topic, tokens)
 
@@ -359,15 +365,17 @@ class PhraseBook:
                 if pieces is not None:
                     break
             guessed = False
-            if pieces is None:
-                pieces = self._corrected(words, perturb)
+            for other in (words, *self._rephrased(words)) if pieces is None else ():
+                pieces = self._corrected(other, perturb)  # "unstak a from c": "unstack a c"
                 guessed = True
+                if pieces is not None:
+                    break
             if pieces is None:
                 typo = self._clear_typo(chunk, words, lang, perturb)
                 if typo is None:
                     raise self._unknown(chunk, words, lang, perturb, topic, tokens, later)
                 tokens.append(typo)
-                topic = self._last_noun(self.key(typo.text)) or topic
+                topic = self._about(typo.name, self.key(typo.text)) or topic
                 continue
             for number, piece in enumerate(pieces):
                 said = chunk if len(pieces) == 1 else " ".join(piece.words)
@@ -379,7 +387,7 @@ class PhraseBook:
                                             perturb, topic)
                     raise UnknownPhrase(said, alternatives, lang, suggestion)
                 tokens.append(Token(entry.kind, entry.name, self._text(entry, lang), said, guessed))
-                topic = noun or self._last_noun(piece.words) or topic
+                topic = self._handles.get(entry.name) or noun or self._last_noun(piece.words) or topic
         return tokens
 
     def _segment(self, words: tuple[str, ...], perturb: bool, typed: bool = True) -> list[_Piece] | None:
@@ -575,12 +583,18 @@ class PhraseBook:
 
     def _unlinked(self, words: tuple[str, ...]) -> tuple[str, ...]:
         """``words`` without the linking words before an object the domain's forms name ("stack b
-        on top of a": "stack b a"): how people say a step whose phrase lists its objects bare."""
+        on top of a": "stack b a"), or a pronoun standing for one ("stack b on it"): how people say
+        a step whose phrase lists its objects bare."""
         kept: list[str] = []
         for word in reversed(words):
-            if not (word in _LINKS and kept and kept[-1] in self._objects):
+            if not (word in _LINKS and kept and self._objects and kept[-1] in self._objects | _PRONOUNS):
                 kept.append(word)
         return tuple(reversed(kept))
+
+    def _about(self, name: str, words: Iterable[str]) -> str | None:
+        """What a step called ``name``, said as ``words``, is about: the object its form handles
+        first, or the object it names last."""
+        return self._handles.get(name) or self._last_noun(words)
 
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
