@@ -17,12 +17,14 @@ from teach.dialogue.phrases import (
     PhraseBook,
     Token,
     UnknownPhrase,
+    after_no,
     command_hint,
     is_no,
     is_yes,
     normalize,
 )
 from teach.domain import load_domain
+from teach.messages import Lang
 from teach.session.commands import COMMANDS
 from teach.sim.perturb import PERTURBATIONS
 
@@ -548,3 +550,10 @@ def test_it_is_the_block_a_step_handles_and_any_block_a_form_names_even_a():
     assert [(t.name, t.guessed) for t in misspelt] == [("unstack_a_c", True)]
     ball = PhraseBook(load_domain(ROOT / "demos" / "ball" / "domain.toml"))
     assert ball.topic(ball.parse("go to the ball")) == "ball"  # no forms: the object named last, as before
+
+
+def test_after_a_leading_no_comes_what_to_do_instead():
+    assert after_no("no, find someone") == after_no("Nope. Find someone!") == "find someone"
+    assert after_no("not that, go back") == "go back"
+    assert after_no("nein, such jemanden", Lang.DE) == "such jemanden"
+    assert after_no("no") is after_no("no thanks") is after_no("find someone") is None  # nothing after a no

@@ -119,3 +119,50 @@ def test_after_a_yes_that_unblocks_it_run_tries_again_from_there(ball, tmp_path)
         session.handle("skip")
     again = session.handle("run")  # only its own steps are open: it goes on from there, to the next unsure step
     assert again[0].text.startswith("I try again from here") and "grasp the ball" in question_text(again)
+
+
+def test_a_stopped_run_still_open_when_the_session_ends_may_be_tried_again_after_a_resume(ball, tmp_path):
+    # 'run' after a stop tries again from there while the teacher has added no step; after a
+    # resume it said "finish or cancel the open demonstration first", the run's steps taken for
+    # the teacher's own
+    session = safe_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    while session.pending is not None:
+        session.handle("skip")
+    session.handle("start BinClose")
+    session.handle("run")
+    session.handle("yes")  # may I still find the ball with the bin close by? the robot does
+    while session.pending is not None:
+        session.handle("skip")
+    assert session.open is not None and session.open.robot_steps == len(session.open.steps) == 1
+    session.handle("quit")
+    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False, safe=True), ball, SymbolicWorld(ball))
+    assert resumed.open is not None and resumed.open.robot_steps == 1
+    again = resumed.handle("run")
+    assert again[0].text.startswith("I try again from here")
+    resumed.handle("quit")
+    # a step of the teacher's own is theirs after a resume too: 'run' asks to finish it first
+    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False, safe=True), ball, SymbolicWorld(ball))
+    while resumed.pending is not None:
+        resumed.handle("skip")
+    resumed.handle("go to the ball")
+    resumed.handle("quit")
+    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False, safe=True), ball, SymbolicWorld(ball))
+    assert "Finish" in resumed.handle("run")[0].text
+
+
+def test_no_followed_by_an_action_is_that_action(ball, tmp_path):
+    # "no, go to the ball" was "I don't know 'no'"; a bare "no" still asks what to do instead
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    question = session.pending
+    assert question is not None and question.action is not None
+    instead = next(a for a in ("FindBall", "ApproachBall") if a != question.action)
+    said = ball.action(instead).en[0]
+    replies = session.handle(f"no, {said}")
+    assert any(r.text.startswith("Thank you") for r in replies)
+    assert session.learning.learner.situations[question.state] == {instead}

@@ -202,6 +202,19 @@ def is_no(text: str, lang: Lang = Lang.EN) -> bool:
     return _says(text, _answer_sets(_NO, lang))
 
 
+def after_no(text: str, lang: Lang = Lang.EN) -> str | None:
+    """What follows a leading no ("no, find someone": "find someone"), or None when the reply does
+    not begin with one or is nothing but it: how people answer "may I …?" with what to do instead."""
+    words = normalize(text).split()
+    no = _answer_sets(_NO, lang)
+    if _says(text, no):
+        return None
+    for length in range(min(3, len(words) - 1), 0, -1):
+        if " ".join(words[:length]) in no:
+            return " ".join(words[length:])
+    return None
+
+
 def command_hint(line: str, lang: Lang, commands: Iterable[str]) -> str | None:
     """The command a conversational line amounts to, as the line to handle instead, or None.
 

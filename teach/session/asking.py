@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 
 from teach import messages as m
-from teach.dialogue.phrases import is_no, is_yes, normalize
+from teach.dialogue.phrases import after_no, is_no, is_yes, normalize
 from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget
 from teach.domain import State
 from teach.errors import LearnError
@@ -135,7 +135,8 @@ class Asking:
             if yes:
                 answer = question.action
             else:
-                tokens = [t for t in self.vocabulary.phrases.parse(line, self.lang) if t.kind == "action"]
+                instead = after_no(line, self.lang) or line  # "no, find someone"
+                tokens = [t for t in self.vocabulary.phrases.parse(instead, self.lang) if t.kind == "action"]
                 if len(tokens) != 1:
                     return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
                 answer = tokens[0].name

@@ -39,9 +39,9 @@ def parse_state_text(text: str) -> State:
 _HEADER: dict[str, Types] = {"session": str, "domain": str, "lang": str, "questions": int, "world": str, "seed": int,
                              "step": int, "events": list, "version": int}
 _HEADER_OPTIONAL: dict[str, Types] = {"origin": str, "open_steps": list, "open_state": str, "open_run": str,
-                                      "guess": bool}
+                                      "open_robot": int, "guess": bool}
 _SAVE_KEYS: dict[str, Types] = {"events": list, "step": int, "open_kept": int, "open_steps": list, "open_state": str,
-                                "open_run": str}
+                                "open_run": str, "open_robot": int}
 """A line after the snapshot: what one save changed. ``open_steps`` replace the open steps from
 number ``open_kept`` on (the steps before it stay)."""
 _EVENT_KEYS: dict[str, tuple[dict[str, Types], dict[str, Types]]] = {
@@ -210,7 +210,7 @@ def _skipped(event: Event) -> bool:
     return isinstance(event, Answered | ModelAnswered) and event.answer == "skip"
 
 
-_CLOCK_AND_OPEN = ("step", "open_steps", "open_state", "open_run")
+_CLOCK_AND_OPEN = ("step", "open_steps", "open_state", "open_run", "open_robot")
 """The journal's fields a save may change besides adding events; the others never change once written."""
 
 
@@ -225,6 +225,7 @@ class Saved:
     open_steps: tuple[tuple[str | int, ...], ...]
     open_state: str
     open_run: str
+    open_robot: int
 
 
 @dataclass
@@ -247,6 +248,9 @@ class Journal:
     open_run: str = ""
     """The action the robot had begun when the session ended in the middle of a run: then
     ``open_steps`` are the steps it finished and ``open_state`` the world before that action."""
+    open_robot: int = 0
+    """How many of ``open_steps`` (the first ones) a run did: a stopped run the teacher has not
+    added to yet, which 'run' may try again after a resume as before it."""
     guess: bool = False
     """The session learns with the guessing learner (``--guess``), not the safe one."""
 
@@ -263,7 +267,7 @@ class Journal:
 
     def saved(self) -> Saved:
         return Saved(self._header(), len(self.events), self.events[-1] if self.events else None, self.step,
-                     tuple(map(tuple, self.open_steps)), self.open_state, self.open_run)
+                     tuple(map(tuple, self.open_steps)), self.open_state, self.open_run, self.open_robot)
 
     def changes_since(self, saved: Saved) -> str | None:
         """The line that brings a file holding ``saved`` up to this journal ("" when nothing
@@ -281,7 +285,7 @@ class Journal:
             kept = next((n for n, (a, b) in enumerate(zip(steps, saved.open_steps, strict=False)) if a != b),
                         min(len(steps), len(saved.open_steps)))
             change["open_kept"], change["open_steps"] = kept, self.open_steps[kept:]
-        for key in ("open_state", "open_run"):
+        for key in ("open_state", "open_run", "open_robot"):
             if getattr(self, key) != getattr(saved, key):
                 change[key] = getattr(self, key)
         return json.dumps(change, ensure_ascii=False) + "\n" if change else ""
@@ -339,6 +343,8 @@ class Journal:
                 self.open_state = _checked_open_state(change["open_state"], where)
             if "open_run" in change:
                 self.open_run = str(change["open_run"])
+            if "open_robot" in change:
+                self.open_robot = _at_least_zero("open_robot", change["open_robot"], where)
         except FormatError as error:
             raise FormatError(error.message, where, number) from None
 
@@ -355,6 +361,7 @@ class Journal:
                 raise FormatError(f"{key}: must be one of {', '.join(known)}, got {str(header[key])[:40]!r}", where)
         _check_open_steps(header.get("open_steps", []), where)  # type: ignore[arg-type]
         _checked_open_state(header.get("open_state", ""), where)
+        _at_least_zero("open_robot", header.get("open_robot", 0), where)
         stored: list[object] = header.pop("events")  # type: ignore[assignment]
         events = [event_from_json(e, where, n) for n, e in enumerate(stored)]
         return cls(events=events, **header)  # type: ignore[arg-type]

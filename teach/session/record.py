@@ -73,6 +73,7 @@ class SessionRecord:
         now = state_text(self.world_state())
         self.journal.open_state = now if steps else ""
         self.journal.open_run = ""
+        self.journal.open_robot = self.open.robot_steps if self.open is not None else 0
         if not steps and now != self._last_situation():
             self.journal.events.append(situated := Situated(now, how))
             self.observer.on_session_event(situated)
@@ -83,6 +84,7 @@ class SessionRecord:
         mid-run reopens them as the corrective demonstration a stopped run would give."""
         self.journal.open_steps = [[state_text(state), number, words] for state, number, words in done]
         self.journal.open_state, self.journal.open_run = state_text(begun), action
+        self.journal.open_robot = len(done)
         self.save()
 
     def tick(self, step: int) -> None:
@@ -116,7 +118,8 @@ class SessionRecord:
 
     def journalled_open(self, domain: Domain) -> tuple[list[tuple[State, int, str]], State, str] | None:
         """The demonstration open when the session ended: its steps (state, action id, words),
-        where the world was and the action a run had begun there (""); None when none was."""
+        where the world was and the action a run had begun there (""); None when none was.
+        How many of the steps a run did is ``journal.open_robot``."""
         run = self.journal.open_run
         if not self.journal.open_steps and not run:
             return None

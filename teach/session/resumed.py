@@ -54,6 +54,8 @@ def restore_open(record: SessionRecord, world: TeachingWorld, domain: Domain, la
     except TeachError:  # the world cannot be put back there: the last situation stays
         return None
     record.open = OpenDemonstration.from_steps(steps) if steps else None
+    if record.open is not None:  # a stopped run the teacher had not added to: 'run' tries again, as before
+        record.open.robot_steps = min(record.journal.open_robot, len(steps))
     if run:
         label = domain.action(run).label(lang)
         text = m.RUN_RESTORED(lang, action=label, steps=steps_said(len(steps), lang)) if steps else \
