@@ -362,6 +362,8 @@ OPEN_ON_QUIT = Text("You have shown me {steps} I have not learned yet: say 'done
 STEP_COUNT = Text("{count} step", "{count} Schritt")
 STEPS_COUNT = Text("{count} steps", "{count} Schritte")
 
+ASKED_BEFORE_YOU_LEFT = Text("Before the session ended I had asked you this (it costs no second question):",
+                             "Bevor die Sitzung endete, hatte ich dich das gefragt (es kostet keine zweite Frage):")
 OPEN_RESTORED = Text("The demonstration you had started is still open ({steps}): 'steps' lists them, "
                      "'done' learns it, 'cancel' drops it.",
                      "Die Vorführung, die du angefangen hattest, ist noch offen ({steps}): 'schritte' "

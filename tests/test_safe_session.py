@@ -166,3 +166,23 @@ def test_no_followed_by_an_action_is_that_action(ball, tmp_path):
     replies = session.handle(f"no, {said}")
     assert any(r.text.startswith("Thank you") for r in replies)
     assert session.learning.learner.situations[question.state] == {instead}
+
+
+def test_a_question_open_when_the_session_ends_is_asked_again_on_resume_at_no_cost(ball, tmp_path):
+    # it was paid for and then lost: a resume greeted without it, and the budget stayed spent
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    pending = session.pending
+    assert pending is not None
+    left = session.budget.left
+    session.handle("quit")
+    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
+                                             record=False, safe=True), ball, SymbolicWorld(ball))
+    greeting = resumed.greet()
+    assert resumed.pending is not None and resumed.pending.state == pending.state
+    assert (resumed.pending.kind, resumed.pending.action) == (pending.kind, pending.action)  # found again as chosen
+    assert any("costs no second question" in r.text for r in greeting)
+    assert question_text(greeting) == question_text([session.asking._question_reply(pending)])
+    assert resumed.budget.left == left
+    replies = resumed.handle("yes")
+    assert any(r.text.startswith("Thank you") for r in replies) and resumed.budget.left <= left

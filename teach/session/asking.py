@@ -23,7 +23,7 @@ from teach.errors import LearnError
 from teach.messages import Lang
 from teach.session.commands import DONE_WORDS, IMPOSSIBLE_WORDS, SKIP_WORDS
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
-from teach.session.journal import Answered, Asked, state_text
+from teach.session.journal import Answered, Asked, Situated, parse_state_text, state_text
 from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
@@ -80,6 +80,23 @@ class Asking:
         if self.pending is not None or state in self.learning.asked or not self._affordable(state):
             return []
         return self._ask(self.learning.question_where_stuck(state) or Question(state, 1.0))
+
+    def ask_again(self) -> list[Reply]:
+        """The question still open when the session ended, asked again on resume at no cost (it
+        was paid for when asked): it was lost, its price kept. Found again the way it was chosen
+        (the learner is as it was then), else asked as a plain situation question."""
+        last = next((event for event in reversed(self.record.journal.events) if not isinstance(event, Situated)), None)
+        if not isinstance(last, Asked) or not last.state or self.pending is not None:
+            return []
+        state = parse_state_text(last.state)
+        if len(state) != len(self.vocabulary.domain.conditions) or state in self.learning.asked:
+            return []
+        chosen = self.next_question()
+        question = chosen if chosen is not None and chosen.state == state else \
+            self.learning.question_where_stuck(state) or Question(state, 1.0)
+        self.pending = question
+        self.learning.asked.add(state)
+        return [Reply(ReplyKind.INFO, m.ASKED_BEFORE_YOU_LEFT(self.lang)), self._question_reply(question)]
 
     def _affordable(self, state: State) -> bool:
         """Whether a question about ``state`` may be asked: one is left, or it was paid for already."""

@@ -163,6 +163,7 @@ class SessionManager(CompatMembers):
         replies += self.restored
         self.restored = []
         replies += self._start_replies()
+        replies += self.asking.ask_again()  # a question left open when a resumed session ended
         self.turn.begin()
         return self.turn.close(replies)
 
