@@ -25,6 +25,26 @@ def two_demonstrations(session):
     return session.handle("done")
 
 
+def skip_all(session):
+    while session.pending is not None:
+        session.handle("skip")
+
+
+def stopped_with_the_bin_close(session):
+    """One demonstration, its questions skipped, then a run where the bin is close by: it stops
+    ("may I still find the ball?"). The run's replies."""
+    session.handle(SEQUENCE)
+    session.handle("done")
+    skip_all(session)
+    session.handle("start BinClose")
+    return session.handle("run")
+
+
+def resumed(ball, tmp_path):
+    return SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path, record=False,
+                                          safe=True), ball, SymbolicWorld(ball))
+
+
 def question_text(replies):
     return next(r.text for r in replies if r.kind is ReplyKind.QUESTION)
 
@@ -49,10 +69,9 @@ def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):
     assert "cost no question" in replies[0].text and session.budget.left == left + 1  # refunded
     assert pending.state in session.learning.asked
     session.handle("quit")
-    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
-                                             record=False, safe=True), ball, SymbolicWorld(ball))
-    assert resumed.budget.left == left + 1
-    assert resumed.learning.learner.state_mask(pending.state) in resumed.learning.learner.impossible
+    back = resumed(ball, tmp_path)
+    assert back.budget.left == left + 1
+    assert back.learning.learner.state_mask(pending.state) in back.learning.learner.impossible
 
 
 def test_no_asks_what_to_do_instead_and_keeps_the_question_open(ball, tmp_path):
@@ -77,8 +96,7 @@ def test_a_run_that_gets_stuck_asks_about_what_it_was_unsure_of_there(ball, tmp_
     said = [r.text for r in replies]
     assert any(text.startswith("Thank you") for text in said)
     assert f"✓ {asked}" in said  # asked where it stopped: the yes is the next step, and the robot takes it
-    while session.pending is not None:
-        session.handle("skip")
+    skip_all(session)
     session.handle("cancel")
     session.handle("start BallGrasped")
     assert session.handle("run")[0].text == f"→ {asked}"
@@ -100,23 +118,16 @@ def test_a_session_started_guessing_resumes_guessing(ball, tmp_path):
 
 def test_after_a_yes_that_unblocks_it_run_tries_again_from_there(ball, tmp_path):
     session = safe_session(ball, tmp_path)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    while session.pending is not None:
-        session.handle("skip")
-    session.handle("start BinClose")
-    replies = session.handle("run")
+    replies = stopped_with_the_bin_close(session)
     assert "(yes / find the ball" in question_text(replies)  # a yes answers it
     said = [r.text for r in session.handle("yes")]  # may I still find the ball with the bin close by? yes
     assert "✓ find the ball" in said  # and it does, as the next step of the run it stopped in
-    while session.pending is not None:
-        session.handle("skip")
+    skip_all(session)
     replies = session.handle("run")  # it goes on from there, and stops again: may I still go to the ball?
     said = [r.text for r in replies]
     assert said[0].startswith("I try again from here") and "go to the ball" in question_text(replies)
     assert "✓ go to the ball" in [r.text for r in session.handle("yes")]
-    while session.pending is not None:
-        session.handle("skip")
+    skip_all(session)
     again = session.handle("run")  # only its own steps are open: it goes on from there, to the next unsure step
     assert again[0].text.startswith("I try again from here") and "grasp the ball" in question_text(again)
 
@@ -126,33 +137,23 @@ def test_a_stopped_run_still_open_when_the_session_ends_may_be_tried_again_after
     # resume it said "finish or cancel the open demonstration first", the run's steps taken for
     # the teacher's own
     session = safe_session(ball, tmp_path)
-    session.handle(SEQUENCE)
-    session.handle("done")
-    while session.pending is not None:
-        session.handle("skip")
-    session.handle("start BinClose")
-    session.handle("run")
+    stopped_with_the_bin_close(session)
     session.handle("yes")  # may I still find the ball with the bin close by? the robot does
-    while session.pending is not None:
-        session.handle("skip")
+    skip_all(session)
     assert session.open is not None and session.open.robot_steps == len(session.open.steps) == 1
     session.handle("quit")
-    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
-                                             record=False, safe=True), ball, SymbolicWorld(ball))
-    assert resumed.open is not None and resumed.open.robot_steps == 1
-    again = resumed.handle("run")
+    back = resumed(ball, tmp_path)
+    assert back.open is not None and back.open.robot_steps == 1
+    again = back.handle("run")
     assert again[0].text.startswith("I try again from here")
-    resumed.handle("quit")
+    back.handle("quit")
     # a step of the teacher's own is theirs after a resume too: 'run' asks to finish it first
-    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
-                                             record=False, safe=True), ball, SymbolicWorld(ball))
-    while resumed.pending is not None:
-        resumed.handle("skip")
-    resumed.handle("go to the ball")
-    resumed.handle("quit")
-    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
-                                             record=False, safe=True), ball, SymbolicWorld(ball))
-    assert "Finish" in resumed.handle("run")[0].text
+    back = resumed(ball, tmp_path)
+    skip_all(back)
+    back.handle("go to the ball")
+    back.handle("quit")
+    back = resumed(ball, tmp_path)
+    assert "Finish" in back.handle("run")[0].text
 
 
 def test_no_followed_by_an_action_is_that_action(ball, tmp_path):
@@ -176,13 +177,12 @@ def test_a_question_open_when_the_session_ends_is_asked_again_on_resume_at_no_co
     assert pending is not None
     left = session.budget.left
     session.handle("quit")
-    resumed = SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path,
-                                             record=False, safe=True), ball, SymbolicWorld(ball))
-    greeting = resumed.greet()
-    assert resumed.pending is not None and resumed.pending.state == pending.state
-    assert (resumed.pending.kind, resumed.pending.action) == (pending.kind, pending.action)  # found again as chosen
+    back = resumed(ball, tmp_path)
+    greeting = back.greet()
+    assert back.pending is not None and back.pending.state == pending.state
+    assert (back.pending.kind, back.pending.action) == (pending.kind, pending.action)  # found again as chosen
     assert any("costs no second question" in r.text for r in greeting)
     assert question_text(greeting) == question_text([session.asking._question_reply(pending)])
-    assert resumed.budget.left == left
-    replies = resumed.handle("yes")
-    assert any(r.text.startswith("Thank you") for r in replies) and resumed.budget.left <= left
+    assert back.budget.left == left
+    replies = back.handle("yes")
+    assert any(r.text.startswith("Thank you") for r in replies) and back.budget.left <= left
