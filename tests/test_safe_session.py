@@ -186,3 +186,18 @@ def test_a_question_open_when_the_session_ends_is_asked_again_on_resume_at_no_co
     assert back.budget.left == left
     replies = back.handle("yes")
     assert any(r.text.startswith("Thank you") for r in replies) and back.budget.left <= left
+
+
+def test_after_a_resume_the_step_an_answer_names_where_a_run_stopped_is_still_taken(ball, tmp_path):
+    # a run that did nothing before it stopped leaves an empty correction, which a journal does
+    # not keep: after a resume the answer was learned but the robot stayed where it was
+    session = safe_session(ball, tmp_path)
+    replies = stopped_with_the_bin_close(session)
+    assert "I did nothing" in " ".join(r.text for r in replies)
+    session.handle("quit")
+    back = resumed(ball, tmp_path)
+    back.greet()
+    assert back.pending is not None and back.pending.action == "FindBall"
+    assert "✓ find the ball" in [r.text for r in back.handle("yes")]
+    skip_all(back)
+    assert back.handle("run")[0].text.startswith("I try again from here")

@@ -21,6 +21,7 @@ from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget
 from teach.domain import State
 from teach.errors import LearnError
 from teach.messages import Lang
+from teach.open_demonstration import OpenDemonstration
 from teach.session.commands import DONE_WORDS, IMPOSSIBLE_WORDS, SKIP_WORDS
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
 from teach.session.journal import Answered, Asked, Situated, parse_state_text, state_text
@@ -96,6 +97,10 @@ class Asking:
             self.learning.question_where_stuck(state) or Question(state, 1.0)
         self.pending = question
         self.learning.asked.add(state)
+        if self.record.open is None and state == self.world_state():
+            # asked where a run stopped having done nothing: the correction it left open (a journal
+            # keeps no empty one), so the step an answer names is the robot's, as before the quit
+            self.record.open = OpenDemonstration()
         return [Reply(ReplyKind.INFO, m.ASKED_BEFORE_YOU_LEFT(self.lang)), self._question_reply(question)]
 
     def _affordable(self, state: State) -> bool:
