@@ -139,6 +139,10 @@ class Domain:
     def holds(self, literal: Literal, state: State) -> bool:
         return state[self.index(literal.name)] == literal.value
 
+    def goal_holds(self, state: State) -> bool:
+        """Whether the declared goal holds in ``state`` (never, when none is declared)."""
+        return bool(self.goal) and all(self.holds(literal, state) for literal in self.goal)
+
     def state(self, true_conditions: list[str] | tuple[str, ...] | set[str] = ()) -> State:
         """A state in which exactly the named conditions are true."""
         for name in true_conditions:

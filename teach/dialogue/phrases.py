@@ -273,14 +273,13 @@ class PhraseBook:
         self._nouns: list[str] = []
         # an object the domain names by a word a line otherwise drops ("a" of "stack b a") is kept
         forms = [c.form for c in domain.conditions] + [a.form for a in domain.actions]
-        objects = {word for form in forms for thing in form[1:] for word in _words(thing)}
-        self._ignored = _IGNORED - objects
+        objects = list(dict.fromkeys(word for form in forms for thing in form[1:] for word in _words(thing)))
         self._objects = frozenset(objects)
+        self._ignored = _IGNORED - self._objects
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
         # a form's objects are what "it" may mean too, block "a" among them (an article to _note_nouns)
-        self._nouns += [word for word in dict.fromkeys(word for form in forms for thing in form[1:]
-                                                         for word in _words(thing)) if word not in self._nouns]
+        self._nouns += [word for word in objects if word not in self._nouns]
         self._handles = {action.name: _words(action.form[1])[-1] for action in domain.actions
                          if len(action.form) > 1 and _words(action.form[1])}
         for name, (english, german) in sorted(events.items()):

@@ -560,8 +560,7 @@ class SessionManager(CompatMembers):
         no action there and the task is not done (blocksworld's state where nothing holds), how to
         leave it."""
         domain, state = self.domain, self.world.state()
-        done = bool(domain.goal) and all(domain.holds(literal, state) for literal in domain.goal)
-        stuck = domain.has_model and not done and not possible_actions(domain, state)
+        stuck = domain.has_model and not domain.goal_holds(state) and not possible_actions(domain, state)
         return [self._state_reply()] + ([Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))] if stuck else [])
 
     def _state_reply(self, full: bool = False) -> Reply:

@@ -125,6 +125,6 @@ def guided_demonstration(domain: Domain, labelled: Sequence[tuple[Segment, str]]
     """The labelled segments as CSV lines (one per segment, by action name), then the goal line
     when the domain's goal holds in ``final``, as ``Recorder.done`` writes a named-skill one."""
     steps = [Step(seg.before, domain.action(label).id, number) for number, (seg, label) in enumerate(labelled, 1)]
-    if domain.goal and all(domain.holds(literal, final) for literal in domain.goal):
+    if domain.goal_holds(final):
         steps.append(Step(final, GOAL_ACTION, len(steps) + 1))
     return Demonstration(name, tuple(steps))
