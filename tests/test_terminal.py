@@ -174,3 +174,14 @@ def test_the_toolbar_fits_80_columns_and_names_conditions_only_for_a_facilitator
     assert "BallFound" not in toolbar(manager.view()) and len(toolbar(manager.view())) <= 80
     manager.facilitator = True
     assert "BallFound, BallClose" in toolbar(manager.view())
+
+
+def test_the_running_notice_is_shown_only_once_the_robot_moves(ball, tmp_path):
+    # a safe run stops at once where the bin is close by; a yes lets the robot find the ball; 'run'
+    # then says it tries again from there and stops at once again. The notice came before "I try
+    # again", and for runs in which the robot never moved
+    keys = ("find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin\r"
+            "done\r" + "skip\r" * 4 + "start BinClose\rrun\ryes\r" + "skip\r" * 4 + "run\rquit\r")
+    out, _ = drive(ball, tmp_path, keys, lang="en")
+    assert "I try again from here" in out and out.count("I got stuck") == 2
+    assert "robot running" not in out

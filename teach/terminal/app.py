@@ -145,13 +145,20 @@ class Terminal:
             self.manager.handle(line)
             return
         self._interrupt.clear()
-        self.console.print(f"[dim]{m.ROBOT_RUNNING(self.view.lang)}[/dim]")
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
         keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
             if is_terminal(self.prompt.input) else None
 
+        announced = False
+
         def interrupted() -> bool:
+            # polled first as the robot is about to move: told then, after what the session said
+            # before the run ("I try again from here"), and not at all when nothing moves
+            nonlocal announced
+            if not announced:
+                announced = True
+                self.console.print(f"[dim]{m.ROBOT_RUNNING(self.view.lang)}[/dim]")
             if keys is not None:
                 keys.poll()
             return self._interrupt.is_set()
