@@ -2,12 +2,15 @@
 
 A tree is read as an ordered list of rules, "the first that fits": each action with the
 checks that must hold before it is ticked (a condition in a Sequence must hold, one in a
-Fallback must not), and "I am done" where the root succeeds. Read that way, the backchained
-trees the learners build say what a teacher would say: "When the ball is in the bin, I am
-done. Otherwise: if I cannot see the ball, I find the ball; ...". Checks that earlier
-rules already rule out are left out (the order says them), an action a Fallback tries
-once more as a last resort after the branch that does it is not said again, and neither is
-a rule that repeats an earlier one's step where that one always fits first. A part that is neither
+Fallback must not, a step that comes after one that makes something hold comes only once it
+holds), and "I am done" where the root succeeds. Read that way, the backchained trees the
+learners build say what a teacher would say: "When the ball is in the bin, I am done.
+Otherwise: if I cannot see the ball, I find the ball; ...". A check is left out where an
+earlier rule would fit if it did not hold (the order says it), and so is a rule that repeats
+an earlier one's step where that one always fits first. For a learned tree the first rule
+that fits is what the tree does, in every state (``said_to_do``; tested on learned trees of
+the ball, snacks and blocksworld): the words never promise a step the robot would not take
+(before, a ball "put in the bin" without "the ball is in my hand"). A part that is neither
 conditions nor Sequences and Fallbacks of them (a Parallel, an Inverter over actions) is
 named by its actions, with a pointer to ``show full``. Pure: tree, domain and language in,
 lines out.
@@ -15,6 +18,7 @@ lines out.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 
 from teach import messages as m
@@ -33,6 +37,14 @@ class _Check:
     name: str = ""
     value: bool = True
     parts: tuple[_Check, ...] = ()
+
+    def holds(self, values: Mapping[str, bool]) -> bool:
+        """Whether it holds where conditions have ``values`` (an opaque test never does)."""
+        if self.kind == "literal":
+            return values[self.name] == self.value
+        if self.kind == "all":
+            return all(part.holds(values) for part in self.parts)
+        return self.kind == "any" and any(part.holds(values) for part in self.parts)
 
     def negated(self) -> _Check:
         if self.kind == "literal":
@@ -59,7 +71,7 @@ class _Rule:
 
 def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
     """What the tree does, in sentences of ``lang``, one rule a line."""
-    rules = _reachable(_deduplicated(_rules(tree, (), at_root=True)))
+    rules = _said(tree)
     lines: list[str] = []
     goal = []
     while rules and rules[0].kind == "done" and not rules[0].guard:
@@ -81,6 +93,28 @@ def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
     return lines
 
 
+def said_to_do(tree: Node) -> Callable[[Mapping[str, bool]], str | None]:
+    """What ``tree_lines`` says the robot does where the conditions have the values given: the first
+    rule that fits, an action's name or "done"; None where none fits (it stops). For the trees the
+    learners build this is what the tree does, in every state."""
+    rules = _said(tree)
+
+    def said(values: Mapping[str, bool]) -> str | None:
+        for rule in rules:
+            if all(check.holds(values) for check in rule.condition):
+                if rule.kind == "done":
+                    return "done"
+                return " or ".join(rule.actions) or None  # a part with no simple words: one of its actions
+        return None
+
+    return said
+
+
+def _said(tree: Node) -> list[_Rule]:
+    """The rules ``tree_lines`` says, in order."""
+    return _reachable(_shortened(_deduplicated(_rules(tree, (), at_root=True))))
+
+
 def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     """The rules of ``node`` in tick order; ``at_root``: the node succeeding means the task is done."""
     if isinstance(node, Action):
@@ -89,23 +123,29 @@ def _rules(node: Node, guard: tuple[_Check, ...], at_root: bool) -> list[_Rule]:
     if check is not None:
         return [_Rule(guard, "done", done_when=check)] if at_root else []
     if at_root and isinstance(node, Sequence):
-        reached = [_check(child) or _reached_when(child) for child in node.children]
-        if reached and all(r is not None for r in reached):  # one part after the other: done when each is
-            parts = tuple(r for r in reached if r is not None)
+        each = [_check(child) or _reached_when(child) for child in node.children]
+        if each and all(r is not None for r in each):  # one part after the other: done when each is
+            parts = tuple(r for r in each if r is not None)
             done = _Rule(guard, "done", done_when=parts[0] if len(parts) == 1 else _Check("all", parts=parts))
-            return [done] + [rule for child in node.children for rule in _rules(child, guard, at_root=False)]
+            in_turn = [done]
+            for child, holds in zip(node.children, parts, strict=True):
+                in_turn += _rules(child, guard, at_root=False)
+                guard += (holds,)  # the parts after it come only once it holds
+            return in_turn
     if isinstance(node, Sequence | Fallback):
         rules: list[_Rule] = []
         inside = guard
         acted = False  # in a Sequence: an action came before
-        for number, child in enumerate(node.children):
+        for child in node.children:
             child_check = _check(child)
-            if isinstance(node, Fallback) and _last_resort(child, node.children[:number]):
-                continue
             if child_check is None:
                 found = _rules(child, inside, at_root and isinstance(node, Fallback))
                 rules += [replace(rule, then=True) for rule in found] if acted else found
-                acted = isinstance(node, Sequence) and (acted or any(r.kind != "done" for r in found))
+                reached = _reached_when(child) if isinstance(node, Sequence) else None
+                if reached is not None:  # the steps after it come only once it holds ("the ball is in my hand")
+                    inside += (reached,)
+                else:
+                    acted = isinstance(node, Sequence) and (acted or any(r.kind != "done" for r in found))
             elif isinstance(node, Sequence):
                 inside += (child_check,)
             elif at_root:  # the task is done when it holds; later rules need not say it does not
@@ -149,13 +189,6 @@ def _check(node: Node) -> _Check | None:
     return _Check("opaque")
 
 
-def _last_resort(child: Node, before: tuple[Node, ...]) -> bool:
-    """An action a Fallback tries again after the branch that already does it (the backchained
-    tree's "if the steps before it did not work, try it anyway"): not said twice."""
-    return isinstance(child, Action) and any(isinstance(n, Action) and n.name == child.name
-                                             for sibling in before for n in walk(sibling))
-
-
 def _deduplicated(rules: list[_Rule]) -> list[_Rule]:
     """Each rule once (a subtree the tree repeats says the same)."""
     return list(dict.fromkeys(rules))
@@ -171,6 +204,28 @@ def _reachable(rules: list[_Rule]) -> list[_Rule]:
                                 and set(earlier.condition) <= set(rule.condition)
                                 for earlier in kept if not earlier.then):
             kept.append(rule)
+    return kept
+
+
+def _shortened(rules: list[_Rule]) -> list[_Rule]:
+    """Each rule without the checks the rules before it already say: a literal is left out where
+    an earlier rule fits whenever the rest of this one holds and the literal does not (if I cannot
+    see the ball I find it first, so "I go to the ball" need not say "I can see the ball"). Each
+    rule still fits exactly where the tree does its step first (tested on every state of learned
+    trees); a rule that follows an action of its Sequence neither loses checks nor lends them."""
+    kept: list[_Rule] = []
+    for rule in rules:
+        if not rule.then:
+            guard = list(rule.guard)
+            for check in rule.guard:
+                if check.kind != "literal":
+                    continue
+                rest = {c for c in guard if c != check} | {check.negated()} | (
+                    {rule.done_when} if rule.done_when is not None else set())
+                if any(not earlier.then and set(earlier.condition) <= rest for earlier in kept):
+                    guard.remove(check)
+            rule = replace(rule, guard=tuple(guard))
+        kept.append(rule)
     return kept
 
 
