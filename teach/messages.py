@@ -53,6 +53,8 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Say 'done' when the task is finished, 'help' for more.",
              "Hallo! Zeig mir die Aufgabe Schritt für Schritt. Ich kann: {actions}. "
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
+WHAT_I_CAN = Text("I can: {actions}. Say 'help' for what else you can type.",
+                  "Ich kann: {actions}. Sag 'hilfe' für alles, was du eingeben kannst.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
 MORE_ACTIONS = Text("{count} more like them (Tab)", "{count} weitere solche (Tab)")
@@ -95,6 +97,8 @@ FINISH_FIRST = Text("Finish or cancel the open demonstration first.",
                     "Beende oder verwirf zuerst die laufende Vorführung.")
 WHICH_CONDITION = Text("which condition is {name!r}: {some}?",
                        "welche Bedingung ist {name!r}: {some}?")
+UNKNOWN_CONDITION_LIKE = Text("I know no condition {name!r}; did you mean {some}?",
+                              "ich kenne keine Bedingung {name!r}; meintest du {some}?")
 UNKNOWN_CONDITION = Text("unknown condition {name!r} (known: {known})",
                          "unbekannte Bedingung {name!r} (bekannt: {known})")
 

@@ -89,10 +89,20 @@ def test_done_is_refused_before_the_goal(ball, tmp_path):
 
 def test_unknown_words_never_crash(ball, tmp_path):
     session = new_session(ball, tmp_path)
-    replies = session.handle("fly to the moon")
-    assert kinds(replies) == ["error"]
+    replies = session.handle("fly to the moon")  # nothing close to it: what the robot can do follows
+    assert kinds(replies) == ["error", "info"] and replies[1].text.startswith("I can: find the ball, go to the ball")
     replies = session.handle("start Nonsense")
     assert kinds(replies) == ["error"] and "unknown condition" in replies[0].text
+
+
+def test_a_condition_said_in_other_words_is_answered_with_the_likely_ones(ball, tmp_path):
+    # "start the bin is near" was answered "which condition is 'the': …?"
+    session = new_session(ball, tmp_path)
+    replies = session.handle("start the bin is near")
+    assert kinds(replies) == ["error"]
+    assert replies[0].text == ("I know no condition 'the bin is near'; did you mean the bin is within reach or "
+                               "the ball is in the bin?")
+    assert kinds(session.handle("start BallFound binclose")) != ["error"]  # names side by side are still read
 
 
 def test_questions_never_exceed_the_budget(ball, tmp_path):

@@ -15,6 +15,8 @@ from teach.messages import Lang
 
 _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+_LINKING = {"is", "ist", "are", "sind", "i", "ich", "my", "mein", "meiner", "of", "in", "im"}
+"""Words nearly every condition's label has: sharing them says nothing about which one is meant."""
 _STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
 
 
@@ -48,7 +50,12 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
     names: list[str] = []
     for part in (p for p in _PARTS.split(text) if p.strip()):
         whole = condition_named(domain, part)
-        for word in [part] if whole is not None else part.split():  # else names side by side
+        words = part.split()
+        if whole is None and len(words) > 1 and condition_named(domain, words[0]) is None \
+                and len(_begun_by(domain, words[0])) != 1:
+            # a phrase, not names side by side: "the bin is near" was "which condition is 'the'?"
+            raise TeachError(_unknown_phrase(domain, part.strip(), lang))
+        for word in [part] if whole is not None else words:  # else names side by side
             found = condition_named(domain, word)
             if found is None:
                 family = _begun_by(domain, word)
@@ -59,6 +66,17 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
                 raise TeachError(m.UNKNOWN_CONDITION(lang, name=word.strip(), known=known))
             names.append(found)
     return names
+
+
+def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> str:
+    """No condition reads as ``text``: the ones whose label shares the most words with it, if any."""
+    said = set(normalize(text).split()) - _LINKING
+    shared = {c.name: len(said & set(normalize(c.label(lang)).split())) for c in domain.conditions}
+    most = max(shared.values(), default=0)
+    if most:
+        like = [domain.condition(name).label(lang) for name, count in shared.items() if count == most]
+        return m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=m.OR(lang).join(like))
+    return m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions))
 
 
 def condition_named(domain: Domain, text: str) -> str | None:

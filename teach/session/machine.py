@@ -202,6 +202,9 @@ class SessionManager(CompatMembers):
                 self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
+            if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
+                replies.append(Reply(ReplyKind.INFO, m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain,
+                                                                                                  self.lang))))
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
