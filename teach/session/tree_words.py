@@ -18,6 +18,8 @@ lines out.
 
 from __future__ import annotations
 
+import functools
+import operator
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 
@@ -212,19 +214,30 @@ def _shortened(rules: list[_Rule]) -> list[_Rule]:
     an earlier rule fits whenever the rest of this one holds and the literal does not (if I cannot
     see the ball I find it first, so "I go to the ball" need not say "I can see the ball"). Each
     rule still fits exactly where the tree does its step first (tested on every state of learned
-    trees); a rule that follows an action of its Sequence neither loses checks nor lends them."""
+    trees); a rule that follows an action of its Sequence neither loses checks nor lends them.
+    Checks are bits of one number each, so "an earlier rule's checks are among these" is one test
+    (blocksworld's 125 rules of 29 checks: 1.5 s as sets)."""
+    bits: dict[_Check, int] = {}
+
+    def bit(check: _Check) -> int:
+        return 1 << bits.setdefault(check, len(bits))
+
+    def all_bits(checks: tuple[_Check, ...]) -> int:
+        return functools.reduce(operator.or_, map(bit, checks), 0)
+
+    earlier: list[int] = []  # the checks of each rule that may fit first, as bits
     kept: list[_Rule] = []
     for rule in rules:
         if not rule.then:
-            guard = list(rule.guard)
+            have = all_bits(rule.condition)
             for check in rule.guard:
                 if check.kind != "literal":
                     continue
-                rest = {c for c in guard if c != check} | {check.negated()} | (
-                    {rule.done_when} if rule.done_when is not None else set())
-                if any(not earlier.then and set(earlier.condition) <= rest for earlier in kept):
-                    guard.remove(check)
-            rule = replace(rule, guard=tuple(guard))
+                rest = have & ~bit(check) | bit(check.negated())
+                if any(not before & ~rest for before in earlier):
+                    rule = replace(rule, guard=tuple(c for c in rule.guard if c != check))
+                    have = all_bits(rule.condition)
+            earlier.append(have)
         kept.append(rule)
     return kept
 
