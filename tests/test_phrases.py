@@ -553,7 +553,8 @@ def test_it_is_the_block_a_step_handles_and_any_block_a_form_names_even_a():
 
 
 def test_after_a_leading_no_comes_what_to_do_instead():
-    assert after_no("no, find someone") == after_no("Nope. Find someone!") == "find someone"
+    assert after_no("no, find someone") == "find someone" and after_no("Nope. Find someone!") == "Find someone!"
+    assert after_no("no, go to the bin") == "go to the bin"  # as typed: "go bin" was unknown
     assert after_no("not that, go back") == "go back"
     assert after_no("nein, such jemanden", Lang.DE) == "such jemanden"
     assert after_no("no") is after_no("no thanks") is after_no("find someone") is None  # nothing after a no

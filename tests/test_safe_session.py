@@ -201,3 +201,19 @@ def test_after_a_resume_the_step_an_answer_names_where_a_run_stopped_is_still_ta
     assert "✓ find the ball" in [r.text for r in back.handle("yes")]
     skip_all(back)
     assert back.handle("run")[0].text.startswith("I try again from here")
+
+
+def test_no_and_another_step_with_linking_words_is_that_step(ball, tmp_path):
+    # "no, go to the bin" was read as "go bin": refused in MuJoCo ("I don't know 'go bin'"), whose
+    # events ("move the bin") make a guess at it unsure
+    from teach.world.mujoco_world import MujocoWorld
+
+    settings = Settings("t", questions=5, world=WorldKind.MUJOCO, base=tmp_path, record=False, safe=True, seed=3)
+    session = SessionManager(settings, ball, MujocoWorld(ball, 3))
+    session.handle(SEQUENCE)
+    session.handle("done")
+    skip_all(session)
+    session.handle("start BallFound BallGrasped")
+    assert "may I still do it?" in question_text(session.handle("run"))  # go to the ball, with it in hand?
+    said = [r.text for r in session.handle("no, go to the bin")]
+    assert said[0].startswith("Thank you") and "✓ go to the bin" in said

@@ -205,13 +205,16 @@ def is_no(text: str, lang: Lang = Lang.EN) -> bool:
 def after_no(text: str, lang: Lang = Lang.EN) -> str | None:
     """What follows a leading no ("no, find someone": "find someone"), or None when the reply does
     not begin with one or is nothing but it: how people answer "may I …?" with what to do instead."""
-    words = normalize(text).split()
     no = _answer_sets(_NO, lang)
     if _says(text, no):
         return None
+    # the words as typed, fillers set aside, each with where it ends: what follows the no is
+    # returned as typed ("no, go to the bin": "go to the bin"; read as "go bin" it was unknown)
+    words = [(said, found.end()) for found in re.finditer(r"\w+", text)
+             for said in [" ".join(_words(found.group()))] if said and said not in _FILLERS]
     for length in range(min(3, len(words) - 1), 0, -1):
-        if " ".join(words[:length]) in no:
-            return " ".join(words[length:])
+        if " ".join(said for said, _end in words[:length]) in no:
+            return text[words[length - 1][1]:].lstrip(" \t,;:.!-–—").rstrip() or None
     return None
 
 
