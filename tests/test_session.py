@@ -3,6 +3,8 @@ demonstrations, online learning, the question budget, runs with corrections, und
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from conftest import journal_data
 
@@ -103,6 +105,21 @@ def test_a_condition_said_in_other_words_is_answered_with_the_likely_ones(ball, 
     assert replies[0].text == ("I know no condition 'the bin is near'; did you mean the bin is within reach or "
                                "the ball is in the bin?")
     assert kinds(session.handle("start BallFound binclose")) != ["error"]  # names side by side are still read
+
+
+def test_a_condition_in_other_words_is_matched_by_its_telling_words():
+    # "on" is in 16 of blocksworld's labels, "table" inside 4: those 4 are meant (it offered the 16)
+    from teach.domain import load_domain
+    from teach.errors import TeachError
+    from teach.session.arguments import condition_names
+
+    blocks = load_domain(Path(__file__).resolve().parent.parent / "demos" / "blocksworld" / "domain.toml")
+    with pytest.raises(TeachError, match="did you mean ontable a or ontable b or ontable c or ontable d[?]$"):
+        condition_names(blocks, "all blocks on the table", "en")
+    with pytest.raises(TeachError, match="did you mean handempty[?]$"):
+        condition_names(blocks, "hand empty", "en")
+    with pytest.raises(TeachError, match=r"^unknown condition 'a on b' \(known: clear a, "):
+        condition_names(blocks, "a on b", "en")  # too many alike: all of them are listed
 
 
 def test_questions_never_exceed_the_budget(ball, tmp_path):

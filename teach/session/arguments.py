@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
+from fractions import Fraction
 
 from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize, plain
@@ -17,6 +18,8 @@ _FULL_WORDS = ("full", "ganz", "all", "alles")
 _PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
 _LINKING = {"is", "ist", "are", "sind", "i", "ich", "my", "mein", "meiner", "of", "in", "im"}
 """Words nearly every condition's label has: sharing them says nothing about which one is meant."""
+MAX_LIKE = 4
+"""The most conditions a phrase that names none is said to perhaps mean (beyond: all are listed)."""
 _STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
 
 
@@ -51,8 +54,7 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
     for part in (p for p in _PARTS.split(text) if p.strip()):
         whole = condition_named(domain, part)
         words = part.split()
-        if whole is None and len(words) > 1 and condition_named(domain, words[0]) is None \
-                and len(_begun_by(domain, words[0])) != 1:
+        if whole is None and len(words) > 1 and not any(condition_named(domain, word) for word in words):
             # a phrase, not names side by side: "the bin is near" was "which condition is 'the'?"
             raise TeachError(_unknown_phrase(domain, part.strip(), lang))
         for word in [part] if whole is not None else words:  # else names side by side
@@ -69,12 +71,20 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
 
 
 def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> str:
-    """No condition reads as ``text``: the ones whose label shares the most words with it, if any."""
+    """No condition reads as ``text``: the few whose labels share the most telling words with it
+    (a word counts less the more labels have it: "table" names 4 of blocksworld's conditions, "on"
+    20; a word of 4 letters or more also counts inside a longer one: "table" in "ontable a")."""
     said = set(normalize(text).split()) - _LINKING
-    shared = {c.name: len(said & set(normalize(c.label(lang)).split())) for c in domain.conditions}
-    most = max(shared.values(), default=0)
-    if most:
-        like = [domain.condition(name).label(lang) for name, count in shared.items() if count == most]
+    labels = {c.name: normalize(c.label(lang)).split() for c in domain.conditions}
+    score: dict[str, Fraction] = {}
+    for word in sorted(said):
+        having = [name for name, words in labels.items()
+                  if any(word == w or len(word) >= 4 and word in w for w in words)]
+        for name in having:
+            score[name] = score.get(name, Fraction(0)) + Fraction(1, len(having))
+    best = max(score.values(), default=Fraction(0))
+    like = [domain.condition(name).label(lang) for name, value in score.items() if value == best]
+    if best and len(like) <= MAX_LIKE:
         return m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=m.OR(lang).join(like))
     return m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions))
 
