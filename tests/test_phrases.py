@@ -313,6 +313,15 @@ def test_several_steps_with_pronouns(book):
     assert names(tokens) == ["ApproachBin", "PlaceBall"]
 
 
+def test_there_and_hin_are_the_place_of_what_was_named_last(book):
+    # "find the ball and go there" and "such den Ball und geh hin" were unknown
+    assert names(book.parse("find the ball and go there")) == ["FindBall", "ApproachBall"]
+    assert names(book.parse("such den Ball und geh hin", "de")) == ["FindBall", "ApproachBall"]
+    assert names(book.parse("geh dahin", "de", topic="eimer")) == ["ApproachBin"]
+    with pytest.raises(UnknownPhrase):
+        book.parse("go there")  # nothing named before: which place is not said
+
+
 def test_an_ambiguous_pronoun_is_a_suggestion_not_a_guess(book):
     with pytest.raises(UnknownPhrase) as info:
         book.parse("go to it")

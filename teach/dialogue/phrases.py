@@ -37,6 +37,8 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du"}
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+_PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
+"""Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
 _PARTICLES = {"up", "down", "away", "off", "out", "back"}
 """Particles of phrasal verbs, which people put after the object ("pick b up", "put c down")."""
 _LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
@@ -370,7 +372,7 @@ class PhraseBook:
     def _read(self, chunks: list[str], lang: Lang, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = self.key(chunk)
+            words = _place_said(self.key(chunk))
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -429,7 +431,7 @@ class PhraseBook:
         exact = self._exact(words, perturb, typed)
         if exact is not None:
             return _Piece(words, ((exact, None),))
-        options = self._resolved(words, perturb)
+        options = self._resolved(words, perturb, places=typed)
         return _Piece(words, tuple(options)) if options else None
 
     def _exact(self, words: tuple[str, ...], perturb: bool, typed: bool) -> _Entry | None:
@@ -442,15 +444,15 @@ class PhraseBook:
                     return entry
         return None
 
-    def _resolved(self, words: tuple[str, ...], perturb: bool) -> list[tuple[_Entry, str]]:
+    def _resolved(self, words: tuple[str, ...], perturb: bool, places: bool = True) -> list[tuple[_Entry, str]]:
         """Each object a pronoun in ``words`` may stand for, with the phrase it makes (never an event
         outside "perturb": a pronoun is a guess)."""
-        if not any(w in _PRONOUNS for w in words):
+        if not any(w in _PRONOUNS or places and w in _PLACES for w in words):
             return []
         kind = "event" if perturb else "action"
         options = []
         for noun in self._nouns:
-            for variant in _substituted(words, noun):
+            for variant in _substituted(words, noun, places):
                 entry = next((e for e in self._entries.get(variant, []) if e.kind == kind), None)
                 if entry is not None:
                     options.append((entry, noun))
@@ -626,8 +628,19 @@ def _alike(typed: str, word: str) -> bool:
     return typed in word or (len(typed) >= 5 and _ratio(typed, word) >= _WORD_CUTOFF)  # "nein" is not "rein"
 
 
-def _substituted(words: tuple[str, ...], noun: str) -> list[tuple[str, ...]]:
-    """``words`` with every pronoun replaced by ``noun``; German "zu ihm" also as "zum Ball"/"zur …"."""
+def _place_said(words: tuple[str, ...]) -> tuple[str, ...]:
+    """``words`` without a word for a place the next words name ("geh hin zum Ball": "geh zum Ball");
+    alone, it stands for the place of what was named last (``_PLACES``)."""
+    return tuple(word for word, after in zip(words, (*words[1:], ""), strict=False)
+                 if not (word in _PLACES and after in _LINKS | {"zum", "zur", "ins", "im"}))
+
+
+def _substituted(words: tuple[str, ...], noun: str, places: bool = True) -> list[tuple[str, ...]]:
+    """``words`` with every pronoun replaced by ``noun``; German "zu ihm" also as "zum Ball"/"zur …";
+    with ``places``, a word for its place as "to" it ("go there": "go to ball"; not a word a typo was
+    corrected to: "thing" is not "hin")."""
+    if places:
+        words = tuple(part for word in words for part in _PLACES.get(word, (word,)))
     plain = tuple(noun if w in _PRONOUNS else w for w in words)
     variants = [plain]
     for contraction in ("zum", "zur"):
