@@ -217,3 +217,19 @@ def test_no_and_another_step_with_linking_words_is_that_step(ball, tmp_path):
     assert "may I still do it?" in question_text(session.handle("run"))  # go to the ball, with it in hand?
     said = [r.text for r in session.handle("no, go to the bin")]
     assert said[0].startswith("Thank you") and "✓ go to the bin" in said
+
+
+def test_a_step_the_tree_stopped_midway_is_said_not_finished(ball, tmp_path):
+    # in MuJoCo the tree stops a skill when what it checks changes: the grasp began with the bin out
+    # of reach, the bin came within reach while it grasped, and "grasp the ball" (known only with
+    # the bin away) stopped with the ball not in hand. It was said as done: "I did: …, grasp the ball."
+    from teach.world.mujoco_world import MujocoWorld
+
+    settings = Settings("t", questions=5, world=WorldKind.MUJOCO, base=tmp_path, record=False, safe=True, seed=0)
+    session = SessionManager(settings, ball, MujocoWorld(ball, 0))
+    session.handle(SEQUENCE)
+    session.handle("done")
+    skip_all(session)
+    session.handle("reset")
+    said = [r.text for r in session.handle("run")]
+    assert "I did: find the ball, go to the ball, grasp the ball (not finished: the ball is not in my hand)." in said

@@ -93,6 +93,13 @@ def unmet_goal(domain: Domain, state: State, lang: Lang) -> str:
     return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
 
 
+def unmet_effects(domain: Domain, action: str, state: State, lang: Lang) -> str:
+    """The effects the domain file declares for ``action`` that do not hold in ``state``, in words
+    ("" when all hold, or it declares none): a step begun but not finished."""
+    missing = [lit for lit in domain.action(action).ram if not domain.holds(lit, state)]
+    return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
+
+
 MAX_ACTIONS_NAMED = 12
 """More actions than this (blocksworld's 40) are not all named in the greeting and help: one of
 each kind (``form``), or the first ones."""

@@ -12,7 +12,7 @@ from teach import messages as m
 from teach.bt.nodes import Node
 from teach.domain import State
 from teach.observe.hook import Observer
-from teach.session.describe import unmet_goal
+from teach.session.describe import unmet_effects, unmet_goal
 from teach.session.replies import Reply, ReplyKind
 from teach.session.run_report import TryWatch, failed_tries, tried_lines
 from teach.session.showing import Showing
@@ -65,7 +65,12 @@ def run(tree: Node, showing: Showing, observer: Observer, stop_after: int | None
     showing.record.save()
     if not result.steps and finished:
         return RunTold([Reply(ReplyKind.SAY, m.NOTHING_TO_DO(lang))], state_line=False, ask=False)
-    done = ", ".join(domain.action(a).label(lang) for _, a in result.steps)
+    labels = [domain.action(a).label(lang) for _, a in result.steps]
+    unfinished = unmet_effects(domain, result.steps[-1][1], world.state(), lang) \
+        if labels and not finished and result.outcome is not Outcome.INTERRUPTED else ""
+    if unfinished:  # the tree stopped it midway (MuJoCo: the bin came within reach while it searched)
+        labels[-1] = m.STEP_NOT_FINISHED(lang, action=labels[-1], unmet=unfinished)
+    done = ", ".join(labels)
     replies = [Reply(ReplyKind.INFO, m.I_DID(lang, actions=done) if done else m.I_DID_NOTHING(lang))]
     tried = tried_lines(failed_tries(watch, started, result), domain, lang)
     replies += [Reply(ReplyKind.INFO, line) for line in tried]
