@@ -40,6 +40,18 @@ def stopped_with_the_bin_close(session):
     return session.handle("run")
 
 
+def shown_once_in_mujoco(ball, tmp_path, seed):
+    """A safe session in real MuJoCo that was shown the whole task once, its questions skipped."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    settings = Settings("t", questions=5, world=WorldKind.MUJOCO, base=tmp_path, record=False, safe=True, seed=seed)
+    session = SessionManager(settings, ball, MujocoWorld(ball, seed))
+    session.handle(SEQUENCE)
+    session.handle("done")
+    skip_all(session)
+    return session
+
+
 def resumed(ball, tmp_path):
     return SessionManager.resume(Settings("t", questions=5, world=WorldKind.SYMBOLIC, base=tmp_path, record=False,
                                           safe=True), ball, SymbolicWorld(ball))
@@ -206,13 +218,7 @@ def test_after_a_resume_the_step_an_answer_names_where_a_run_stopped_is_still_ta
 def test_no_and_another_step_with_linking_words_is_that_step(ball, tmp_path):
     # "no, go to the bin" was read as "go bin": refused in MuJoCo ("I don't know 'go bin'"), whose
     # events ("move the bin") make a guess at it unsure
-    from teach.world.mujoco_world import MujocoWorld
-
-    settings = Settings("t", questions=5, world=WorldKind.MUJOCO, base=tmp_path, record=False, safe=True, seed=3)
-    session = SessionManager(settings, ball, MujocoWorld(ball, 3))
-    session.handle(SEQUENCE)
-    session.handle("done")
-    skip_all(session)
+    session = shown_once_in_mujoco(ball, tmp_path, seed=3)
     session.handle("start BallFound BallGrasped")
     assert "may I still do it?" in question_text(session.handle("run"))  # go to the ball, with it in hand?
     said = [r.text for r in session.handle("no, go to the bin")]
@@ -223,13 +229,7 @@ def test_a_step_the_tree_stopped_midway_is_said_not_finished(ball, tmp_path):
     # in MuJoCo the tree stops a skill when what it checks changes: the grasp began with the bin out
     # of reach, the bin came within reach while it grasped, and "grasp the ball" (known only with
     # the bin away) stopped with the ball not in hand. It was said as done: "I did: …, grasp the ball."
-    from teach.world.mujoco_world import MujocoWorld
-
-    settings = Settings("t", questions=5, world=WorldKind.MUJOCO, base=tmp_path, record=False, safe=True, seed=0)
-    session = SessionManager(settings, ball, MujocoWorld(ball, 0))
-    session.handle(SEQUENCE)
-    session.handle("done")
-    skip_all(session)
+    session = shown_once_in_mujoco(ball, tmp_path, seed=0)
     session.handle("reset")
     said = [r.text for r in session.handle("run")]
     assert "I did: find the ball, go to the ball, grasp the ball (not finished: the ball is not in my hand)." in said
