@@ -115,6 +115,7 @@ NO_STEP_POSSIBLE = Text("Nothing can be done from here in this world. Set up a s
                         "Von hier aus lässt sich in dieser Welt nichts tun. Stell mit 'situation' und dem, was "
                         "gilt, eine Lage her; 'neu' beginnt dann von dort aus neu.")
 I_DID = Text("I did: {actions}.", "Ich habe gemacht: {actions}.")
+STOPPED_MIDWAY = Text("I stopped “{action}” midway", "ich habe „{action}“ mittendrin angehalten")
 STEP_NOT_FINISHED = Text("{action} (not finished: {unmet})", "{action} (nicht fertig: {unmet})")
 TASK_FINISHED = Text("Done! The task is finished.", "Fertig! Die Aufgabe ist erledigt.")
 STOPPED = Text("Stopped. Show me how to go on from here, then say 'done'.",

@@ -225,7 +225,7 @@ def test_no_and_another_step_with_linking_words_is_that_step(ball, tmp_path):
     assert said[0].startswith("Thank you") and "✓ go to the bin" in said
 
 
-def test_a_step_the_tree_stopped_midway_is_said_not_finished(ball, tmp_path):
+def test_a_step_the_tree_stopped_midway_is_said_not_finished_and_its_change_is_no_effect(ball, tmp_path):
     # in MuJoCo the tree stops a skill when what it checks changes: the grasp began with the bin out
     # of reach, the bin came within reach while it grasped, and "grasp the ball" (known only with
     # the bin away) stopped with the ball not in hand. It was said as done: "I did: …, grasp the ball."
@@ -233,3 +233,10 @@ def test_a_step_the_tree_stopped_midway_is_said_not_finished(ball, tmp_path):
     session.handle("reset")
     said = [r.text for r in session.handle("run")]
     assert "I did: find the ball, go to the ball, grasp the ball (not finished: the ball is not in my hand)." in said
+    # and what it changed is an event, not its effect: it was "why grasp the ball: to make the bin
+    # within reach true" once the correction was learned
+    assert session.handle("steps")[0].text.endswith("3. something happened: I stopped “grasp the ball” midway")
+    for line in ("yes", "put the ball in the bin", "done"):  # may I still grasp the ball with the bin near? yes
+        session.handle(line)
+    why = " ".join(r.text for r in session.handle("why grasp the ball"))
+    assert "“the ball is in my hand”" in why and "bin" not in why

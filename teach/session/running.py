@@ -59,16 +59,17 @@ def run(tree: Node, showing: Showing, observer: Observer, stop_after: int | None
     observer.on_run_end(result.outcome.value, len(result.steps))
     unmet = unmet_goal(domain, world.state(), lang)
     finished = result.outcome is Outcome.SUCCESS and not unmet
+    # the last step, stopped by the tree midway (in MuJoCo what it checks can change as it moves)?
+    unfinished = unmet_effects(domain, result.steps[-1][1], world.state(), lang) \
+        if result.steps and not finished and result.outcome is not Outcome.INTERRUPTED else ""
     if not finished:  # what the robot did so far and what the teacher shows next become one correction
-        showing.from_run(result)
+        showing.from_run(result, stopped_midway=bool(unfinished))
     showing.record.note_open("run")  # how the run ended is on disk before the teacher hears of it
     showing.record.save()
     if not result.steps and finished:
         return RunTold([Reply(ReplyKind.SAY, m.NOTHING_TO_DO(lang))], state_line=False, ask=False)
     labels = [domain.action(a).label(lang) for _, a in result.steps]
-    unfinished = unmet_effects(domain, result.steps[-1][1], world.state(), lang) \
-        if labels and not finished and result.outcome is not Outcome.INTERRUPTED else ""
-    if unfinished:  # the tree stopped it midway (MuJoCo: the bin came within reach while it searched)
+    if unfinished:
         labels[-1] = m.STEP_NOT_FINISHED(lang, action=labels[-1], unmet=unfinished)
     done = ", ".join(labels)
     replies = [Reply(ReplyKind.INFO, m.I_DID(lang, actions=done) if done else m.I_DID_NOTHING(lang))]

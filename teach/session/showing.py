@@ -146,15 +146,23 @@ class Showing:
         words = [t.text if t.kind == "event" else domain.action(t.name).label(self.lang) for t in tokens]
         return [Reply(ReplyKind.INFO, m.REST_NOT_DONE(self.lang, actions=", ".join(words)))]
 
-    def from_run(self, result: RunResult) -> None:
+    def from_run(self, result: RunResult, stopped_midway: bool = False) -> None:
         """What a run that did not finish did (and the world's events in it, a slip) opens the
-        correction the teacher's next steps continue."""
+        correction the teacher's next steps continue. ``stopped_midway``: the tree stopped the last
+        step before its effects came about; what it changed is kept as an event (-1), as a slip
+        is, not learned as its effect (a grasp stopped as the bin came within reach was "why
+        grasp the ball: to make the bin within reach true")."""
         domain = self.vocabulary.domain
         steps = [(state, domain.action(action).id,
                   m.ROBOT_DID_STEP(self.lang, action=domain.action(action).label(self.lang)))
                  for state, action in result.steps]
         events = [(after, WorldEventStep(event.before, m.EVENT_STEP(self.lang, event=self.said(event))))
                   for after, event in result.events]
+        if stopped_midway:
+            state, action = result.steps[-1]
+            steps.pop()
+            stopped = m.STOPPED_MIDWAY(self.lang, action=domain.action(action).label(self.lang))
+            events.append((len(steps), WorldEventStep(state, m.EVENT_STEP(self.lang, event=stopped))))
         self.record.open = OpenDemonstration.from_run(steps, events)
 
     def save_run(self, started: list[tuple[State, str]]) -> None:
