@@ -567,3 +567,12 @@ def test_after_a_leading_no_comes_what_to_do_instead():
     assert after_no("not that, go back") == "go back"
     assert after_no("nein, such jemanden", Lang.DE) == "such jemanden"
     assert after_no("no") is after_no("no thanks") is after_no("find someone") is None  # nothing after a no
+
+
+def test_snacks_is_taught_in_german_imperatives_too():
+    # "nimm das Tablett" was offered as the event "jemand nimmt das Tablett"; "biete was an" unknown
+    snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
+    line = "warte auf einen Auftrag, nimm das Tablett und such jemanden, biete was an, fahr zurück ins Büro"
+    assert [(t.name, t.guessed) for t in snacks.parse(line, "de")] == [
+        ("WaitForRequest", False), ("TakeTray", False), ("FindPartner", False), ("OfferSnack", False),
+        ("ReturnToOffice", False)]
