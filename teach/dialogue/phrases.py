@@ -39,6 +39,8 @@ _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "ca
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
+_NAMING_A_PLACE = {"zum", "zur", "ins", "im"}
+"""Besides the linking words: what, after a word for a place, names the place itself ("hin zum Ball")."""
 _PARTICLES = {"up", "down", "away", "off", "out", "back"}
 """Particles of phrasal verbs, which people put after the object ("pick b up", "put c down")."""
 _LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
@@ -632,7 +634,7 @@ def _place_said(words: tuple[str, ...]) -> tuple[str, ...]:
     """``words`` without a word for a place the next words name ("geh hin zum Ball": "geh zum Ball");
     alone, it stands for the place of what was named last (``_PLACES``)."""
     return tuple(word for word, after in zip(words, (*words[1:], ""), strict=False)
-                 if not (word in _PLACES and after in _LINKS | {"zum", "zur", "ins", "im"}))
+                 if not (word in _PLACES and (after in _LINKS or after in _NAMING_A_PLACE)))
 
 
 def _substituted(words: tuple[str, ...], noun: str, places: bool = True) -> list[tuple[str, ...]]:

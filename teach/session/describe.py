@@ -4,6 +4,7 @@ refused, which goal conditions are still missing; and the actions a greeting nam
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from teach import messages as m
@@ -89,14 +90,18 @@ def literals_label(text: str, domain: Domain, lang: Lang) -> str:
 
 def unmet_goal(domain: Domain, state: State, lang: Lang) -> str:
     """The domain's goal conditions that do not hold, in words ("" when the goal holds)."""
-    missing = [lit for lit in domain.goal if not domain.holds(lit, state)]
-    return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
+    return _unmet(domain, domain.goal, state, lang)
 
 
 def unmet_effects(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """The effects the domain file declares for ``action`` that do not hold in ``state``, in words
     ("" when all hold, or it declares none): a step begun but not finished."""
-    missing = [lit for lit in domain.action(action).ram if not domain.holds(lit, state)]
+    return _unmet(domain, domain.action(action).ram, state, lang)
+
+
+def _unmet(domain: Domain, literals: Iterable[Literal], state: State, lang: Lang) -> str:
+    """``literals`` that do not hold in ``state``, said as what holds instead."""
+    missing = [lit for lit in literals if not domain.holds(lit, state)]
     return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
 
 
