@@ -219,6 +219,22 @@ def test_commands_answer(ball, tmp_path, line):
     assert "error" not in kinds(session.handle(line))
 
 
+@pytest.mark.parametrize("lang", ["en", "de"])
+def test_help_offers_what_this_world_can_do_in_its_own_words(ball, tmp_path, lang):
+    """'help' in the symbolic world listed 'guide' (which only MuJoCo can do) and gave the ball's
+    "why grab it" as the example in every domain; the example is now one of the domain's actions,
+    and asking it is answered."""
+    session = new_session(ball, tmp_path, lang=lang)
+    help_text = session.handle("help")[0].text
+    assert "  guide [" not in help_text and "  führen [" not in help_text
+    example = help_text.split("(why ")[-1].split("(warum ")[-1].split(")")[0]
+    assert example in ("find the ball", "Ball finden")
+    session.handle(SEQUENCE)
+    session.handle("done")
+    replies = session.handle(f"{'warum' if lang == 'de' else 'why'} {example}")
+    assert "error" not in kinds(replies) and replies[0].text.startswith("- ")
+
+
 def test_undo_never_refunds_a_question(ball, tmp_path):
     session = new_session(ball, tmp_path, questions=1)
     teach_two_demonstrations(session)

@@ -84,8 +84,8 @@ class Verb(Enum):
     SKIP = _Declared(("skip",), ("weiter",), Text("skip", "weiter"),
                      Text("leave a question unanswered", "eine Frage offen lassen"))
     WHY = _Declared(("why",), ("warum",), Text("why NAME", "warum NAME"),
-                    Text("why a step or a condition is in the tree (why grab it)",
-                         "warum ein Schritt oder eine Bedingung im Baum ist (warum greifen)"))
+                    Text("why a step or a condition is in the tree (why {example})",
+                         "warum ein Schritt oder eine Bedingung im Baum ist (warum {example})"))
     SAVE = _Declared(("save",), ("speichern",), Text("save", "speichern"),
                      Text("save everything now", "alles jetzt speichern"))
     QUIT = _Declared(("quit", "exit"), ("beenden", "tschüss"), Text("quit / Ctrl-D", "beenden / Strg-D"),

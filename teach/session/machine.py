@@ -59,7 +59,7 @@ from teach.session.commands import (
 )
 from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
-from teach.session.describe import some_actions, unmet_goal, why_refused
+from teach.session.describe import actions_to_name, some_actions, unmet_goal, why_refused
 from teach.session.guiding import Guiding
 from teach.session.journal import DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
@@ -269,8 +269,12 @@ class SessionManager(CompatMembers):
     # --- commands --------------------------------------------------------------------------
 
     def cmd_help(self, rest: str) -> list[Reply]:
-        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang)}" if len(c.usage(self.lang)) <= 28
-                 else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang)}" for c in COMMANDS]
+        """Every command this world can carry out ('guide' only where the robot can be moved by
+        hand), its examples in this domain's words."""
+        example = actions_to_name(self.domain)[0].label(self.lang)
+        shown = [c for c in COMMANDS if c is not Verb.GUIDE or self.guiding.can_guide()]
+        lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang, example=example)}" if len(c.usage(self.lang)) <= 28
+                 else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang, example=example)}" for c in shown]
         examples = some_actions(self.domain, self.lang, say_more=False)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
 
