@@ -107,6 +107,17 @@ def test_a_condition_said_in_other_words_is_answered_with_the_likely_ones(ball, 
     assert kinds(session.handle("start BallFound binclose")) != ["error"]  # names side by side are still read
 
 
+@pytest.mark.parametrize("reply", ["yes", "", "no"])
+def test_a_condition_guessed_alone_is_taken_on_yes(ball, tmp_path, reply):
+    """"did you mean the ball is in my hand?" was followed by "No question is open." on yes."""
+    session = new_session(ball, tmp_path)
+    replies = session.handle("start I can see the ball, ball in hand")
+    assert kinds(replies) == ["error"] and replies[0].text.endswith("did you mean the ball is in my hand?")
+    session.handle(reply)
+    held = ball.state(["BallFound", "BallGrasped"])
+    assert (session.world.state() == held) == (reply != "no")
+
+
 def test_a_condition_in_other_words_is_matched_by_its_telling_words():
     # "on" is in 16 of blocksworld's labels, "table" inside 4: those 4 are meant (it offered the 16)
     from teach.domain import load_domain

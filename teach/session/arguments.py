@@ -56,7 +56,7 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
         words = part.split()
         if whole is None and len(words) > 1 and not any(condition_named(domain, word) for word in words):
             # a phrase, not names side by side: "the bin is near" was "which condition is 'the'?"
-            raise TeachError(_unknown_phrase(domain, part.strip(), lang))
+            raise _unknown_phrase(domain, part.strip(), lang)
         for word in [part] if whole is not None else words:  # else names side by side
             found = condition_named(domain, word)
             if found is None:
@@ -70,10 +70,21 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
     return names
 
 
-def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> str:
+class ConditionGuess(TeachError):
+    """A phrase that names no condition but is most like one: "did you mean …?", and a yes to it
+    reads the line again with that condition's label in place of ``said``."""
+
+    def __init__(self, message: str, said: str, meant: str):
+        super().__init__(message)
+        self.said = said
+        self.meant = meant
+
+
+def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> TeachError:
     """No condition reads as ``text``: the few whose labels share the most telling words with it
     (a word counts less the more labels have it: "table" names 4 of blocksworld's conditions, "on"
-    20; a word of 4 letters or more also counts inside a longer one: "table" in "ontable a")."""
+    20; a word of 4 letters or more also counts inside a longer one: "table" in "ontable a");
+    one alone is a ``ConditionGuess``."""
     said = set(normalize(text).split()) - _LINKING
     labels = {c.name: normalize(c.label(lang)).split() for c in domain.conditions}
     score: dict[str, Fraction] = {}
@@ -84,9 +95,11 @@ def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> str:
             score[name] = score.get(name, Fraction(0)) + Fraction(1, len(having))
     best = max(score.values(), default=Fraction(0))
     like = [domain.condition(name).label(lang) for name, value in score.items() if value == best]
+    if best and len(like) == 1:
+        return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, like[0])
     if best and len(like) <= MAX_LIKE:
-        return m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=m.OR(lang).join(like))
-    return m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions))
+        return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=m.OR(lang).join(like)))
+    return TeachError(m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions)))
 
 
 def condition_named(domain: Domain, text: str) -> str | None:

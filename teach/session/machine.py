@@ -44,7 +44,7 @@ from teach.errors import LearnError, TeachError
 from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.session import running
-from teach.session.arguments import condition_names, node_named, says_full, step_number, whole_number
+from teach.session.arguments import ConditionGuess, condition_names, node_named, says_full, step_number, whole_number
 from teach.session.asking import Asking
 from teach.session.commands import (
     ANSWERING,
@@ -205,6 +205,9 @@ class SessionManager(CompatMembers):
             if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
                 replies.append(Reply(ReplyKind.INFO, m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain,
                                                                                                   self.lang))))
+        except ConditionGuess as guess:  # "start in the office": a yes reads it with the condition meant
+            self.retype = line.replace(guess.said, guess.meant, 1) if guess.said in line else None
+            replies = [Reply(ReplyKind.ERROR, str(guess))]
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
