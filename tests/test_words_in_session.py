@@ -5,9 +5,11 @@ they mean: undo words undo, done words finish, unclear words are not guessed int
 from __future__ import annotations
 
 import pytest
+from conftest import ROOT
 from test_session import teach_two_demonstrations
 
 from teach.demos import read_demo_set
+from teach.domain import load_domain
 from teach.learn.learner import Update
 from teach.messages import Lang
 from teach.session.describe import describe_update
@@ -147,3 +149,29 @@ def test_one_step_learned_is_said_as_one(ball):
     assert describe_update(changed, ["GraspBall"], ball, Lang.EN) == "I learned the step grasp the ball."
     assert describe_update(changed, ["FindBall", "GraspBall"], ball, Lang.EN).startswith("I learned the steps ")
     assert describe_update(changed, ["GraspBall"], ball, Lang.DE).startswith("Ich habe den Schritt ")
+
+
+@pytest.mark.parametrize(("start", "line", "steps"), [("start BallFound", "los zum Ball", [2]),
+                                                    ("start", "los, such den Ball", [1])])
+def test_a_number_command_followed_by_steps_is_those_steps(ball, tmp_path, start, line, steps):
+    """'los' (run) and 'zurück' (undo) take a number: "los zum Ball" was "expected a whole number"."""
+    manager = session(ball, tmp_path, "de")
+    said(manager, start)
+    assert "error" not in [r.kind.value for r in manager.handle(line)]
+    assert open_actions(manager) == steps
+
+
+def test_back_to_the_office_is_a_step_not_an_undo(tmp_path):
+    snacks = load_domain(ROOT / "demos" / "snacks" / "domain.toml")
+    settings = Settings("words", lang="de", questions=0, base=tmp_path, world="symbolic", record=False)
+    manager = SessionManager(settings, snacks, SymbolicWorld(snacks))
+
+    def shown() -> list[str]:
+        return [snacks.action(a).name for a in open_actions(manager)]
+
+    for line in ("auf einen Auftrag warten", "Tablett nehmen", "jemanden suchen", "zurück ins Büro"):
+        said(manager, line)
+    assert shown() == ["WaitForRequest", "TakeTray", "FindPartner", "ReturnToOffice"]
+    said(manager, "zurück 3")  # a number is still an undo
+    assert shown() == ["WaitForRequest", "TakeTray"]
+    assert "Zahl" in said(manager, "zurück xyz") and len(shown()) == 2  # neither: the undo's error

@@ -77,6 +77,10 @@ from teach.session.vocabulary import Vocabulary
 from teach.symbolic import possible_actions
 from teach.world.protocol import TeachingWorld
 
+NUMBERED: dict[Command, Callable[[str, Lang], int | None]] = {Verb.RUN: whole_number, Verb.RESET: whole_number,
+                                                             Verb.UNDO: step_number}
+"""The commands whose argument is a number, and how it is read."""
+
 
 class SessionManager(CompatMembers):
     """One teaching session. Not thread-safe: one driver feeds it lines."""
@@ -218,6 +222,24 @@ class SessionManager(CompatMembers):
         self.record.save()  # the step clock too, so a resume goes on from it
         return turn
 
+    def _steps_after_all(self, command: Command | None, rest: str, line: str) -> bool:
+        """A command that takes a number ('zurück': undo, 'los': run) followed by words that are none,
+        where the whole line reads as steps, is those steps: "zurück ins Büro", "los zum Ball" were
+        "expected a whole number"."""
+        reads = NUMBERED.get(command) if command is not None else None
+        if reads is None or not rest.strip():
+            return False
+        try:
+            reads(rest, self.lang)
+            return False
+        except TeachError:
+            pass
+        try:
+            self.phrases.parse(line, self.lang, topic=self.topic)
+        except UnknownPhrase:
+            return False
+        return True
+
     def _answer_words(self) -> tuple[str, ...]:
         """The words a typo may be read as besides the commands: yes and no while a question is open."""
         if self.pending is None and self.pending_model is None:
@@ -249,6 +271,8 @@ class SessionManager(CompatMembers):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         line = command_hint(line, self.lang, COMMAND_WORDS) or line
         command, rest = parse_command(line)
+        if self._steps_after_all(command, rest, line):
+            command, rest = None, line
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
