@@ -81,8 +81,11 @@ def test_a_session_through_bt_cpp_runs_as_through_our_tick(tmp_path: Path) -> No
     assert theirs == ours
     assert any("Done! The task is finished." in r for r in ours) and any("Stopped." in r for r in ours)
     assert watcher is not None and watcher.ticks >= 8 and watcher.refused == 0
-    # the publisher is gone with the session: the port is free again
+    # the publisher is gone with the session: the port is free again (SO_REUSEADDR: a closed
+    # connection's TIME_WAIT on it does not count, a listener still would; the bind failed without
+    # it once in a full parallel run)
     with socket.socket() as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         probe.bind(("", port))
 
 
@@ -283,7 +286,7 @@ def test_groot2s_other_requests_are_answered_as_the_publisher_answers_them() -> 
     finally:
         client.close()
         ticker.close()
-    with socket.socket() as probe:  # both ports are free once the ticker is closed
-        probe.bind(("", port))
-    with socket.socket() as probe:
-        probe.bind(("", port + 1))
+    for each in (port, port + 1):  # both ports are free once the ticker is closed (TIME_WAIT aside)
+        with socket.socket() as probe:
+            probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            probe.bind(("", each))
