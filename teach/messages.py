@@ -257,8 +257,8 @@ MODE_DEMONSTRATING = Text("demonstrating", "Vorführung")
 MODE_ASKING = Text("asking", "Frage offen")
 
 # --- situation questions (teach/dialogue/questions.py) -----------------------------------------
-MUST_ACTION_QUESTION = Text("Every time I did “{action}” so far, {held}. If {situation}, may I still do it? "
-                            "(yes, or tell me what to do there)",
+MUST_ACTION_QUESTION = Text("So far, every time I did “{action}”, this was true: {held}. If {situation}, may I still "
+                            "do it? (yes, or tell me what to do there)",
                             "Bisher galt jedes Mal, wenn ich „{action}“ getan habe: {held}. Angenommen, {situation}. "
                             "Darf ich es dann trotzdem tun? (ja, oder sag mir, was ich dort tun soll)")
 MUST_KIN_QUESTION = Text("I have not done “{action}” yet, but every time I did a step like it (“{like}”), the same "
@@ -267,8 +267,8 @@ MUST_KIN_QUESTION = Text("I have not done “{action}” yet, but every time I d
                          "„{action}“ habe ich noch nie getan, aber jedes Mal, wenn ich einen Schritt wie diesen getan "
                          "habe („{like}“), galt dasselbe für seine Dinge; für „{action}“ heißt das: {held}. "
                          "Angenommen, {situation}. Darf ich es dann tun? (ja, oder sag mir, was ich dort tun soll)")
-MUST_GOAL_QUESTION = Text("Every time the task was done so far, {held}. If {situation}, is the task done? "
-                          "(yes, or tell me what to do there)",
+MUST_GOAL_QUESTION = Text("So far, every time the task was done, this was true: {held}. If {situation}, is the task "
+                          "done? (yes, or tell me what to do there)",
                           "Bisher galt jedes Mal, wenn die Aufgabe erledigt war: {held}. Angenommen, {situation}. "
                           "Ist die Aufgabe dann erledigt? (ja, oder sag mir, was ich dort tun soll)")
 RUN_AGAIN = Text("I try again from here (the steps of the last run are not kept as a demonstration; "

@@ -360,7 +360,7 @@ def _unblocked(learner: Learner, action: str | None, literals: list[Lit], stuck:
 
 def unsure_here(learner: Learner, state: State) -> SituationQuestion | None:
     """Where the safe tree stopped (FAILURE) in ``state``: the action it was nearest to running, and
-    the unsure literals that kept it from running there ("Every time I put the ball in the bin,
+    the unsure literals that kept it from running there ("So far, every time I put the ball in the bin,
     the ball was in my hand. … may I still do it?"). An action whose effect already holds there is
     not asked about ("may I look for the ball I can see?"). None if only confirmed literals block
     every action (then only a demonstration helps: "show me what to do here")."""
