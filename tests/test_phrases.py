@@ -53,6 +53,16 @@ def test_german_sentence_is_five_actions(book):
     assert names(tokens) == ["FindBall", "ApproachBall", "GraspBall", "ApproachBin", "PlaceBall"]
 
 
+@pytest.mark.parametrize(("line", "lang", "steps"), [
+    ("find the ball again, grab it again", "en", ["FindBall", "GraspBall"]),
+    ("go to the ball once more", "en", ["ApproachBall"]),
+    ("such den Ball nochmal und nimm ihn wieder", "de", ["FindBall", "GraspBall"]),
+    ("noch einmal zum Eimer", "de", ["ApproachBin"])])
+def test_a_step_shown_again_after_a_slip_is_the_same_step(book, line, lang, steps):
+    """"find the ball again" (after the ball was knocked away) was "I don't know"."""
+    assert names(book.parse(line, lang)) == steps
+
+
 def test_english_with_and_then_and_without_separators(book):
     tokens = book.parse("find the ball and then go to the ball grasp the ball")
     assert names(tokens) == ["FindBall", "ApproachBall", "GraspBall"]
