@@ -173,6 +173,12 @@ ALSO_WHEN = Text("now I will {action} also when {when}", "jetzt mache ich „{ac
 NOT_WHEN = Text("I will not {action} when {when}", "ich mache „{action}“ nicht, wenn gilt: {when}")
 ANYWAY = Text("That is what I would have done anyway.", "Das hätte ich sowieso getan.")
 CHANGED = Text("I changed what I do in some situations", "ich mache jetzt in manchen Lagen etwas anderes")
+NOW_MAY_TOO = Text("now I may also {action} when {conditions}",
+                   "jetzt darf ich „{action}“ auch tun, wenn gilt: {conditions}")
+NOW_DONE_TOO = Text("now the task is done also when {conditions}",
+                    "jetzt ist die Aufgabe auch erledigt, wenn gilt: {conditions}")
+NOW_THERE = Text("now I {action} there", "jetzt mache ich dort „{action}“")
+NOW_DONE_THERE = Text("now I know the task is done there", "jetzt weiß ich: dort ist die Aufgabe erledigt")
 CONFLICT_NOTED = Text("in one situation you have shown me two different things; for now I do the last one, "
                       "and I will ask you which is right",
                       "in einer Lage hast du mir zwei verschiedene Dinge gezeigt; vorerst mache ich das letzte, "

@@ -7,6 +7,7 @@ from __future__ import annotations
 from teach.session.machine import SessionManager
 from teach.session.replies import ReplyKind
 from teach.session.settings import Settings, WorldKind
+from teach.symbolic import possible_actions
 from teach.world.symbolic import SymbolicWorld
 
 SEQUENCE = "find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin"
@@ -68,6 +69,25 @@ def test_a_declared_goal_is_the_goal_and_never_asked_about(ball, tmp_path):
     assert session.learning.learner.goal.required() == [(4, True)]  # only the ball in the bin, as the domain says
     replies = session.handle("yes")
     assert any(r.text.startswith("Thank you") for r in replies)
+
+
+def test_an_answer_says_what_it_changed(ball, tmp_path):
+    """"Thank you. I changed what I do in some situations." said nothing about which: a yes says
+    what it now allows (the conditions the question named, as they are there), another action
+    that the robot does it there now."""
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    question = session.pending
+    assert question is not None and question.action is not None
+    replies = session.handle("yes")
+    action = ball.action(question.action).label()
+    there = " and ".join(ball.condition(name).label("en", not value) for name, value in question.settles)
+    assert replies[0].text == f"Thank you. Now I may also {action} when {there}."
+    question = session.pending
+    assert question is not None and question.action is not None
+    other = ball.action(next(name for name in possible_actions(ball, question.state) if name != question.action))
+    replies = session.handle(other.label())
+    assert replies[0].text == f"Thank you. Now I {other.label()} there."
 
 
 def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):

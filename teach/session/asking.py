@@ -194,7 +194,7 @@ class Asking:
         except LearnError as error:
             return [Reply(ReplyKind.ERROR, m.CONTRADICTS(self.lang, why=why_refused(error, self.lang))),
                     Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=error.message))]
-        change = self.learning.describe(update, self.lang)
+        change = self.learning.describe(update, self.lang, answered=(question, answer))
         # the answer is on disk before the teacher is thanked for it: a kill cannot lose it
         self.record.add(Answered(state_text(question.state), answer or "done", text, _asked_about(question)))
         self.record.observer.on_answer(text, said, change)

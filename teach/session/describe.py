@@ -13,6 +13,7 @@ from teach.errors import LearnError
 from teach.messages import Lang
 
 if TYPE_CHECKING:
+    from teach.dialogue.questions import Question
     from teach.learn.learner import Explanation, Update
 
 _WHY = {"contradiction": m.WHY_CONTRADICTION, "repeated": m.WHY_REPEATED, "order": m.WHY_ORDER}
@@ -24,20 +25,39 @@ def why_refused(error: LearnError, lang: Lang) -> str:
     return reason(lang) if reason is not None else error.message
 
 
-def describe_update(update: Update, learned: list[str], domain: Domain, lang: Lang) -> str:
-    """What an update changed, in the teacher's words (``learned``: actions new in the tree)."""
+def describe_update(update: Update, learned: list[str], domain: Domain, lang: Lang,
+                    answered: tuple[Question, str | None] | None = None) -> str:
+    """What an update changed, in the teacher's words (``learned``: actions new in the tree;
+    ``answered``: the question and its answer, when the update learned an answer)."""
     parts: list[str] = []
     if learned:
         said = m.LEARNED_STEP if len(learned) == 1 else m.LEARNED_STEPS
         parts.append(said(lang, steps=" → ".join(domain.action(a).label(lang) for a in learned)))
     elif update.tree_changed:
-        parts.append(m.CHANGED(lang))
+        parts.append(m.CHANGED(lang) if answered is None else answer_changed(*answered, domain, lang))
     if update.new_conflicts:
         parts.append(m.CONFLICT_NOTED(lang))
     if not parts:
         return m.ANYWAY(lang)
     text = "; ".join(parts)
     return text[0].upper() + text[1:] + "."
+
+
+def answer_changed(question: Question, answer: str | None, domain: Domain, lang: Lang) -> str:
+    """What an answer that changed the tree lets the robot do, in the question's words ("I changed
+    what I do in some situations" said nothing about which). A yes to "may I still …?" (or "is the
+    task done?"): that action (the end) also where the conditions it had always seen do not hold,
+    exactly what the yes rules out; any other answer: what the robot now does there."""
+    from teach.dialogue.questions import MUST_KINDS, join_words
+    if question.kind in MUST_KINDS and answer == question.action:
+        conditions = join_words([domain.condition(name).label(lang, not value) for name, value in question.settles],
+                                lang)
+        if answer is None:
+            return m.NOW_DONE_TOO(lang, conditions=conditions)
+        return m.NOW_MAY_TOO(lang, action=domain.action(answer).label(lang), conditions=conditions)
+    if answer is None:
+        return m.NOW_DONE_THERE(lang)
+    return m.NOW_THERE(lang, action=domain.action(answer).label(lang))
 
 
 def explain_node(why: Explanation, domain: Domain, lang: Lang) -> str:

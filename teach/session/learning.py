@@ -152,8 +152,8 @@ class Learning:
         self.observer.on_tree(self.generation, tree, tree_to_xml(tree), f"generation {self.generation}: {reason}")
         return path
 
-    def describe(self, update: Update, lang: Lang) -> str:
-        return describe_update(update, self._learned_actions, self.domain, lang)
+    def describe(self, update: Update, lang: Lang, answered: tuple[Question, str | None] | None = None) -> str:
+        return describe_update(update, self._learned_actions, self.domain, lang, answered)
 
     def report(self, event: str, update: Update, lang: Lang) -> str:
         """Tell the observer what an update changed; returns it in words."""
