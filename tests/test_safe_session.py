@@ -98,11 +98,13 @@ def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):
     pending = session.pending
     assert pending is not None
     replies = session.handle("that cannot happen")
-    assert "cost no question" in replies[0].text and session.budget.left == left + 1  # refunded
-    assert pending.state in session.learning.asked
+    assert "cost no question" in replies[0].text and pending.state in session.learning.asked
+    # refunded, and the next question follows at once (it waited for 'ask'), paid for as usual
+    assert [r.kind for r in replies[1:]] == [ReplyKind.QUESTION] and session.pending not in (None, pending)
+    assert session.budget.left == left
     session.handle("quit")
     back = resumed(ball, tmp_path)
-    assert back.budget.left == left + 1
+    assert back.budget.left == left
     assert back.learning.learner.state_mask(pending.state) in back.learning.learner.impossible
 
 

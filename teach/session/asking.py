@@ -69,6 +69,9 @@ class Asking:
             return []
         if not force and (demos < MIN_DEMOS_BEFORE_ASKING or self.in_a_row >= QUESTIONS_PER_TURN):
             return []
+        return self._ask_next()
+
+    def _ask_next(self) -> list[Reply]:
         question = self.next_question()
         return [] if question is None or not self._affordable(question.state) else self._ask(question)
 
@@ -179,7 +182,11 @@ class Asking:
         self.learning.rule_out(question.state, f"answer to question {self.budget.used}")
         self.budget.used -= 1
         self.record.observer.on_answer(text, IMPOSSIBLE, "nothing (that situation cannot happen)")
-        return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang))]
+        # a free answer is not one of the questions in a row: the next one follows, as it would have
+        # after a paid answer (the teacher had to say 'ask' to go on)
+        self.in_a_row -= 1
+        follows = self._ask_next() if self.in_a_row < QUESTIONS_PER_TURN else []
+        return [Reply(ReplyKind.INFO, m.CANNOT_HAPPEN(self.lang)), *follows]
 
     def apply_answer(self, answer: str | None, said: str) -> list[Reply]:
         """Learn from the answer to the pending question (None: the task is done there)."""
