@@ -24,6 +24,14 @@ def test_few_demonstrations_and_five_questions(train, at_least, capsys):
     assert all("answer" in q for q in result["questions"])
 
 
+def test_the_report_says_each_answers_change_and_counts_in_words(capsys):
+    status = main(["bench-teach", str(BALL / "delta4"), str(BALL / "delta5"),
+                   "--oracle", str(BALL / "reference" / "table61.xml"), "--questions", "1"])
+    out = capsys.readouterr().out
+    assert status == 0 and "\n1 question asked (budget 1)\n" in out  # it said "1 questions"
+    assert "->  Now I may also " in out or "->  That is what I would have done anyway." in out
+
+
 def test_the_guessing_learner_is_the_one_that_generalises_without_questions(capsys):
     """Measured for the README: without questions the safe learner reproduces 28/43 of Δ5 from Δ4
     (the declared goal says when it is done), because it never acts where something it always saw

@@ -106,7 +106,7 @@ def run(args: argparse.Namespace) -> int:
     for number, item in enumerate(asked, start=1):
         print(f"Q{number}: {item['question']}")
         print(f"    answer: {item.get('answer', '-')}  ->  {item.get('change', '')}")
-    print(f"{len(asked)} questions asked (budget {args.questions})")
+    print(f"{len(asked)} question{'' if len(asked) == 1 else 's'} asked (budget {args.questions})")
     print(f"reproduced {strict.reproduced}/{strict.total} (strict); lenient {lenient.reproduced}/{lenient.total}")
     if args.output:
         print(f"tree learned after the questions -> {args.output}")
