@@ -167,6 +167,22 @@ def test_a_new_start_in_blocksworld_is_one_the_world_can_be_in(tmp_path):
     assert world.state() == ball.state([])
 
 
+def test_blocksworld_conditions_said_in_a_persons_order(tmp_path):
+    """"start a on b, b on the table, hand empty, a clear" was "unknown condition 'a on b'": a condition
+    with a form is read from its objects in order and its other words run together ("on the table":
+    ontable; "hand empty": handempty); "b on a" is on b a, never on a b."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = SessionManager(Settings("blocks", base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
+    replies = manager.handle("start a on b, b on the table, c is on the table, d on the table, hand empty, "
+                             "a clear, c clear, the d is clear")
+    assert [r.kind for r in replies] != [ReplyKind.ERROR]
+    assert manager.world.state() == domain.state(["on_a_b", "ontable_b", "ontable_c", "ontable_d", "handempty",
+                                                   "clear_a", "clear_c", "clear_d"])
+    manager.handle("start b on a")
+    assert manager.world.state() == domain.state(["on_b_a"])
+
+
 def test_a_question_in_blocksworld_offers_one_action_of_each_kind(tmp_path):
     """The answers offered under a question listed all 40 blocksworld actions, "stack a a" and
     "unstack d d" among them, over five lines; now one of each kind and how many more (Tab)."""

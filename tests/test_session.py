@@ -128,9 +128,10 @@ def test_a_condition_in_other_words_is_matched_by_its_telling_words():
     with pytest.raises(TeachError, match="did you mean ontable a or ontable b or ontable c or ontable d[?]$"):
         condition_names(blocks, "all blocks on the table", "en")
     with pytest.raises(TeachError, match="did you mean handempty[?]$"):
-        condition_names(blocks, "hand empty", "en")
-    with pytest.raises(TeachError, match=r"^unknown condition 'a on b' \(known: clear a, "):
-        condition_names(blocks, "a on b", "en")  # too many alike: all of them are listed
+        condition_names(blocks, "the hand has nothing", "en")
+    with pytest.raises(TeachError, match=r"^unknown condition 'a over b' \(known: clear a, "):
+        condition_names(blocks, "a over b", "en")  # too many alike: all of them are listed
+    assert condition_names(blocks, "hand empty, a on b", "en") == ["handempty", "on_a_b"]  # read by their forms
 
 
 def test_questions_never_exceed_the_budget(ball, tmp_path):

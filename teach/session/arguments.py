@@ -113,7 +113,22 @@ def condition_named(domain: Domain, text: str) -> str | None:
     if len(_begun_by(domain, text)) > 1:
         return None
     loose = _conditions_read(domain, text, normalize)
-    return loose[0] if len(loose) == 1 else None
+    return loose[0] if len(loose) == 1 else _by_form(domain, text)
+
+
+def _by_form(domain: Domain, text: str) -> str | None:
+    """The condition with a form (a predicate and its objects, ``teach.learn.lifting``) that ``text``
+    names in a person's order: "a on b" is "on a b", "b is on the table" "ontable b", "hand empty"
+    "handempty": its objects in the form's order, and its other words, filler words and then
+    linking ones aside, run together into the predicate."""
+    objects = {word for c in domain.conditions for thing in c.form[1:] for word in plain(thing).split()}
+    words = plain(text).split()
+    named = [w for w in words if w in objects]
+    rest = [w for w in words if w not in objects and normalize(w)]
+    said = {"".join(rest), "".join(w for w in rest if w not in _LINKING)}
+    found = [c.name for c in domain.conditions if c.form and [w for thing in c.form[1:] for w in plain(thing).split()]
+             == named and plain(c.form[0]).replace(" ", "") in said]
+    return found[0] if len(found) == 1 else None
 
 
 def _begun_by(domain: Domain, text: str) -> list[str]:
