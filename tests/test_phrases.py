@@ -554,6 +554,18 @@ def test_words_linking_a_steps_objects_may_be_said():
         blocks.parse("stack b next to a")
 
 
+def test_a_typo_never_reads_as_a_step_on_other_objects():
+    """"put a on c" was read, as a clear typo, as "put down c" and done: a reading that names other
+    objects than typed is no typo, and is not offered either; a misspelt verb still reads."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    for line in ("put a on c", "put b on a"):
+        with pytest.raises(UnknownPhrase) as unknown:
+            blocks.parse(line)
+        assert unknown.value.suggestion is None  # "did you mean put down c?" named another block
+    assert [(t.name, t.guessed) for t in blocks.parse("unstak a from c, pik up b")] == \
+        [("unstack_a_c", True), ("pick_up_b", True)]
+
+
 def test_it_is_the_block_a_step_handles_and_any_block_a_form_names_even_a():
     """After "unstack a from c" the block held is a: "put it down" puts down a, not c (the last
     named, which cannot be put down: the robot holds a); block "a", an article to the phrase

@@ -508,10 +508,13 @@ class PhraseBook:
             return None
         return pieces
 
-    def _best(self, said: str, kind: str, other_than: str | None = None) -> tuple[float, _Entry | None]:
-        """The phrase of ``kind`` most similar to ``said`` (skipping the name ``other_than``)."""
+    def _best(self, said: str, kind: str, other_than: str | None = None,
+              objects: list[str] | None = None) -> tuple[float, _Entry | None]:
+        """The phrase of ``kind`` most similar to ``said`` (skipping the name ``other_than``; with
+        ``objects``, only one naming those objects in that order)."""
         for ratio, entry in self._ranked(said):
-            if entry.kind == kind and entry.name != other_than:
+            if entry.kind == kind and entry.name != other_than and \
+                    (objects is None or self._objects_named(self.key(entry.phrase)) == objects):
                 return ratio, entry
         return 0.0, None
 
@@ -539,7 +542,13 @@ class PhraseBook:
         rival = max(self._best(said, kind, other_than=entry.name)[0], self._best(said, other)[0])
         if rival > ratio - _TYPO_MARGIN:
             return None
+        if self._objects_named(words) != self._objects_named(self.key(entry.phrase)):
+            return None  # it names other things than typed: no typo ("put a on c" was done as "put down c")
         return Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
+
+    def _objects_named(self, words: Iterable[str]) -> list[str]:
+        """The objects of the domain's forms among ``words``, in order (none in a domain without forms)."""
+        return [word for word in words if word in self._objects]
 
     def _unknown(self, chunk: str, words: tuple[str, ...], lang: Lang, perturb: bool, topic: str | None,
                  tokens: list[Token], later: str) -> UnknownPhrase:
@@ -548,7 +557,7 @@ class PhraseBook:
         ("hide it") or a typo of one of its phrases, and it runs only once the teacher says yes;
         after "perturb" no event is offered for words closer to an action."""
         said = " ".join(words)
-        ratio, entry = self._best(said, "event" if perturb else "action")
+        ratio, entry = self._best(said, "event" if perturb else "action", objects=self._objects_named(words))
         if not perturb:
             events = self._resolved(words, perturb=True)
             events = [option for option in events if option[1] == topic] or events
