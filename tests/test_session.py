@@ -425,6 +425,14 @@ def test_a_typo_of_a_command_is_offered_and_done_on_yes(ball, tmp_path, lang, ty
     assert [r.text for r in session.handle("")] == [r.text for r in session.handle(meant)]  # Enter: yes
 
 
+@pytest.mark.parametrize(("line", "offered"), [("take a off c", None), ("rset 3", "reset 3"),
+                                               ("stat BallFound", "start BallFound"), ("sohw me", None)])
+def test_a_misspelt_command_with_more_words_is_offered_only_if_it_reads_them(line, offered):
+    """"take a off c" was "did you mean 'state a off c'?": 'state' reads no such words."""
+    from teach.session.commands import typo_of_command
+    assert typo_of_command(line, "en") == offered
+
+
 def test_a_typo_of_yes_answers_an_open_question_only_once_confirmed(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle(SEQUENCE)

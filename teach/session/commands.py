@@ -12,6 +12,7 @@ from enum import Enum
 
 from teach.dialogue.phrases import normalize
 from teach.messages import Lang, Text
+from teach.session.arguments import says_full
 
 
 @dataclass(frozen=True)
@@ -22,13 +23,16 @@ class _Declared:
     de: tuple[str, ...]
     usage: Text
     help: Text
+    argued: bool = False
+    """It reads words after it (a number, steps, conditions, a name): a line of a misspelt word
+    and more words may be it ("rset 3"); for any other the more words say it was not meant."""
 
 
 class Verb(Enum):
     HELP = _Declared(("help", "h"), ("hilfe",), Text("help", "hilfe"), Text("show this help", "diese Hilfe zeigen"))
     DEMONSTRATE = _Declared(("demonstrate", "demo"), ("vorführen", "vormachen"),
                             Text("demonstrate [steps]", "vorführen [Schritte]"),
-                            Text("start a demonstration", "eine Vorführung beginnen"))
+                            Text("start a demonstration", "eine Vorführung beginnen"), argued=True)
     DONE = _Declared(("done", "finished", "that's it", "that is it", "all done", "i'm finished"),
                      ("fertig", "das war's", "das war es", "das wärs", "erledigt", "ich bin fertig"),
                      Text("done", "fertig"),
@@ -44,7 +48,7 @@ class Verb(Enum):
                      Text("take back the last step (N: steps N to the end), demonstration or answer; "
                           "also 'that was wrong'",
                           "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen; "
-                          "auch 'das war falsch'"))
+                          "auch 'das war falsch'"), argued=True)
     REDO = _Declared(("redo",), ("wiederholen", "wiederherstellen"), Text("redo", "wiederherstellen"),
                      Text("take back the last undo (steps, a demonstration or an answer)",
                           "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)"))
@@ -56,12 +60,13 @@ class Verb(Enum):
                       Text("move the robot yourself (MuJoCo world); alone: steer it with the keys "
                            "(↑/↓ move, ←/→ turn, PgUp/PgDn lift, space hand, Esc ends)",
                            "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken "
-                           "(↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste Hand, Esc Ende)"))
+                           "(↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste Hand, Esc Ende)"), argued=True)
     PERTURB = _Declared(("perturb",), ("stören", "ereignis"), Text("perturb EVENT", "stören EREIGNIS"),
-                        Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)"))
+                        Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)"),
+                        argued=True)
     RUN = _Declared(("run",), ("los", "ausführen"), Text("run [N]", "los [N]"),
                     Text("let the robot do the task (N: stop after N actions)",
-                         "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten)"))
+                         "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten)"), argued=True)
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
     SHOW = _Declared(("show", "tree"), ("baum", "zeige"), Text("show [full]", "baum [ganz]"),
@@ -70,22 +75,22 @@ class Verb(Enum):
                       Text("show the current situation", "die aktuelle Lage zeigen"))
     START = _Declared(("start",), ("situation",), Text("start COND ...", "start BEDINGUNG ..."),
                       Text("put the world in a situation (named conditions true)",
-                           "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"))
+                           "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"), argued=True)
     RESET = _Declared(("reset",), ("neu",), Text("reset [N]", "neu [N]"),
                       Text("a new start (random in MuJoCo; N: start number N, the same each time)",
-                           "ein neuer Start (in MuJoCo zufällig; N: Start Nummer N, jedes Mal derselbe)"))
+                           "ein neuer Start (in MuJoCo zufällig; N: Start Nummer N, jedes Mal derselbe)"), argued=True)
     ASK = _Declared(("ask",), ("frag", "frage"), Text("ask", "frag"),
                     Text("let the robot ask a question", "den Roboter fragen lassen"))
     MODEL = _Declared(("model",), ("modell",), Text("model FILE", "modell DATEI"),
                       Text("load action definitions (pre/ram) and plan with them",
-                           "Handlungsbeschreibungen laden und damit planen"))
+                           "Handlungsbeschreibungen laden und damit planen"), argued=True)
     PLAN = _Declared(("plan",), ("planen",), Text("plan", "planen"),
                      Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben"))
     SKIP = _Declared(("skip",), ("weiter",), Text("skip", "weiter"),
                      Text("leave a question unanswered", "eine Frage offen lassen"))
     WHY = _Declared(("why",), ("warum",), Text("why NAME", "warum NAME"),
                     Text("why a step or a condition is in the tree (why {example})",
-                         "warum ein Schritt oder eine Bedingung im Baum ist (warum {example})"))
+                         "warum ein Schritt oder eine Bedingung im Baum ist (warum {example})"), argued=True)
     SAVE = _Declared(("save",), ("speichern",), Text("save", "speichern"),
                      Text("save everything now", "alles jetzt speichern"))
     QUIT = _Declared(("quit", "exit"), ("beenden", "tschüss"), Text("quit / Ctrl-D", "beenden / Strg-D"),
@@ -99,6 +104,10 @@ class Verb(Enum):
         sayings = (*self.value.en, *self.value.de)
         return tuple(dict.fromkeys(normalize(spelled) for word in sayings
                                    for spelled in (word, word.replace("'", ""))))
+
+    def words(self, lang: Lang) -> tuple[str, ...]:
+        """Its words in ``lang``, as declared."""
+        return self.value.de if lang == Lang.DE else self.value.en
 
     @property
     def usage(self) -> Text:
@@ -167,11 +176,14 @@ def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (),
     typed = normalize(words[0]) if words else ""
     if len(typed) < 3:
         return None
-    known = {word for command in COMMANDS for word in (command.value.de if lang == Lang.DE else command.value.en)
-             if " " not in word and len(word) >= 3}
-    known.update(answers)
-    if typed in known or typed in rivals:  # a word it knows is no typo ("yes xyzzy" is not "yes" misspelt)
+    rest = words[1] if len(words) > 1 else ""
+    said = {word: command for command in COMMANDS for word in command.words(lang) if " " not in word and len(word) >= 3}
+    if typed in said or typed in answers or typed in rivals:  # a word it knows is no typo ("yes xyzzy")
         return None
+    # with more words, only a command that reads them ("take a off c" was "did you mean 'state a off c'?")
+    known = {word for word, command in said.items()
+             if not rest or command.value.argued or command in (Verb.SHOW, Verb.STATE) and says_full(rest)}
+    known.update(answers)
     scored = sorted(((difflib.SequenceMatcher(None, typed, word).ratio(), word) for word in known), reverse=True)
     if not scored or scored[0][0] < TYPO_CUTOFF or (len(scored) > 1 and scored[1][0] > scored[0][0] - 0.05):
         return None
