@@ -440,6 +440,8 @@ FEEDBACK_AHEAD = Text("{distance} ahead", "{distance} geradeaus")
 FEEDBACK_LEFT = Text("{distance}, {degrees}° to my left", "{distance}, {degrees}° links von mir")
 FEEDBACK_RIGHT = Text("{distance}, {degrees}° to my right", "{distance}, {degrees}° rechts von mir")
 FEEDBACK_BEHIND = Text("{distance} behind me", "{distance} hinter mir")
+FEEDBACK_UNDER_ARM = Text("{distance} behind my hand, under my arm (↓ backs me up to it)",
+                         "{distance} hinter meiner Hand, unter meinem Arm (↓ fährt mich zurück zu ihm)")
 FEEDBACK_AT_HAND_HEIGHT = Text("at hand height", "auf Handhöhe")
 FEEDBACK_ABOVE = Text("{distance} above my hand", "{distance} über meiner Hand")
 FEEDBACK_BELOW = Text("{distance} below my hand", "{distance} unter meiner Hand")

@@ -46,6 +46,13 @@ def test_the_last_key_says_what_it_did_or_that_it_did_nothing(changed, last):
     assert feedback_line(feedback(**changed), "en").endswith("last: " + last)
 
 
+def test_a_ball_under_the_arm_is_said_to_be_behind_the_hand():
+    assert feedback_line(feedback(ball_under_arm=True, ball_distance=0.19), "en").startswith(
+        "ball 19 cm behind my hand, under my arm (↓ backs me up to it), 5 cm below my hand · bin")
+    assert feedback_line(feedback(ball_under_arm=True, ball_distance=0.19), "de").startswith(
+        "Ball 19 cm hinter meiner Hand, unter meinem Arm (↓ fährt mich zurück zu ihm), 5 cm unter meiner Hand")
+
+
 def test_behind_ahead_and_at_hand_height():
     line = feedback_line(feedback(ball_bearing=170.0, ball_height=0.01, bin_bearing=-40.0, bin_distance=0.5), "en")
     assert line.startswith("ball 34 cm behind me, at hand height · bin 50 cm, 40° to my right")
@@ -85,4 +92,37 @@ def test_a_grasp_guided_by_the_feedback_alone(tmp_path: Path) -> None:
     assert "✓ You moved me so that now the ball is in my hand: that was “grasp the ball”." in texts
     assert texts[-1].endswith("hand closed · last: space closed my hand")
     assert manager.open is not None and [s.action for s in manager.open.steps] == [1, 2, 3]
+    manager.close()
+
+
+_UNDER_ARM = re.compile(r"ball (\d+) cm behind my hand, under my arm")
+
+
+def test_a_ball_driven_past_is_said_to_be_under_the_arm_and_backing_up_reaches_it(tmp_path: Path) -> None:
+    """Driven past with the hand raised, the ball is pushed by the body, under the arm: it was said
+    to be "19 cm ahead", and forward only pushed it on, closing the hand caught nothing. It is said
+    to be behind the hand; backing up by that much, lowering the lift and closing grasps it."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    domain = load_domain(BALL_DOMAIN)
+    settings = Settings("pilot", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, domain, MujocoWorld(domain, seed=0))
+    said = manager.handle("guide")
+    for _ in range(40):  # face the ball
+        ball = _BALL.search(said[-1].text)
+        assert ball is not None, said[-1].text
+        if "behind me" in ball.group(0):
+            said = manager.handle("guide turn 15")
+        elif ball.group(3) and int(ball.group(3)) > 2:
+            step = min(15, int(ball.group(3)))
+            said = manager.handle(f"guide turn {step if ball.group(4) == 'left' else -step}")
+        else:
+            break
+    distance = float(ball.group(1)) / (1 if ball.group(2) == "m" else 100)
+    said = manager.handle(f"guide forward {distance + 0.4:.2f}")  # past it, the hand high
+    under = _UNDER_ARM.search(said[-1].text)
+    assert under is not None, said[-1].text
+    for line in (f"guide forward -{int(under.group(1)) / 100:.2f}", "guide lift 0", "guide close"):
+        said = manager.handle(line)
+    assert "✓ You moved me so that now the ball is in my hand: that was “grasp the ball”." in [r.text for r in said]
     manager.close()

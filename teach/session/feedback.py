@@ -21,7 +21,9 @@ def feedback_line(feedback: Feedback, lang: Lang) -> str:
     """One line: "ball 34 cm, 20° to my left, 5 cm below my hand · bin 1.2 m ahead · lift 26 cm ·
     hand open · last: ↑ moved me 10 cm"."""
     hand = m.FEEDBACK_OPEN if feedback.hand_open else m.FEEDBACK_CLOSED
-    return m.GUIDE_FEEDBACK(lang, ball=_where(feedback.ball_distance, feedback.ball_bearing, lang),
+    ball = m.FEEDBACK_UNDER_ARM(lang, distance=_length(feedback.ball_distance, lang)) if feedback.ball_under_arm \
+        else _where(feedback.ball_distance, feedback.ball_bearing, lang)
+    return m.GUIDE_FEEDBACK(lang, ball=ball,
                             ball_height=_height(feedback.ball_height, lang),
                             bin=_where(feedback.bin_distance, feedback.bin_bearing, lang),
                             lift=_length(feedback.lift, lang), hand=hand(lang), last=_last(feedback, lang))

@@ -107,6 +107,9 @@ class Feedback:
     turned: float         # degrees it turned
     lifted: float         # m the lift moved
     gripped: float        # m the fingers closed (negative: opened)
+    ball_under_arm: bool = False
+    """The ball is between the body and the hand (passed under the raised hand, pushed by the
+    body): ahead of the robot, but behind the hand, so driving on only pushes it."""
 
 
 def is_guide_line(text: str) -> bool:
@@ -145,6 +148,23 @@ def parse_guide_line(text: str, path: str | Path | None = None, line: int | None
     if verb == "back":
         return GuideCommand("forward", -amount)
     return GuideCommand(verb, amount)
+
+
+UNDER_ARM = 0.03
+"""m: a ball this far behind the hand, along the heading, and in front of the robot's centre is under the arm."""
+UNDER_ARM_WIDTH = 0.2
+"""m either side of the heading: the body's half-width and the ball's radius (a ball pushed by it)."""
+
+
+def _under_arm(base: tuple[float, float, float], hand: list[float], ball: list[float]) -> bool:
+    """Whether ``ball`` lies between the robot's centre and its hand, along its heading, and in front
+    of the body: "ahead" of the robot but behind the hand."""
+    x, y, yaw = base
+    ahead, across = math.cos(yaw), math.sin(yaw)
+    from_hand = (ball[0] - hand[0]) * ahead + (ball[1] - hand[1]) * across
+    from_centre = (ball[0] - x) * ahead + (ball[1] - y) * across
+    sideways = abs(-(ball[0] - x) * across + (ball[1] - y) * ahead)
+    return from_hand < -UNDER_ARM and from_centre > 0 and sideways < UNDER_ARM_WIDTH
 
 
 def _profile(remaining: float, speed: float, top: float, acceleration: float, dt: float) -> float:
@@ -215,7 +235,7 @@ class Guide:
                         w.lift_height(), w.finger_closure() < FINGER_CLOSED / 2, self.last,
                         math.hypot(x - start.base[0], y - start.base[1]),
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
-                        w.finger_closure() - start.fingers)
+                        w.finger_closure() - start.fingers, _under_arm((x, y, yaw), hand, ball))
 
     def run(self, command: GuideCommand) -> None:
         """Carry out one command to its end."""
