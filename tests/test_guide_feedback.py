@@ -126,3 +126,23 @@ def test_a_ball_driven_past_is_said_to_be_under_the_arm_and_backing_up_reaches_i
         said = manager.handle(line)
     assert "✓ You moved me so that now the ball is in my hand: that was “grasp the ball”." in [r.text for r in said]
     manager.close()
+
+
+def test_a_hand_holding_the_ball_is_said_closed_while_the_robot_turns(tmp_path: Path) -> None:
+    """Turning with the ball held, the fingers give a little round it: the line said "hand open"
+    with the ball in the hand (these lines, under tmux). The hand is what the teacher last made it,
+    as space toggles it."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    domain = load_domain(BALL_DOMAIN)
+    settings = Settings("pilot", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, domain, MujocoWorld(domain, seed=0))
+    for line in ("guide turn 30", "guide forward 0.5", "guide turn 180", "guide forward 2", "guide forward -0.25",
+                 "guide lift 0", "guide close"):
+        manager.handle(line)
+    assert manager.world.state()[domain.condition_names.index("BallGrasped")]
+    for line in ("guide lift 0.26", "guide turn 119", "guide forward 3"):
+        said = manager.handle(line)
+        assert " · hand closed · " in said[-1].text, (line, said[-1].text)
+    manager.close()
+

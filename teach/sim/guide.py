@@ -232,7 +232,7 @@ class Guide:
         start = self._started
         hand_height = hand[2] + w.lift_height()  # the grasp point is at the lift's bottom: the lift raises the hand
         return Feedback(ball_distance, ball_bearing, ball[2] - hand_height, bin_distance, bin_bearing,
-                        w.lift_height(), w.finger_closure() < FINGER_CLOSED / 2, self.last,
+                        w.lift_height(), self.finger_target <= FINGER_CLOSED / 2, self.last,  # as space toggles it
                         math.hypot(x - start.base[0], y - start.base[1]),
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
                         w.finger_closure() - start.fingers, _under_arm((x, y, yaw), hand, ball))
