@@ -144,5 +144,8 @@ def test_a_hand_holding_the_ball_is_said_closed_while_the_robot_turns(tmp_path: 
     for line in ("guide lift 0.26", "guide turn 119", "guide forward 3"):
         said = manager.handle(line)
         assert " · hand closed · " in said[-1].text, (line, said[-1].text)
+    said = manager.handle("guide open")  # over the bin: the ball drops in, behind the hand but not to be fetched
+    assert "that was “put the ball in the bin”" in " ".join(r.text for r in said)
+    assert "under my arm" not in said[-1].text, said[-1].text
     manager.close()
 
