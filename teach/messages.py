@@ -144,6 +144,8 @@ NOT_NEGATIVE = Text("the number cannot be negative", "die Zahl darf nicht negati
 
 # --- trees and learning ------------------------------------------------------------------------
 NO_TREE = Text("No tree yet.", "Noch kein Baum.")
+WHY_WHAT = Text("Why what? Name a step or a condition of the tree, e.g. 'why {example}'.",
+               "Warum was? Nenn einen Schritt oder eine Bedingung des Baums, z. B. 'warum {example}'.")
 NO_SUCH_NODE = Text("No action or condition named {name!r} in the tree.",
                     "Keine Handlung oder Bedingung namens {name!r} im Baum.")
 GOAL_ONLY = Text("I have seen the finished task, but no steps yet.",
@@ -282,6 +284,7 @@ RUN_AGAIN = Text("I try again from here (the steps of the last run are not kept 
                  "Ich versuche es von hier aus noch einmal (die Schritte des letzten Laufs werden keine "
                  "Vorführung; was du geantwortet hast, ist schon gelernt).")
 WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
+NO_TAKEN = Text("I take that as a no (I don't know “{rest}”).", "Ich verstehe das als Nein („{rest}“ kenne ich nicht).")
 CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")

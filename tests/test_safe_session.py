@@ -90,6 +90,29 @@ def test_an_answer_says_what_it_changed(ball, tmp_path):
     assert replies[0].text == f"Thank you. Now I {other.label()} there."
 
 
+def test_a_no_with_words_not_understood_is_taken_as_a_no(ball, tmp_path):
+    """"no, the ball must be in my hand" was "I don't know …" and nothing else: the no is clear,
+    so it is taken, and what to do instead is asked; a hedged answer reads ("I think you should
+    find the ball first")."""
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    asked = session.pending
+    replies = session.handle("no, the ball must be in my hand")
+    assert [r.text for r in replies] == ["I take that as a no (I don't know “the ball must be in my hand”).",
+                                         "Then what should I do there instead?"]
+    assert session.pending is asked
+    replies = session.handle("I think you should find the ball first")
+    assert replies[0].text == "Thank you. Now I find the ball there." and session.pending is not asked
+
+
+def test_why_alone_says_what_to_ask(ball, tmp_path):
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    session.handle("skip")
+    replies = session.handle("why")
+    assert replies[0].text == "Why what? Name a step or a condition of the tree, e.g. 'why find the ball'."
+
+
 def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):
     session = safe_session(ball, tmp_path)
     two_demonstrations(session)

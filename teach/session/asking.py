@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 
 from teach import messages as m
-from teach.dialogue.phrases import after_no, is_no, is_yes, normalize
+from teach.dialogue.phrases import UnknownPhrase, after_no, is_no, is_yes, normalize
 from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget
 from teach.domain import State
 from teach.errors import LearnError
@@ -160,8 +160,16 @@ class Asking:
             if yes:
                 answer = question.action
             else:
-                instead = after_no(line, self.lang) or line  # "no, find someone"
-                tokens = [t for t in self.vocabulary.phrases.parse(instead, self.lang) if t.kind == "action"]
+                instead = after_no(line, self.lang)  # "no, find someone"
+                try:
+                    parsed = self.vocabulary.phrases.parse(instead or line, self.lang)
+                except UnknownPhrase:
+                    if instead is None or question.kind not in MUST_KINDS:
+                        raise
+                    # "no, the ball must be in my hand": the no is clear, what to do instead is not
+                    return [Reply(ReplyKind.ERROR, m.NO_TAKEN(self.lang, rest=instead)),
+                            Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]
+                tokens = [t for t in parsed if t.kind == "action"]
                 if len(tokens) != 1:
                     return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
                 answer = tokens[0].name

@@ -442,6 +442,9 @@ class SessionManager(CompatMembers):
     def cmd_why(self, rest: str) -> list[Reply]:
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
+        if not rest.strip():  # 'why' alone said "No action or condition named '' in the tree."
+            example = actions_to_name(self.domain)[0].label(self.lang)
+            return [Reply(ReplyKind.INFO, m.WHY_WHAT(self.lang, example=example))]
         name = node_named(self.domain, self.phrases, rest, self.lang, self.topic)
         lines = self.learning.why(name, self.lang)
         if lines is None:
