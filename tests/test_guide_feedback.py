@@ -149,3 +149,21 @@ def test_a_hand_holding_the_ball_is_said_closed_while_the_robot_turns(tmp_path: 
     assert "under my arm" not in said[-1].text, said[-1].text
     manager.close()
 
+
+
+def test_a_ball_caught_from_under_the_arm_is_not_said_to_be_under_it(tmp_path: Path) -> None:
+    """Lowered onto a ball still a little under the arm, the hand can close on it (these lines as
+    keys, under tmux); the line went on saying it lay under the arm (↓ backs me up to it)."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    domain = load_domain(BALL_DOMAIN)
+    settings = Settings("pilot", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, domain, MujocoWorld(domain, seed=0))
+    lines = ["guide turn 15"] * 14 + ["guide forward 0.1"] * 17 + ["guide forward -0.1"] * 2
+    for line in lines + [f"guide lift {height}" for height in (0.21, 0.16, 0.11, 0.06, 0.01, 0)]:
+        said = manager.handle(line)
+    assert "under my arm" in said[-1].text
+    said = manager.handle("guide close")
+    assert "that was “grasp the ball”" in " ".join(r.text for r in said)
+    assert "under my arm" not in said[-1].text, said[-1].text
+    manager.close()

@@ -235,8 +235,8 @@ class Guide:
                         w.lift_height(), self.finger_target <= FINGER_CLOSED / 2, self.last,  # as space toggles it
                         math.hypot(x - start.base[0], y - start.base[1]),
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
-                        w.finger_closure() - start.fingers,
-                        _under_arm((x, y, yaw), hand, ball) and not w.ball_placed())  # a ball in the bin is not
+                        w.finger_closure() - start.fingers,  # a ball in the bin or in the hand is not to be fetched
+                        _under_arm((x, y, yaw), hand, ball) and not w.ball_placed() and not w.ball_grasped())
 
     def run(self, command: GuideCommand) -> None:
         """Carry out one command to its end."""
