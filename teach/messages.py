@@ -481,6 +481,8 @@ ANSWER_WORDS = (WORD_BEFORE, WORD_AFTER, WORD_BOTH, WORD_NEITHER, WORD_NOTHING, 
 # --- questions that pay, the tree in plain sentences (issue 11, job "pay") ------------------------
 NOT_DONE_THERE = Text("I would not be done there: {unmet}. What should I do there?",
                       "Dort wäre ich nicht fertig: {unmet}. Was soll ich dort tun?")
+QUESTION_ASIDE = Text("I put my question aside (if I ask it again, it costs nothing).",
+                     "Ich lege meine Frage beiseite (frage ich sie noch einmal, kostet sie nichts).")
 NO_UNDO_WHILE_ASKING = Text("Nothing to undo while I wait for your answer; say 'skip' to leave the question.",
                             "Solange ich auf deine Antwort warte, gibt es nichts zurückzunehmen; "
                             "sag 'weiter', um die Frage offen zu lassen.")

@@ -113,6 +113,28 @@ def test_why_alone_says_what_to_ask(ball, tmp_path):
     assert replies[0].text == "Why what? Name a step or a condition of the tree, e.g. 'why find the ball'."
 
 
+def test_that_was_wrong_at_the_next_question_takes_back_the_answer_before_it(ball, tmp_path):
+    """A wrong "yes", then the next question at once: "that was wrong" was "Nothing to undo while I
+    wait for your answer". It takes back that answer; the open question is put aside, paid for,
+    and asked again at no cost."""
+    session = safe_session(ball, tmp_path)
+    two_demonstrations(session)
+    tree = session.learning.learner.tree
+    session.handle("yes")
+    aside = session.pending
+    assert aside is not None and session.learning.learner.tree != tree
+    left = session.budget.left
+    replies = session.handle("that was wrong")
+    assert replies[0].text == "I put my question aside (if I ask it again, it costs nothing)."
+    assert replies[1].text.startswith("Undone: your answer to")
+    assert session.pending is None and session.learning.learner.tree == tree and session.budget.left == left
+    session.handle("redo")
+    session.handle("ask")
+    assert session.pending is not None and session.pending.state == aside.state and session.budget.left == left
+    session.handle("quit")
+    assert resumed(ball, tmp_path).budget.left == left
+
+
 def test_that_cannot_happen_costs_nothing_and_is_kept_on_resume(ball, tmp_path):
     session = safe_session(ball, tmp_path)
     two_demonstrations(session)

@@ -351,8 +351,13 @@ class SessionManager(CompatMembers):
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
-        if self.mode is Mode.ASKING:  # the answer is what is open, and there is none to take back yet
-            return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
+        aside: list[Reply] = []
+        if self.mode is Mode.ASKING:
+            if not self.demos or rest.strip():
+                return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
+            # "yes", the next question, "that was wrong": the answer before it is what is meant; the
+            # open question is put aside, paid for (asked again, it costs nothing)
+            aside = [Reply(ReplyKind.INFO, m.QUESTION_ASIDE(self.lang))]
         if self.showing.has_steps:
             return [Reply(ReplyKind.INFO, self.showing.take_back(step_number(rest, self.lang))), self._state_reply()]
         if rest.strip():
@@ -360,7 +365,7 @@ class SessionManager(CompatMembers):
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         text = self.relearning.undo()
-        return self.turn.say([Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
+        return self.turn.say([*aside, Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
 
     def cmd_redo(self, rest: str) -> list[Reply]:
         """Bring back what the last undo took: steps of the open demonstration, else the last
