@@ -61,10 +61,10 @@ from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
 from teach.session.describe import actions_to_name, some_actions, unmet_goal, why_refused
 from teach.session.guiding import Guiding
-from teach.session.journal import DemoLearned, Event, Journal, Situated, state_text
+from teach.session.journal import Answered, Asked, DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
 from teach.session.published import Mode, SessionView
-from teach.session.record import SessionRecord
+from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.relearning import Relearning
 from teach.session.replies import Reply, ReplyKind
 from teach.session.resumed import restore_open, restore_situation
@@ -353,7 +353,7 @@ class SessionManager(CompatMembers):
     def cmd_undo(self, rest: str) -> list[Reply]:
         aside: list[Reply] = []
         if self.mode is Mode.ASKING:
-            if not self.demos or rest.strip():
+            if not self._asked_after_an_answer() or rest.strip():  # after a run: what would it take back?
                 return [Reply(ReplyKind.INFO, m.NO_UNDO_WHILE_ASKING(self.lang))]
             # "yes", the next question, "that was wrong": the answer before it is what is meant; the
             # open question is put aside, paid for (asked again, it costs nothing)
@@ -366,6 +366,13 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         text = self.relearning.undo()
         return self.turn.say([*aside, Reply(ReplyKind.INFO, text)]) + self._after_learning(ask=False)
+
+    def _asked_after_an_answer(self) -> bool:
+        """Whether the open question came right after an answer learned (not a skip, not "that
+        cannot happen"): the answer an undo at the answer prompt takes back."""
+        events = [e for e in self.record.journal.events if not isinstance(e, Situated)]
+        before = events[-2] if len(events) >= 2 and isinstance(events[-1], Asked) else None
+        return isinstance(before, Answered) and before.answer not in ("skip", IMPOSSIBLE)
 
     def cmd_redo(self, rest: str) -> list[Reply]:
         """Bring back what the last undo took: steps of the open demonstration, else the last
