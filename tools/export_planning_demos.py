@@ -36,6 +36,16 @@ def action_phrase(form: tuple[str, ...]) -> str:
     return " ".join([form[0].replace("_", " "), *form[1:]])
 
 
+SAID_ALSO = {"stack": ("put {0} on {1}",), "unstack": ("take {0} off {1}",), "put_down": ("put {0} on the table",)}
+"""How people also say some IPC actions (blocksworld's), beside the form read out: "put a on c" was
+"I don't know" (and, before typos had to name the objects typed, done as "put down c")."""
+
+
+def action_phrases(form: tuple[str, ...]) -> list[str]:
+    """The form read out first (the action's label), then the other ways people say it."""
+    return [action_phrase(form), *(said.format(*form[1:]) for said in SAID_ALSO.get(form[0], ()))]
+
+
 def domain_toml(task: Task, with_goal: bool = False) -> str:
     model, domain = task.model, task.domain
 
@@ -56,7 +66,7 @@ def domain_toml(task: Task, with_goal: bool = False) -> str:
     for action in domain.actions:
         operator = model.by_name[action.name]
         out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"',
-                f"en = {strings([action_phrase(action.form)])}", f"form = {strings(action.form)}",
+                f"en = {strings(action_phrases(action.form))}", f"form = {strings(action.form)}",
                 f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
                 f"ram = {strings(literals(operator.add, operator.delete))}", ""]
     return "\n".join(out)
