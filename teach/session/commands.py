@@ -6,13 +6,13 @@ member here and its handler."""
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from enum import Enum
 
 from teach.dialogue.phrases import normalize
 from teach.messages import Lang, Text
-from teach.session.arguments import says_full
+from teach.session.arguments import says_full, step_number, whole_number
 
 
 @dataclass(frozen=True)
@@ -128,6 +128,10 @@ Command = Verb
 COMMANDS: tuple[Verb, ...] = tuple(Verb)
 COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names if " " not in name)
 """Every single word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
+
+NUMBERED: dict[Verb, Callable[[str, Lang], int | None]] = {Verb.RUN: whole_number, Verb.RESET: whole_number,
+                                                          Verb.UNDO: step_number}
+"""The commands whose argument is a number, and how it is read."""
 
 BLOCKED_WHILE_ASKING = frozenset({Verb.GUIDE, Verb.DEMONSTRATE, Verb.RUN, Verb.START, Verb.RESET, Verb.PERTURB,
                                   Verb.MODEL, Verb.ASK})

@@ -8,12 +8,12 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from teach import messages as m
+from teach.dialogue.questions import MUST_KINDS, Question, join_words
 from teach.domain import ActionDef, Domain, Literal, State
 from teach.errors import LearnError
 from teach.messages import Lang
 
 if TYPE_CHECKING:
-    from teach.dialogue.questions import Question
     from teach.learn.learner import Explanation, Update
 
 _WHY = {"contradiction": m.WHY_CONTRADICTION, "repeated": m.WHY_REPEATED, "order": m.WHY_ORDER}
@@ -48,7 +48,6 @@ def answer_changed(question: Question, answer: str | None, domain: Domain, lang:
     what I do in some situations" said nothing about which). A yes to "may I still …?" (or "is the
     task done?"): that action (the end) also where the conditions it had always seen do not hold,
     exactly what the yes rules out; any other answer: what the robot now does there."""
-    from teach.dialogue.questions import MUST_KINDS, join_words
     if question.kind in MUST_KINDS and answer == question.action:
         conditions = join_words([domain.condition(name).label(lang, not value) for name, value in question.settles],
                                 lang)

@@ -52,6 +52,7 @@ from teach.session.commands import (
     COMMAND_WORDS,
     COMMANDS,
     LOOKING,
+    NUMBERED,
     Command,
     Verb,
     parse_command,
@@ -76,10 +77,6 @@ from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.symbolic import possible_actions
 from teach.world.protocol import TeachingWorld
-
-NUMBERED: dict[Command, Callable[[str, Lang], int | None]] = {Verb.RUN: whole_number, Verb.RESET: whole_number,
-                                                             Verb.UNDO: step_number}
-"""The commands whose argument is a number, and how it is read."""
 
 
 class SessionManager(CompatMembers):
@@ -298,12 +295,16 @@ class SessionManager(CompatMembers):
     def cmd_help(self, rest: str) -> list[Reply]:
         """Every command this world can carry out ('guide' only where the robot can be moved by
         hand), its examples in this domain's words."""
-        example = actions_to_name(self.domain)[0].label(self.lang)
+        example = self._example_action()
         shown = [c for c in COMMANDS if c is not Verb.GUIDE or self.guiding.can_guide()]
         lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang, example=example)}" if len(c.usage(self.lang)) <= 28
                  else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang, example=example)}" for c in shown]
         examples = some_actions(self.domain, self.lang, say_more=False)  # one demonstration's words
         return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
+
+    def _example_action(self) -> str:
+        """One of this domain's actions in the teacher's words, for examples ("why find the ball")."""
+        return actions_to_name(self.domain)[0].label(self.lang)
 
     def cmd_guide(self, rest: str) -> list[Reply]:
         if not self.guiding.can_guide():
@@ -455,8 +456,7 @@ class SessionManager(CompatMembers):
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
         if not rest.strip():  # 'why' alone said "No action or condition named '' in the tree."
-            example = actions_to_name(self.domain)[0].label(self.lang)
-            return [Reply(ReplyKind.INFO, m.WHY_WHAT(self.lang, example=example))]
+            return [Reply(ReplyKind.INFO, m.WHY_WHAT(self.lang, example=self._example_action()))]
         name = node_named(self.domain, self.phrases, rest, self.lang, self.topic)
         lines = self.learning.why(name, self.lang)
         if lines is None:

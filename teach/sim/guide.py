@@ -232,11 +232,16 @@ class Guide:
         start = self._started
         hand_height = hand[2] + w.lift_height()  # the grasp point is at the lift's bottom: the lift raises the hand
         return Feedback(ball_distance, ball_bearing, ball[2] - hand_height, bin_distance, bin_bearing,
-                        w.lift_height(), self.finger_target <= FINGER_CLOSED / 2, self.last,  # as space toggles it
+                        w.lift_height(), not self._hand_closed(), self.last,  # as space toggles it
                         math.hypot(x - start.base[0], y - start.base[1]),
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
                         w.finger_closure() - start.fingers,  # a ball in the bin or in the hand is not to be fetched
                         _under_arm((x, y, yaw), hand, ball) and not w.ball_placed() and not w.ball_grasped())
+
+    def _hand_closed(self) -> bool:
+        """Whether the hand is closed as the teacher last made it (not as the fingers stand: round
+        a held ball they give a little)."""
+        return self.finger_target > FINGER_CLOSED / 2
 
     def run(self, command: GuideCommand) -> None:
         """Carry out one command to its end."""
@@ -376,5 +381,5 @@ class Guide:
                     "left": GuideCommand("turn", KEY_TURN), "right": GuideCommand("turn", -KEY_TURN),
                     "pageup": GuideCommand("lift", min(LIFT_TOP, round(self.lift_target + KEY_LIFT, 3))),
                     "pagedown": GuideCommand("lift", max(0.0, round(self.lift_target - KEY_LIFT, 3))),
-                    "space": GuideCommand("open" if self.finger_target > FINGER_CLOSED / 2 else "close")}
+                    "space": GuideCommand("open" if self._hand_closed() else "close")}
         return commands.get(name)
