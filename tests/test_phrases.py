@@ -574,6 +574,41 @@ def test_a_typo_never_reads_as_a_step_on_other_objects():
         [["stack_a_c"], ["unstack_a_b"], ["put_down_c"]]
 
 
+def test_a_word_of_its_own_is_no_typo():
+    """"put a by c" was read as a clear typo of "put a on c" and the block stacked: the line is alike
+    as a whole, but "by" is no slip of "on". A clear typo's words must each be a slip of the phrase's
+    (or of a word phrases leave out): letters dropped, swapped, run together. Otherwise it asks."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    with pytest.raises(UnknownPhrase) as unknown:
+        blocks.parse("put a by c")
+    assert unknown.value.suggestion is not None and unknown.value.suggestion.candidate.name == "stack_a_c"
+    assert [(t.name, t.guessed) for t in blocks.parse("put a onn c, pickup b")] == \
+        [("stack_a_c", True), ("pick_up_b", True)]
+    ball = PhraseBook(load_domain(ROOT / "demos" / "ball" / "domain.toml"))
+    assert [(t.name, t.guessed) for t in ball.parse("grasp teh ball")] == [("GraspBall", True)]
+    with pytest.raises(UnknownPhrase):
+        ball.parse("go by the bin")
+
+
+def test_on_top_of_reads_where_the_phrase_links_its_objects():
+    """"put b on top of a" was "I don't know" (only "stack b on top of a" read): a run of linking words
+    before an object is also read as its first ("on top of a": "on a")."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    assert [t.name for t in blocks.parse("put b on top of a")] == ["stack_b_a"]
+    assert not blocks.parse("put b on top of a")[0].guessed
+
+
+def test_a_pronoun_never_stands_for_an_object_its_own_step_names():
+    """"pick up b, put b on it" was "stack b b": "it" was the block just picked up, named in the same
+    step. A pronoun stands for another object, or the line is asked about."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    for line in ("stack b on it", "put b on it", "put b on top of it"):
+        with pytest.raises(UnknownPhrase) as unknown:
+            blocks.parse(line, topic="b")
+        suggestion = unknown.value.suggestion
+        assert suggestion is None or suggestion.candidate.name != "stack_b_b"
+
+
 def test_it_is_the_block_a_step_handles_and_any_block_a_form_names_even_a():
     """After "unstack a from c" the block held is a: "put it down" puts down a, not c (the last
     named, which cannot be put down: the robot holds a); block "a", an article to the phrase

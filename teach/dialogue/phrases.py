@@ -454,12 +454,15 @@ class PhraseBook:
 
     def _resolved(self, words: tuple[str, ...], perturb: bool, places: bool = True) -> list[tuple[_Entry, str]]:
         """Each object a pronoun in ``words`` may stand for, with the phrase it makes (never an event
-        outside "perturb": a pronoun is a guess)."""
+        outside "perturb": a pronoun is a guess); never one the words name themselves ("put b on it"
+        was "stack b b")."""
         if not any(w in _PRONOUNS or places and w in _PLACES for w in words):
             return []
         kind = "event" if perturb else "action"
         options = []
         for noun in self._nouns:
+            if noun in words:
+                continue
             for variant in _substituted(words, noun, places):
                 entry = next((e for e in self._entries.get(variant, []) if e.kind == kind), None)
                 if entry is not None:
@@ -545,8 +548,11 @@ class PhraseBook:
         rival = max(self._best(said, kind, other_than=entry.name)[0], self._best(said, other)[0])
         if rival > ratio - _TYPO_MARGIN:
             return None
-        if self._objects_named(words) != self._objects_named(self.key(entry.phrase)):
+        key = self.key(entry.phrase)
+        if self._objects_named(words) != self._objects_named(key):
             return None  # it names other things than typed: no typo ("put a on c" was done as "put down c")
+        if not all(_misspelt(word, (*key, *self._ignored)) for word in words):
+            return None  # a word of its own, not a slip of one ("put a by c" was done as "put a on c")
         return Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
 
     def _objects_named(self, words: Iterable[str]) -> list[str]:
@@ -610,6 +616,9 @@ class PhraseBook:
         its object moved back ("put c down": "put down c")."""
         unlinked = self._unlinked(words)
         found = [unlinked] if unlinked != words else []
+        linked_once = self._linked_once(words)
+        if linked_once != words:
+            found.append(linked_once)
         for said in (words, unlinked):
             if len(said) >= 3 and said[-1] in _PARTICLES and said[1] not in _PARTICLES:
                 found.append((said[0], said[-1], *said[1:-1]))
@@ -622,6 +631,18 @@ class PhraseBook:
         kept: list[str] = []
         for word in reversed(words):
             if not (word in _LINKS and kept and self._objects and kept[-1] in self._objects | _PRONOUNS):
+                kept.append(word)
+        return tuple(reversed(kept))
+
+    def _linked_once(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """``words`` with a run of linking words before an object cut to its first ("put b on top of
+        a": "put b on a"), how a phrase that links its objects says it."""
+        kept: list[str] = []
+        for word in reversed(words):
+            if word in _LINKS and len(kept) > 1 and kept[-1] in _LINKS and self._objects \
+                    and kept[-2] in self._objects | _PRONOUNS:
+                kept[-1] = word
+            else:
                 kept.append(word)
         return tuple(reversed(kept))
 
@@ -643,6 +664,13 @@ def _alike(typed: str, word: str) -> bool:
     if len(typed) < 3:
         return len(typed) == 2 and len(word) > 2 and word.startswith(typed)
     return typed in word or (len(typed) >= 5 and _ratio(typed, word) >= _WORD_CUTOFF)  # "nein" is not "rein"
+
+
+def _misspelt(typed: str, words: tuple[str, ...]) -> bool:
+    """``typed`` is one of ``words`` or a slip of one: spelled nearly like it, two letters swapped
+    ("teh"), run together with it ("pickup"), or cut short ("sta"); never another word ("by" is not "on")."""
+    return any(typed == word or _ratio(typed, word) >= _WORD_CUTOFF or sorted(typed) == sorted(word)
+               or (len(word) > 1 and word in typed) or (len(typed) > 1 and typed in word) for word in words)
 
 
 def _place_said(words: tuple[str, ...]) -> tuple[str, ...]:

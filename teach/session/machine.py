@@ -219,23 +219,25 @@ class SessionManager(CompatMembers):
         self.record.save()  # the step clock too, so a resume goes on from it
         return turn
 
-    def _steps_after_all(self, command: Command | None, rest: str, line: str) -> bool:
+    def _steps_after_all(self, command: Command | None, rest: str, line: str) -> str | None:
         """A command that takes a number ('zurück': undo, 'los': run) followed by words that are none,
-        where the whole line reads as steps, is those steps: "zurück ins Büro", "los zum Ball" were
-        "expected a whole number"."""
+        where the whole line, or the words after the command, read as steps, is those steps:
+        "zurück ins Büro" (the whole line), "los zum Ball" (go: "zum Ball") were "expected a whole number"."""
         reads = NUMBERED.get(command) if command is not None else None
         if reads is None or not rest.strip():
-            return False
+            return None
         try:
             reads(rest, self.lang)
-            return False
+            return None
         except TeachError:
             pass
-        try:
-            self.phrases.parse(line, self.lang, topic=self.topic)
-        except UnknownPhrase:
-            return False
-        return True
+        for steps in (line, rest):
+            try:
+                self.phrases.parse(steps, self.lang, topic=self.topic)
+            except UnknownPhrase:
+                continue
+            return steps
+        return None
 
     def _answer_words(self) -> tuple[str, ...]:
         """The words a typo may be read as besides the commands: yes and no while a question is open."""
@@ -268,8 +270,9 @@ class SessionManager(CompatMembers):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         line = command_hint(line, self.lang, COMMAND_WORDS) or line
         command, rest = parse_command(line)
-        if self._steps_after_all(command, rest, line):
-            command, rest = None, line
+        steps = self._steps_after_all(command, rest, line)
+        if steps is not None:
+            command, rest, line = None, steps, steps
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
