@@ -175,3 +175,12 @@ def test_back_to_the_office_is_a_step_not_an_undo(tmp_path):
     said(manager, "zurück 3")  # a number is still an undo
     assert shown() == ["WaitForRequest", "TakeTray"]
     assert "Zahl" in said(manager, "zurück xyz") and len(shown()) == 2  # neither: the undo's error
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "What did you learn?"), ("en", "what have you learned"),
+                                            ("de", "Was hast du gelernt?")])
+def test_asking_what_it_learned_shows_the_tree(ball, tmp_path, lang, line):
+    """"what did you learn?" was "I don't know": it is 'show'."""
+    manager = session(ball, tmp_path, lang)
+    teach_two_demonstrations(manager)
+    assert [r.kind for r in manager.handle(line)] == [ReplyKind.TREE]

@@ -69,8 +69,10 @@ class Verb(Enum):
                          "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten)"), argued=True)
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
-    SHOW = _Declared(("show", "tree"), ("baum", "zeige"), Text("show [full]", "baum [ganz]"),
-                     Text("show the learned tree", "den gelernten Baum zeigen"))
+    SHOW = _Declared(("show", "tree", "what did you learn", "what have you learned", "what have you learnt"),
+                     ("baum", "zeige", "was hast du gelernt", "was kannst du jetzt"), Text("show [full]", "baum [ganz]"),
+                     Text("show the learned tree; also 'what did you learn?'",
+                          "den gelernten Baum zeigen; auch 'was hast du gelernt?'"))
     STATE = _Declared(("state",), ("zustand",), Text("state [full]", "zustand [ganz]"),
                       Text("show the current situation", "die aktuelle Lage zeigen"))
     START = _Declared(("start",), ("situation",), Text("start COND ...", "start BEDINGUNG ..."),
