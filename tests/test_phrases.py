@@ -641,3 +641,17 @@ def test_snacks_is_taught_in_german_imperatives_too():
     assert [(t.name, t.guessed) for t in snacks.parse(line, "de")] == [
         ("WaitForRequest", False), ("TakeTray", False), ("FindPartner", False), ("OfferSnack", False),
         ("ReturnToOffice", False)]
+
+
+def test_no_step_is_offered_that_leaves_out_a_word_of_another():
+    """"wait until someone asks" was "Did you mean “find someone”?" (a yes would have gone looking for
+    someone): a word the offered phrase leaves unexplained ("wait") names another step, so nothing is
+    offered; little words left over ("offer her a snack") still let it be offered."""
+    snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
+    with pytest.raises(UnknownPhrase) as unknown:
+        snacks.parse("wait until someone asks")
+    assert unknown.value.suggestion is None
+    for line, meant in (("offer her a snack", "OfferSnack"), ("find someone else", "FindPartner")):
+        with pytest.raises(UnknownPhrase) as unknown:
+            snacks.parse(line)
+        assert unknown.value.suggestion is not None and unknown.value.suggestion.candidate.name == meant

@@ -587,12 +587,18 @@ class PhraseBook:
         typed, or nearly ("werfen" in "einwerfen", "bi" for "bin"), and every phrase of another
         action or event in the session's language within ``_SUGGEST_MARGIN`` of it has fewer
         such words ("Ball fahren" is "zum Ball fahren", not "den Ball aufheben"): "go get it" is
-        not "go to the bin", and "the ball" names no step."""
+        not "go to the bin", and "the ball" names no step. Nor is it offered when a word it leaves
+        unexplained is one of another step's: "wait until someone asks" is not "find someone"."""
         shared = self._shared(said, entry.phrase)
         if not shared:
             return False
+        mine = self.key(entry.phrase)
+        left_over = [word for word in said.split() if len(word) > 3 and word not in _LINKS
+                     and not any(_alike(word, theirs) for theirs in mine)]  # a little word says little
         return all(self._shared(said, other.phrase) < shared for r, other in self._ranked(said)
-                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, None))
+                   if r > ratio - _SUGGEST_MARGIN and other.name != entry.name and other.lang in (lang, None)) \
+            and not any(self._shared(" ".join(left_over), other.phrase) for _r, other in self._ranked(said)
+                        if left_over and other.name != entry.name and other.kind == entry.kind and other.lang == lang)
 
     def _shared(self, said: str, phrase: str) -> int:
         """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
