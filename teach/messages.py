@@ -162,6 +162,10 @@ GENERATION_PLAIN_ALL = Text("Generation {generation} saved: I can do all {total}
                             "showed them.",
                             "Generation {generation} gespeichert: ich kann alle {total} Vorführungen so nachmachen, "
                             "wie du sie gezeigt hast.")
+GENERATION_PLAIN_BOTH = Text("Generation {generation} saved: I can do both of your demonstrations just as you showed "
+                             "them.",
+                             "Generation {generation} gespeichert: ich kann beide Vorführungen so nachmachen, wie du "
+                             "sie gezeigt hast.")
 GENERATION_PLAIN_THE_ONE = Text("Generation {generation} saved: I can do your demonstration just as you showed it.",
                                 "Generation {generation} gespeichert: ich kann deine Vorführung so nachmachen, wie du "
                                 "sie gezeigt hast.")

@@ -645,7 +645,9 @@ def _reproduced_text(reproduced: int, total: int) -> m.Text:
     """How many demonstrations the new tree does as shown, said for one, all or some of them."""
     if total == 1:
         return m.GENERATION_PLAIN_THE_ONE if reproduced == 1 else m.GENERATION_PLAIN_NOT_THE_ONE
-    return m.GENERATION_PLAIN_ALL if reproduced == total else m.GENERATION_PLAIN
+    if reproduced == total:
+        return m.GENERATION_PLAIN_BOTH if total == 2 else m.GENERATION_PLAIN_ALL  # not "all 2 of them"
+    return m.GENERATION_PLAIN
 
 
 def _first_word(text: str) -> str:
