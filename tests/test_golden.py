@@ -97,4 +97,5 @@ def test_the_readmes_session_is_the_german_golden_abridged() -> None:
     cuts = {"…", "│   …                                                                         │"}
     for line in shown:
         if line not in cuts:
-            assert any(line.rstrip() == later.rstrip() for later in golden), f"README session line not in the golden, in order: {line!r}"
+            assert any(line.rstrip() == later.rstrip() for later in golden), \
+                f"README session line not in the golden, in order: {line!r}"

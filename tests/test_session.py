@@ -588,6 +588,21 @@ def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
     assert replies[0].kind.name == "INFO", replies[0].text
 
 
+@pytest.mark.parametrize(("lang", "line"), [("en", "why the bin is out of reach"),
+                                            ("en", "why is the bin out of reach"),
+                                            ("de", "warum ist der Eimer nicht in Reichweite")])
+def test_why_takes_a_condition_as_the_tree_says_it(ball, tmp_path, lang, line):
+    """The tree in words says "the bin is out of reach"; "why the bin is out of reach" was "No action
+    or condition named ..." (only the label "the bin is within reach" was read): a condition is also
+    named by its untrue label, and by its words in a question's order."""
+    session = new_session(ball, tmp_path, lang=lang)
+    teach_two_demonstrations(session)
+    replies = session.handle(line)
+    assert [r.kind.name for r in replies] == ["INFO"], replies[0].text
+    assert "reach" in replies[0].text or "Reichweite" in replies[0].text
+    assert session.handle("start the bin is out of reach")[0].kind.name == "ERROR"  # never sets it true
+
+
 def test_a_failed_step_is_explained_in_the_sessions_language_only(ball, tmp_path):
     session = new_session(ball, tmp_path, lang="de")
     texts = [r.text for r in session.handle("Ball greifen")]

@@ -156,7 +156,7 @@ def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic
     """The action or condition ``why`` asks about: its label, its name in any case, or any
     words the prompt would take as that one step ("grab it", a typo; "it" is ``topic``), also a
     verb alone ("why grab", "warum greifen": read as "grab it", "ihn greifen")."""
-    condition = condition_named(domain, text)
+    condition = condition_named(domain, text) or _condition_said(domain, text)
     if condition is not None:
         return condition
     key = normalize(text)
@@ -171,6 +171,17 @@ def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic
         if len(tokens) == 1 and tokens[0].kind == "action":
             return tokens[0].name
     return text.strip()
+
+
+def _condition_said(domain: Domain, text: str) -> str | None:
+    """The condition whose label, true or untrue, has ``text``'s words in any order: the tree in
+    words says "the bin is out of reach", a teacher asks "why is the bin out of reach" (it was "No
+    condition named 'the bin is out of reach' in the tree"). Never for 'start': there an untrue
+    label would set the condition true."""
+    said = sorted(normalize(text).split())
+    found = {c.name for c in domain.conditions
+             for label in (c.en, c.de, c.en_false, c.de_false) if label and sorted(normalize(label).split()) == said}
+    return found.pop() if len(found) == 1 else None
 
 
 def _spelled(name: str) -> str:

@@ -70,7 +70,8 @@ class Verb(Enum):
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
     SHOW = _Declared(("show", "tree", "what did you learn", "what have you learned", "what have you learnt"),
-                     ("baum", "zeige", "was hast du gelernt", "was kannst du jetzt"), Text("show [full]", "baum [ganz]"),
+                     ("baum", "zeige", "was hast du gelernt", "was kannst du jetzt"),
+                     Text("show [full]", "baum [ganz]"),
                      Text("show the learned tree; also 'what did you learn?'",
                           "den gelernten Baum zeigen; auch 'was hast du gelernt?'"))
     STATE = _Declared(("state",), ("zustand",), Text("state [full]", "zustand [ganz]"),
