@@ -293,6 +293,8 @@ CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and 
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")
 BUT = Text(" but ", " aber ")
+TRUE_AND_UNTRUE = Text("'{label}' cannot be both true and untrue: name it once.",
+                       "„{label}“ kann nicht zugleich gelten und nicht gelten: nenne es nur einmal.")
 NOTHING_ELSE = Text(", and nothing else", ", sonst nichts")
 NONE_OF = Text("none of: {conditions}", "keine von: {conditions}")
 NOTHING_HOLDS = Text("none of the {count} conditions holds", "keine der {count} Bedingungen gilt")

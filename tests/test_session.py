@@ -3,14 +3,19 @@ demonstrations, online learning, the question budget, runs with corrections, und
 
 from __future__ import annotations
 
+import random
 from pathlib import Path
 
 import pytest
-from conftest import journal_data
+from conftest import ROOT, journal_data
 
 from teach.demos import read_demo_set
+from teach.dialogue.questions import describe_situation
+from teach.domain import load_domain
+from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.session.machine import SessionManager
+from teach.session.replies import ReplyKind
 from teach.session.settings import Settings, WorldKind
 from teach.symbolic import missing_preconditions
 from teach.world.symbolic import SymbolicWorld
@@ -371,8 +376,6 @@ def test_a_situation_shown_two_ways_is_asked_about(ball, tmp_path):
 def test_a_session_with_answered_model_questions_resumes(ball, tmp_path, capsys):
     """Answers to questions about no single condition (``effects``, ``order``) are journalled
     without a literal; resuming re-applies them (it used to report a damaged journal)."""
-    from conftest import ROOT
-
     from teach.cli import main
 
     dialogue = ROOT / "dialogues" / "study" / "participant6.dialogue"
@@ -718,3 +721,24 @@ def test_why_names_demonstrations_and_steps_in_words(ball, tmp_path, lang, line,
     session.handle("done" if lang == "en" else "fertig")
     text = "\n".join(r.text for r in session.handle(line))
     assert words in text and ".csv" not in text, text
+
+
+@pytest.mark.parametrize("name", ["ball", "snacks", "blocksworld"])
+@pytest.mark.parametrize("lang", ["en", "de"])
+def test_a_state_line_pasted_after_start_is_that_state(tmp_path, name, lang):
+    """The state line ("I can see the ball, but the ball is out of reach, ...") after 'start' was an
+    unknown condition ("the ball is out of reach", "and nothing else", and a German snacks label with
+    a comma in it split in two): every state said in words reads back as itself; a condition named
+    both true and untrue is refused."""
+    domain = load_domain(ROOT / "demos" / name / "domain.toml")
+    session = SessionManager(Settings("words", lang=lang, base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
+    chance = random.Random(7)
+    for _ in range(30):
+        state = tuple(chance.random() < (0.15 if name == "blocksworld" else 0.5) for _ in domain.conditions)
+        replies = session.handle("start " + describe_situation(domain, state, Lang(lang)))
+        assert replies[0].kind is not ReplyKind.ERROR, replies[0].text
+        assert session.world.state() == state
+    first = domain.conditions[0]
+    both = f"start {first.label(lang)}, {first.label(lang, False)}"
+    assert session.handle(both)[0].kind is ReplyKind.ERROR

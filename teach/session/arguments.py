@@ -15,7 +15,7 @@ from teach.errors import TeachError
 from teach.messages import Lang
 
 _FULL_WORDS = ("full", "ganz", "all", "alles")
-_PARTS = re.compile(r"\s*(?:,|;|\band\b|\bund\b)\s*", re.IGNORECASE)
+_PARTS = re.compile(r"(\s*(?:,|;|\band\b|\bund\b|\bbut\b|\baber\b)\s*)", re.IGNORECASE)
 _LINKING = {"is", "ist", "are", "sind", "i", "ich", "my", "mein", "meiner", "of", "in", "im"}
 """Words nearly every condition's label has: sharing them says nothing about which one is meant."""
 MAX_LIKE = 4
@@ -49,9 +49,18 @@ def step_number(text: str, lang: Lang) -> int | None:
 
 def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
     """The conditions a teacher names, as labels in either language ("the bin is within reach,
-    ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas and "and"."""
+    ich sehe den Ball") or names in any case ("BallFound binclose"), parts split at commas, "and"
+    and "but". A state line reads as it is said: its untrue labels ("the ball is out of reach"),
+    "and nothing else" and "none of the N conditions holds" name what is false anyway."""
     names: list[str] = []
-    for part in (p for p in _PARTS.split(text) if p.strip()):
+    untrue: list[str] = []
+    for part in _parts(domain, text):
+        if normalize(part) in _NOTHING_ELSE or any(pattern.fullmatch(plain(part)) for pattern in _NOTHING_HOLDS):
+            continue
+        negated = _untrue_label(domain, part)
+        if negated is not None:  # false, as every condition not named is: a state line reads as said
+            untrue.append(negated)
+            continue
         whole = condition_named(domain, part)
         words = part.split()
         if whole is None and len(words) > 1 and not any(condition_named(domain, word) for word in words):
@@ -67,7 +76,47 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
                 known = ", ".join(c.label(lang) for c in domain.conditions)
                 raise TeachError(m.UNKNOWN_CONDITION(lang, name=word.strip(), known=known))
             names.append(found)
+    both = [name for name in untrue if name in names]
+    if both:
+        raise TeachError(m.TRUE_AND_UNTRUE(lang, label=domain.condition(both[0]).label(lang)))
     return names
+
+
+_NOTHING_ELSE = {normalize(said) for said in ("nothing else", "sonst nichts")}
+"""How a state line ends where it names only what holds (``teach.dialogue.questions.only_these``)."""
+_NOTHING_HOLDS = [re.compile(re.escape(plain(said.replace("{count}", "0"))).replace("0", r"\d+"))
+                  for said in (m.NOTHING_HOLDS.en, m.NOTHING_HOLDS.de)]
+"""A state line where nothing holds ("none of the 29 conditions holds")."""
+
+
+def _parts(domain: Domain, text: str) -> list[str]:
+    """``text`` split at commas, "and" and "but", but a label with a comma in it kept whole ("eine
+    Pflegekraft hat mich gebeten, Snacks anzubieten" was two unknown conditions)."""
+    pieces = _PARTS.split(text)  # parts at even places, the separators between them
+    labels = {plain(c.label(lang, value))
+              for c in domain.conditions for lang in ("en", "de") for value in (True, False)}
+    parts: list[str] = []
+    index = 0
+    while index < len(pieces):
+        part, end = pieces[index], index
+        for later in range(index + 2, len(pieces), 2):  # the longest run of pieces that is one label
+            joined = "".join(pieces[index:later + 1])
+            if plain(joined) in labels:
+                part, end = joined, later
+        if part.strip():
+            parts.append(part)
+        index = end + 2
+    return parts
+
+
+def _untrue_label(domain: Domain, text: str) -> str | None:
+    """The condition ``text`` says is untrue, as a state line says it ("the bin is out of reach",
+    "not: on a b"), or None."""
+    said = plain(text)  # every word: "not: on a b" is not "not: on b a"
+    for condition in domain.conditions:
+        if said in {plain(condition.label(lang, False)) for lang in ("en", "de")}:
+            return condition.name
+    return None
 
 
 class ConditionGuess(TeachError):
