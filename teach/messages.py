@@ -296,6 +296,8 @@ BUT = Text(" but ", " aber ")
 TRUE_AND_UNTRUE = Text("'{label}' cannot be both true and untrue: name it once.",
                        "„{label}“ kann nicht zugleich gelten und nicht gelten: nenne es nur einmal.")
 NOTHING_ELSE = Text(", and nothing else", ", sonst nichts")
+NOTHING_ELSE_BUT_MAYBE = Text(", and nothing else but maybe {conditions}",
+                              ", sonst nichts, außer vielleicht {conditions}")
 NONE_OF = Text("none of: {conditions}", "keine von: {conditions}")
 NOTHING_HOLDS = Text("none of the {count} conditions holds", "keine der {count} Bedingungen gilt")
 

@@ -260,7 +260,8 @@ def _action_label(name: str, domain: Domain, lang: Lang) -> str:
 def _all_words(checks: tuple[_Check, ...], domain: Domain, lang: Lang) -> str:
     """Checks that must all hold. Where more than ``MAX_FALSE_NAMED`` of them are conditions that
     must be false (a rule of blocksworld's 29 conditions), what must hold is named and then the
-    rest at once: "and nothing else" where every condition is tested, else "and none of: …"."""
+    rest at once: "and nothing else" where every condition is tested, "and nothing else but maybe
+    ontable b" where a few are not, else "and none of: …"."""
     flat = [part for check in checks for part in (check.parts if check.kind == "all" else (check,))]
     false = list(dict.fromkeys(c.name for c in flat if c.kind == "literal" and not c.value and
                                domain.has_condition(c.name)))
@@ -268,8 +269,13 @@ def _all_words(checks: tuple[_Check, ...], domain: Domain, lang: Lang) -> str:
         return join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in checks)), lang)
     rest = list(dict.fromkeys(_check_words(c, domain, lang) for c in flat
                               if not (c.kind == "literal" and not c.value and c.name in false)))
-    if len(rest) + len(false) == len(domain.conditions) and all(c.kind == "literal" for c in flat):
-        return only_these(rest, len(false), lang)
+    if all(c.kind == "literal" for c in flat):
+        named = {c.name for c in flat}
+        untested = [c.label(lang) for c in domain.conditions if c.name not in named]
+        if not untested:
+            return only_these(rest, len(false), lang)
+        if rest and len(untested) <= MAX_FALSE_NAMED:  # 24 conditions "none of" where 2 may hold either way
+            return f"{join_words(rest, lang)}{m.NOTHING_ELSE_BUT_MAYBE(lang, conditions=join_words(untested, lang))}"
     none_of = m.NONE_OF(lang, conditions=", ".join(domain.condition(name).label(lang) for name in false))
     return f"{join_words(rest, lang)}, {none_of}" if rest else none_of
 
