@@ -64,6 +64,12 @@ def test_a_step_shown_again_after_a_slip_is_the_same_step(book, line, lang, step
     assert names(book.parse(line, lang)) == steps
 
 
+def test_someone_else_is_someone():
+    """"find someone else" (snacks: the partner walked away) was "Did you mean “find someone”?"."""
+    snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
+    assert [(t.name, t.guessed) for t in snacks.parse("find someone else")] == [("FindPartner", False)]
+
+
 def test_english_with_and_then_and_without_separators(book):
     tokens = book.parse("find the ball and then go to the ball grasp the ball")
     assert names(tokens) == ["FindBall", "ApproachBall", "GraspBall"]
@@ -651,7 +657,7 @@ def test_no_step_is_offered_that_leaves_out_a_word_of_another():
     with pytest.raises(UnknownPhrase) as unknown:
         snacks.parse("wait until someone asks")
     assert unknown.value.suggestion is None
-    for line, meant in (("offer her a snack", "OfferSnack"), ("find someone else", "FindPartner")):
+    for line, meant in (("offer her a snack", "OfferSnack"), ("go back to my office", "ReturnToOffice")):
         with pytest.raises(UnknownPhrase) as unknown:
             snacks.parse(line)
         assert unknown.value.suggestion is not None and unknown.value.suggestion.candidate.name == meant

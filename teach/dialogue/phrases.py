@@ -37,11 +37,12 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du",
                                         "again", "once", "more", "nochmal", "noch", "einmal", "wieder", "erneut",
+                                        "else",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
                                         "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball
 first"), and "again" (a step shown once more after a slip is the same step: "grab it again",
-"such den Ball nochmal")."""
+"such den Ball nochmal"), and "else" ("find someone else" is finding someone)."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
