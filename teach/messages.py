@@ -55,6 +55,8 @@ HELLO = Text("Hello! Show me how to do the task, one step at a time. I can: {act
              "Sag 'fertig', wenn die Aufgabe erledigt ist, 'hilfe' für mehr.")
 WHAT_I_CAN = Text("I can: {actions}. Say 'help' for what else you can type.",
                   "Ich kann: {actions}. Sag 'hilfe' für alles, was du eingeben kannst.")
+WHAT_CAN_HAPPEN = Text(" What can happen meanwhile (say it when it does): {events}.",
+                       " Was dabei passieren kann (sag es, wenn es passiert): {events}.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
 MORE_ACTIONS = Text("{count} more like them (Tab)", "{count} weitere solche (Tab)")

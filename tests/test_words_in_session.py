@@ -184,3 +184,13 @@ def test_asking_what_it_learned_shows_the_tree(ball, tmp_path, lang, line):
     manager = session(ball, tmp_path, lang)
     teach_two_demonstrations(manager)
     assert [r.kind for r in manager.handle(line)] == [ReplyKind.TREE]
+
+
+def test_a_line_that_names_nothing_is_told_what_can_happen_too(ball, tmp_path):
+    """"jemand nimmt den Ball weg" was answered with the robot's actions only: a teacher reporting
+    what happened did not learn how the world's events are said. Now they follow ("etwas ändern" in
+    the symbolic world; in MuJoCo "den Ball wegnehmen", …)."""
+    manager = session(ball, tmp_path, "de")
+    told = said(manager, "jemand nimmt den Ball weg")
+    assert "Ich kann: Ball finden" in told
+    assert "Was dabei passieren kann (sag es, wenn es passiert): etwas ändern" in told

@@ -204,8 +204,10 @@ class SessionManager(CompatMembers):
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
             if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
-                replies.append(Reply(ReplyKind.INFO, m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain,
-                                                                                                  self.lang))))
+                can = m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain, self.lang))
+                if self.world.events:  # "jemand nimmt den Ball weg" was met with the actions alone
+                    can += m.WHAT_CAN_HAPPEN(self.lang, events=self._event_names())
+                replies.append(Reply(ReplyKind.INFO, can))
         except ConditionGuess as guess:  # "start in the office": a yes reads it with the condition meant
             self.retype = line.replace(guess.said, guess.meant, 1) if guess.said in line else None
             replies = [Reply(ReplyKind.ERROR, str(guess))]
@@ -397,9 +399,12 @@ class SessionManager(CompatMembers):
     def cmd_perturb(self, rest: str) -> list[Reply]:
         tokens = self.phrases.parse(rest, self.lang, perturb=True, topic=self.topic) if rest.strip() else []
         if not any(t.kind == "event" for t in tokens):
-            names = ", ".join(m.Text(en[0], next(iter(de), en[0]))(self.lang) for en, de in self.world.events.values())
-            return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=names))]
+            return [Reply(ReplyKind.ERROR, m.WHICH_EVENT(self.lang, names=self._event_names()))]
         return self._act(tokens)
+
+    def _event_names(self) -> str:
+        """What the world lets happen, one phrase each, in the session's language."""
+        return ", ".join(m.Text(en[0], next(iter(de), en[0]))(self.lang) for en, de in self.world.events.values())
 
     def cmd_run(self, rest: str) -> list[Reply]:
         if self.open is not None and self.open.steps:
