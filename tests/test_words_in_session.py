@@ -60,7 +60,7 @@ def test_done_words_finish_the_demonstration(ball, tmp_path, lang, done):
     said(manager, WHOLE[lang])
     assert open_actions(manager) == [1, 2, 3, 4, 5]
     reply = said(manager, done)
-    assert "mean" not in reply and "Meintest" not in reply
+    assert "Did you mean" not in reply and "Meintest" not in reply
     _, [demo] = read_demo_set(tmp_path / "demos" / "words")
     assert [step.action for step in demo.steps] == [1, 2, 3, 4, 5, 0]
 
@@ -79,7 +79,7 @@ def test_unclear_words_are_not_guessed_into_a_step(ball, tmp_path, lang, line):
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang].split(",")[0])
     reply = said(manager, line)
-    assert manager.suggestion is None and "mean" not in reply and "Meintest" not in reply
+    assert manager.suggestion is None and "Did you mean" not in reply and "Meintest" not in reply
     assert said(manager, "") == "" and open_actions(manager) == [1]  # Enter records nothing
 
 
