@@ -36,9 +36,11 @@ def action_phrase(form: tuple[str, ...]) -> str:
     return " ".join([form[0].replace("_", " "), *form[1:]])
 
 
-SAID_ALSO = {"stack": ("put {0} on {1}",), "unstack": ("take {0} off {1}",), "put_down": ("put {0} on the table",)}
+SAID_ALSO = {"stack": ("put {0} on {1}",), "unstack": ("take {0} off {1}",), "pick_up": ("lift {0}", "grab {0}"),
+             "put_down": ("put {0} on the table", "drop {0}")}
 """How people also say some IPC actions (blocksworld's), beside the form read out: "put a on c" was
-"I don't know" (and, before typos had to name the objects typed, done as "put down c")."""
+"I don't know" (and, before typos had to name the objects typed, done as "put down c"); "lift a" was
+"I don't know" too."""
 
 
 def action_phrases(form: tuple[str, ...]) -> list[str]:
