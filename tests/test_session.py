@@ -597,12 +597,14 @@ def test_why_accepts_labels_and_lower_case(ball, tmp_path, name):
 def test_why_takes_a_condition_as_the_tree_says_it(ball, tmp_path, lang, line):
     """The tree in words says "the bin is out of reach"; "why the bin is out of reach" was "No action
     or condition named ..." (only the label "the bin is within reach" was read): a condition is also
-    named by its untrue label, and by its words in a question's order."""
+    named by its untrue label, and by its words in a question's order; the reasons about it being
+    untrue come first (they came after "I put the ball in the bin only when the bin is within reach")."""
     session = new_session(ball, tmp_path, lang=lang)
     teach_two_demonstrations(session)
     replies = session.handle(line)
     assert [r.kind.name for r in replies] == ["INFO"], replies[0].text
-    assert "reach" in replies[0].text or "Reichweite" in replies[0].text
+    first = replies[0].text.splitlines()[0]
+    assert "out of reach" in first or "nicht in Reichweite" in first  # the reasons about what was asked first
     session.handle("skip")  # the question the two demonstrations opened
     session.handle("start the bin is out of reach, I can see the ball")
     assert session.world.state() == ball.state(["BallFound"])  # the untrue label never sets it true

@@ -222,6 +222,16 @@ def node_named(domain: Domain, phrases: PhraseBook, text: str, lang: Lang, topic
     return text.strip()
 
 
+def untrue_asked(domain: Domain, name: str, text: str) -> bool:
+    """Whether ``text`` names condition ``name`` by its untrue label ("why is the bin out of reach"),
+    so the reasons about it being untrue come first."""
+    if not domain.has_condition(name):
+        return False
+    said = sorted(normalize(text).split())
+    condition = domain.condition(name)
+    return any(label and sorted(normalize(label).split()) == said for label in (condition.en_false, condition.de_false))
+
+
 def _condition_said(domain: Domain, text: str) -> str | None:
     """The condition whose label, true or untrue, has ``text``'s words in any order: the tree in
     words says "the bin is out of reach", a teacher asks "why is the bin out of reach" (it was "No

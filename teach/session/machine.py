@@ -44,7 +44,15 @@ from teach.errors import LearnError, TeachError
 from teach.messages import Lang
 from teach.observe.hook import Observer
 from teach.session import running
-from teach.session.arguments import ConditionGuess, condition_names, node_named, says_full, step_number, whole_number
+from teach.session.arguments import (
+    ConditionGuess,
+    condition_names,
+    node_named,
+    says_full,
+    step_number,
+    untrue_asked,
+    whole_number,
+)
 from teach.session.asking import Asking
 from teach.session.commands import (
     ANSWERING,
@@ -469,6 +477,9 @@ class SessionManager(CompatMembers):
         lines = self.learning.why(name, self.lang)
         if lines is None:
             return [Reply(ReplyKind.ERROR, m.NO_SUCH_NODE(self.lang, name=rest.strip()))]
+        if untrue_asked(self.domain, name, rest):  # "why is the bin out of reach": those reasons first
+            untrue = self.domain.condition(name).label(self.lang, False)
+            lines.sort(key=lambda line: untrue not in line)
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
 
     def cmd_save(self, rest: str) -> list[Reply]:
