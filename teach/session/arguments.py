@@ -227,9 +227,8 @@ def untrue_asked(domain: Domain, name: str, text: str) -> bool:
     so the reasons about it being untrue come first."""
     if not domain.has_condition(name):
         return False
-    said = sorted(normalize(text).split())
     condition = domain.condition(name)
-    return any(label and sorted(normalize(label).split()) == said for label in (condition.en_false, condition.de_false))
+    return any(label and _same_words(label, text) for label in (condition.en_false, condition.de_false))
 
 
 def _condition_said(domain: Domain, text: str) -> str | None:
@@ -237,10 +236,15 @@ def _condition_said(domain: Domain, text: str) -> str | None:
     words says "the bin is out of reach", a teacher asks "why is the bin out of reach" (it was "No
     condition named 'the bin is out of reach' in the tree"). Never for 'start': there an untrue
     label would set the condition true."""
-    said = sorted(normalize(text).split())
     found = {c.name for c in domain.conditions
-             for label in (c.en, c.de, c.en_false, c.de_false) if label and sorted(normalize(label).split()) == said}
+             for label in (c.en, c.de, c.en_false, c.de_false) if label and _same_words(label, text)}
     return found.pop() if len(found) == 1 else None
+
+
+def _same_words(label: str, text: str) -> bool:
+    """Whether ``text`` has the words of ``label`` in any order, filler words aside ("is the bin out of
+    reach" and "the bin is out of reach")."""
+    return sorted(normalize(label).split()) == sorted(normalize(text).split())
 
 
 def _spelled(name: str) -> str:
