@@ -88,6 +88,7 @@ UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: 
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
 COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
+WAY_THERE = Text("To get there: {steps}.", "Der Weg dahin: {steps}.")
 DID_STEP = Text("✓ {action}", "✓ {action}")
 NOTHING_CHANGED = Text("✓ {action} (nothing changed: not recorded)",
                        "✓ {action} (nichts hat sich geändert: nicht aufgezeichnet)")

@@ -34,6 +34,28 @@ def possible_actions(domain: Domain, state: State) -> list[str]:
     return [a.name for a in domain.actions if not missing_preconditions(domain, state, a.name)]
 
 
+def steps_towards(domain: Domain, state: State, action: str, max_steps: int) -> list[str] | None:
+    """The shortest list of at most ``max_steps`` actions after which ``action`` can be done, by
+    ``domain``'s action model (breadth-first; the first found in the domain's order): the way to
+    offer a teacher whose step was refused. None if there is none that short (or it would need
+    the world's events)."""
+    frontier: list[tuple[State, list[str]]] = [(state, [])]
+    seen = {state}
+    for _ in range(max_steps):
+        following = []
+        for here, path in frontier:
+            for name in possible_actions(domain, here):
+                after = apply_action(domain, here, name)
+                if after in seen:
+                    continue
+                if not missing_preconditions(domain, after, action):
+                    return [*path, name]
+                seen.add(after)
+                following.append((after, [*path, name]))
+        frontier = following
+    return None
+
+
 class RunEnd(Enum):
     SUCCESS = auto()
     FAILURE = auto()

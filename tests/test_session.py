@@ -619,6 +619,31 @@ def test_a_failed_step_is_explained_in_the_sessions_language_only(ball, tmp_path
     assert any("BallClose" in t for t in (r.text for r in session.handle("Ball greifen")))
 
 
+@pytest.mark.parametrize(("lang", "find", "place", "way"), [
+    ("en", "find the ball", "drop it in", "To get there: go to the ball, grasp the ball, go to the bin."),
+    ("de", "Ball finden", "wirf ihn rein", "Der Weg dahin: zum Ball gehen, Ball greifen, zum Eimer gehen.")])
+def test_a_refused_step_says_the_way_there(ball, tmp_path, lang, find, place, way):
+    """ "drop it in" with the ball not yet in hand was refused with what must be true, which left a
+    careless teacher to work out the steps that make it so: the domain's own model now offers them."""
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(find)
+    texts = [r.text for r in session.handle(place)]
+    assert texts[1] == way
+    assert [r.text for r in session.handle(way.split(": ", 1)[1].rstrip("."))][-1] != way  # said as offered, it works
+    assert session.world.state() == ball.state(["BallFound", "BallClose", "BallGrasped", "BinClose"])
+
+
+def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    question = session.handle("ask")[-1]
+    assert "the ball is out of reach" in question.text
+    replies = session.handle("grasp the ball")
+    assert [r.kind.name for r in replies] == ["ERROR", "INFO", "QUESTION"]
+    assert replies[1].text == "To get there: go to the ball."
+
+
 def test_a_resumed_session_counts_in_words(ball, tmp_path):
     session = new_session(ball, tmp_path, lang="de")
     session.handle(SEQUENCE)

@@ -28,7 +28,7 @@ from teach.session.journal import Answered, Asked, Situated, parse_state_text, s
 from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import why_not
+from teach.session.run_report import way_there, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.symbolic import missing_preconditions
@@ -179,6 +179,7 @@ class Asking:
                 label = self.vocabulary.domain.action(answer).label(self.lang)
                 reason = why_not(self.vocabulary.domain, answer, question.state, self.lang)
                 return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)),
+                        *way_there(self.vocabulary.domain, answer, question.state, self.lang),
                         self._question_reply(question)]
         return self.apply_answer(answer, line)
 

@@ -12,6 +12,8 @@ from teach.bt.nodes import Action, Node, Status, walk
 from teach.bt.tick import TickResult
 from teach.domain import Domain, State
 from teach.messages import Lang
+from teach.session.replies import Reply, ReplyKind
+from teach.symbolic import steps_towards
 from teach.world.protocol import Outcome, RunResult, Ticker
 
 
@@ -68,3 +70,17 @@ def why_not(domain: Domain, action: str, state: State, lang: Lang) -> str:
     missing = [domain.condition(p.name).label(lang, p.value)
                for p in domain.action(action).pre if values[p.name] != p.value]
     return m.IT_NEEDS(lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(lang)
+
+
+WAY_STEPS = 3
+"""The longest way to a refused step that is offered: longer, and it is not a hint but a plan."""
+
+
+def way_there(domain: Domain, action: str, state: State, lang: Lang) -> list[Reply]:
+    """After a step of the teacher's was refused, the steps that would make it possible ("To get
+    there: go to the ball, grasp the ball, go to the bin."), if the domain's model has a short way."""
+    steps = steps_towards(domain, state, action, WAY_STEPS)
+    if not steps:
+        return []
+    labels = ", ".join(domain.action(name).label(lang) for name in steps)
+    return [Reply(ReplyKind.INFO, m.WAY_THERE(lang, steps=labels))]

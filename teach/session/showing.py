@@ -19,7 +19,7 @@ from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import why_not
+from teach.session.run_report import way_there, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -126,6 +126,7 @@ class Showing:
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
                 if facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
+                replies += way_there(domain, token.name, result.before, self.lang)
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
                 replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
