@@ -88,6 +88,14 @@ UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: 
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
 COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
+WHAT_NOW = Text("From here I can: {actions}. Tell me the next step, or say 'done' when the task is finished "
+                "('help' for more).",
+                "Von hier aus kann ich: {actions}. Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe "
+                "erledigt ist ('hilfe' für mehr).")
+WHAT_NOW_FINISHED = Text("The task is finished here: say 'done' if this is how it should end, or 'reset' for a new "
+                         "start ('help' for more).",
+                         "Die Aufgabe ist hier erledigt: sag 'fertig', wenn sie so enden soll, oder 'neu' für einen "
+                         "neuen Start ('hilfe' für mehr).")
 WAY_THERE = Text("To get there: {steps}.", "Der Weg dahin: {steps}.")
 DID_STEP = Text("✓ {action}", "✓ {action}")
 NOTHING_CHANGED = Text("✓ {action} (nothing changed: not recorded)",

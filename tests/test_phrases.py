@@ -398,12 +398,17 @@ def test_a_pronoun_for_an_event_prefers_the_topic_and_is_still_only_offered(tmp_
     ("please show full", "en", "show full"),
     ("show all", "en", "show all"),
     ("run 3 please", "en", "run 3"),
+    ("sorry, undo", "en", "undo"),  # "I don't know 'sorry'" before: an apology or a "wait" is not a step
+    ("no wait, that was wrong", "en", "that was wrong"),
+    ("oh wait, that's not right", "en", "that's not right"),
+    ("Moment, das war falsch", "de", "das war falsch"),
 ])
 def test_command_hint(line, lang, command):
     assert command_hint(line, lang, COMMAND_WORDS) == command
 
 
-@pytest.mark.parametrize("line", ["find the ball", "ok", "yes", "go to the bin please", "the end"])
+@pytest.mark.parametrize("line", ["find the ball", "ok", "yes", "go to the bin please", "the end", "no",
+                                  "no, go to the bin", "sorry", "wait for a request"])
 def test_no_command_hint_for_steps_and_answers(line):
     assert command_hint(line, "en", COMMAND_WORDS) is None
 

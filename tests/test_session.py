@@ -633,6 +633,31 @@ def test_a_refused_step_says_the_way_there(ball, tmp_path, lang, find, place, wa
     assert session.world.state() == ball.state(["BallFound", "BallClose", "BallGrasped", "BinClose"])
 
 
+@pytest.mark.parametrize(("lang", "lines", "steps"), [
+    ("en", ("what now?", "I don't know", "what should I do?"), "From here I can: find the ball, go to the bin."),
+    ("de", ("was jetzt?", "keine Ahnung", "und jetzt?"), "Von hier aus kann ich: Ball finden, zum Eimer gehen.")])
+def test_what_now_names_the_steps_possible_from_here(ball, tmp_path, lang, lines, steps):
+    """ "what now?" and "I don't know" (nothing asked) were "I don't know “what now?”": they name
+    the steps the domain's model allows here, and once the task is finished, say so."""
+    session = new_session(ball, tmp_path, lang=lang)
+    for line in lines:
+        replies = session.handle(line)
+        assert [r.kind.name for r in replies] == ["STATE", "INFO"], replies[0].text
+        assert replies[1].text.startswith(steps)
+    session.handle(SEQUENCE if lang == "en" else "Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, "
+                   "Ball in den Eimer legen")
+    assert "finished" in session.handle(lines[0])[1].text or "erledigt" in session.handle(lines[0])[1].text
+
+
+@pytest.mark.parametrize(("line", "undone"), [("sorry, undo", 2), ("no wait, that was wrong", 2),
+                                              ("oh wait, that's not right", 2), ("that's wrong", 2)])
+def test_a_slip_taken_back_in_everyday_words(ball, tmp_path, line, undone):
+    """ "no wait, that was wrong" was "I don't know “no wait”" (and the step stayed)."""
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    assert session.handle(line)[0].text.startswith(f"Undone: step {undone}")
+
+
 def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle(SEQUENCE)

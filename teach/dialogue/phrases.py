@@ -69,7 +69,9 @@ _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 # words a teacher adds before a command ("ok done", "i'm done", "ich bin fertig") and after it ("help me");
 # after it only words no command takes as its argument ("show all" keeps its "all")
 _CHAT_BEFORE = {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now", "please", "just",
-                "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut", "jetzt", "bitte", "mal", "dann", "und"}
+                "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut", "jetzt", "bitte", "mal", "dann", "und",
+                "no", "oh", "ah", "oops", "sorry", "wait", "hmm", "hm", "um", "uh", "nein", "ach", "ups", "hoppla",
+                "warte", "moment", "entschuldigung"}
 _CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
 _HELP_MARKS = re.compile(r"^[?¿]+$")
 
@@ -80,8 +82,10 @@ _YES = {
            "ja genau", "das stimmt", "mach das", "mach es"},
 }
 _NO = {
-    "en": {"no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you"},
-    "de": {"nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke"},  # "nö" reads "no"
+    "en": {"no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you", "that s wrong", "thats wrong",
+           "that is wrong", "not right", "that s not right", "thats not right", "that is not right"},
+    "de": {"nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke", "das ist falsch", "stimmt nicht",
+           "das stimmt nicht", "nicht richtig"},  # "nö" reads "no"
 }
 
 
@@ -232,10 +236,11 @@ def after_no(text: str, lang: Lang = Lang.EN) -> str | None:
 def command_hint(line: str, lang: Lang, commands: Iterable[str]) -> str | None:
     """The command a conversational line amounts to, as the line to handle instead, or None.
 
-    ``commands`` are the session's command words (compared after ``normalize``). "ok done",
-    "i'm done" and "fertig!" give "done"/"fertig"; "help me" gives "help"; a lone "?" gives
-    the help word of ``lang``. Words around the command ("ok", "i'm", "me", "bitte") are dropped,
-    the command's own arguments kept: "please show full" gives "show full"."""
+    ``commands`` are the session's command words and sayings (compared after ``normalize``). "ok
+    done", "i'm done" and "fertig!" give "done"/"fertig"; "help me" gives "help"; "sorry, undo"
+    and "no wait, that was wrong" give "undo" and "that was wrong"; a lone "?" gives the help word
+    of ``lang``. Words around the command ("ok", "i'm", "oh", "me", "bitte") are dropped, the
+    command's own arguments kept: "please show full" gives "show full"."""
     check_length(line, lang)
     names = {normalize(c) for c in commands}
     if _HELP_MARKS.match(line.strip()):
@@ -248,8 +253,11 @@ def command_hint(line: str, lang: Lang, commands: Iterable[str]) -> str | None:
     def chat(word: str, around: set[str]) -> bool:
         return all(w in around for w in _words(word))
 
+    said = len(words)
     while words and chat(words[0], _CHAT_BEFORE):
         words.pop(0)
+    if 1 < len(words) < said and normalize(" ".join(words)) in names:  # "no wait, that was wrong"
+        return " ".join(words)
     if not words or normalize(words[0]) not in names:
         return None
     while len(words) > 1 and chat(words[-1], _CHAT_AFTER):

@@ -41,9 +41,11 @@ class Verb(Enum):
     CANCEL = _Declared(("cancel",), ("abbrechen",), Text("cancel", "abbrechen"),
                        Text("discard the open demonstration", "die Vorführung verwerfen"))
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
-                      "take it back", "oops take that back", "oops"),
+                      "take it back", "oops take that back", "oops", "that's wrong", "that is wrong",
+                      "that's not right", "that is not right", "that was not right", "my mistake"),
                      ("rückgängig", "zurück", "falsch", "das war falsch", "nein das war falsch", "nein falsch",
-                      "nimm das zurück", "hoppla"),
+                      "nimm das zurück", "hoppla", "das ist falsch", "das stimmt nicht", "das war nicht richtig",
+                      "mein fehler"),
                      Text("undo [N] / undo to step N", "zurück [N] / zurück bis Schritt N"),
                      Text("take back the last step (N: steps N to the end), demonstration or answer; "
                           "also 'that was wrong'",
@@ -129,8 +131,8 @@ class Verb(Enum):
 Command = Verb
 """What a line names: one of the verbs, each with its words, usage and help."""
 COMMANDS: tuple[Verb, ...] = tuple(Verb)
-COMMAND_WORDS = tuple(name for command in COMMANDS for name in command.names if " " not in name)
-"""Every single word that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
+COMMAND_NAMES = tuple(name for command in COMMANDS for name in command.names)
+"""Every word and saying that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
 
 NUMBERED: dict[Verb, Callable[[str, Lang], int | None]] = {Verb.RUN: whole_number, Verb.RESET: whole_number,
                                                           Verb.UNDO: step_number}
@@ -151,6 +153,12 @@ IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen
 """Answers saying the asked-about situation cannot happen: free, and never asked again."""
 SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
                                      "ich weiss nicht", "keine ahnung", "uberspringen"}
+WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what next", "what should i do",
+                                               "what do i do", "what shall i do", "what can you do",
+                                               "was jetzt", "was nun", "und jetzt", "was soll ich tun",
+                                               "was soll ich machen", "was mache ich jetzt", "was kannst du")}
+"""Whole lines asking what to do next (also, with no question open, the "I don't know"s of
+``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
 
 
 def parse_command(line: str) -> tuple[Command | None, str]:

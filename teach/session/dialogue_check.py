@@ -9,7 +9,7 @@ from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, norm
 from teach.dialogue.script import Script
 from teach.errors import FormatError, TeachError
 from teach.messages import Lang
-from teach.session.commands import COMMAND_WORDS, DONE_WORDS, SKIP_WORDS, Verb, parse_command
+from teach.session.commands import COMMAND_NAMES, DONE_WORDS, SKIP_WORDS, Verb, parse_command
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
@@ -21,7 +21,7 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     answers = DONE_WORDS | SKIP_WORDS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, line in script.lines:
-        command, rest = parse_command(command_hint(line, lang, COMMAND_WORDS) or line)  # "ok done", as the session
+        command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
         if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
             from teach.sim.guide import parse_guide_line
 

@@ -57,10 +57,12 @@ from teach.session.asking import Asking
 from teach.session.commands import (
     ANSWERING,
     BLOCKED_WHILE_ASKING,
-    COMMAND_WORDS,
+    COMMAND_NAMES,
     COMMANDS,
     LOOKING,
     NUMBERED,
+    SKIP_WORDS,
+    WHAT_NOW_WORDS,
     Command,
     Verb,
     parse_command,
@@ -258,7 +260,7 @@ class SessionManager(CompatMembers):
     def command(self, line: str) -> tuple[Command | None, str]:
         """The command ``handle`` would read in a line ("ok run" is 'run'), and its argument."""
         try:
-            return parse_command(command_hint(line, self.lang, COMMAND_WORDS) or line)
+            return parse_command(command_hint(line, self.lang, COMMAND_NAMES) or line)
         except LineTooLong:
             return None, line
 
@@ -278,7 +280,7 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
-        line = command_hint(line, self.lang, COMMAND_WORDS) or line
+        line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
         steps = self._steps_after_all(command, rest, line)
         if steps is not None:
@@ -299,6 +301,8 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if command is None and is_yes(line, self.lang):  # "yes" to nothing asked (it was "I don't know 'yes'")
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+        if command is None and normalize(line) in WHAT_NOW_WORDS | SKIP_WORDS:  # "what now?", "I don't know"
+            return self._what_now()
         if command is None:
             return self._teach_actions(line)
         return self._handler(command)(rest)
@@ -630,6 +634,18 @@ class SessionManager(CompatMembers):
         domain, state = self.domain, self.world.state()
         stuck = domain.has_model and not domain.goal_holds(state) and not possible_actions(domain, state)
         return [self._state_reply()] + ([Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))] if stuck else [])
+
+    def _what_now(self) -> list[Reply]:
+        """ "what now?": the situation and the steps the domain's model allows from it (every step
+        where it declares no preconditions), or that the task is finished here."""
+        domain, state = self.domain, self.world.state()
+        if domain.has_model and domain.goal_holds(state):
+            return [self._state_reply(), Reply(ReplyKind.INFO, m.WHAT_NOW_FINISHED(self.lang))]
+        possible = possible_actions(domain, state)
+        if not possible:
+            return self._start_replies()
+        actions = ", ".join(domain.action(name).label(self.lang) for name in possible)
+        return [self._state_reply(), Reply(ReplyKind.INFO, m.WHAT_NOW(self.lang, actions=actions))]
 
     def _state_reply(self, full: bool = False) -> Reply:
         """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""
