@@ -236,6 +236,15 @@ ANSWER_FIRST = Text("Please answer my question first (an action, 'done' or 'skip
 DONE_WORD = Text("done", "fertig")
 YES_WORD = Text("yes", "ja")
 SKIP_WORD = Text("skip", "weiter")
+NOT_SURE = Text("Not sure? Then say 'skip': I will not do anything there on a guess. Or tell me what to do there.",
+                "Nicht sicher? Dann sag 'weiter': Dort tue ich nichts auf Verdacht. Oder sag mir, was ich dort tun "
+                "soll.")
+IS_THAT_A_YES = Text("Is that a yes? Say 'yes' if I may, or 'skip' if you are not sure.",
+                     "Ist das ein Ja? Sag 'ja', wenn ich darf, oder 'weiter', wenn du nicht sicher bist.")
+WHY_I_ASK = Text("I was never shown this situation, and I do nothing on a guess: your answer tells me what to do "
+                 "there (and where it is like this). Not sure? Say 'skip'.",
+                 "Diese Lage wurde mir nie gezeigt, und ich tue nichts auf Verdacht: Deine Antwort sagt mir, was "
+                 "ich dort tun soll (und wo es genauso ist). Nicht sicher? Sag 'weiter'.")
 KEEP_CAREFUL = Text("All right, I keep being careful there.", "In Ordnung, da bleibe ich vorsichtig.")
 ONE_ACTION = Text("Please answer with one action, 'done' or 'skip'.",
                   "Bitte antworte mit einer Handlung, 'fertig' oder 'weiter'.")

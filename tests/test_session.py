@@ -658,6 +658,28 @@ def test_a_slip_taken_back_in_everyday_words(ball, tmp_path, line, undone):
     assert session.handle(line)[0].text.startswith(f"Undone: step {undone}")
 
 
+@pytest.mark.parametrize(("lang", "unsure", "likely", "why", "yes"), [
+    ("en", "hmm, maybe", "I think so", "why do you ask?", "yes"),
+    ("de", "vielleicht", "naja, ich glaube schon", "warum fragst du?", "ja")])
+def test_a_doubtful_answer_is_not_taken_as_one(ball, tmp_path, lang, unsure, likely, why, yes):
+    """ "maybe", "hmm, I think so" and "why do you ask?" were "I don't know “hmm”" and "No action or
+    condition named 'do you ask?'": the question stays open and unpaid, a likely yes is asked back
+    (nothing is learned from a guess), and 'why' says why the robot asks."""
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(SEQUENCE if lang == "en" else "Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, "
+                   "Ball in den Eimer legen")
+    session.handle("done" if lang == "en" else "fertig")
+    session.handle("ask" if lang == "en" else "frag")
+    generation, left = session.generation, session.budget.left
+    for line, starts in ((unsure, ("Not sure", "Nicht sicher")), (likely, ("Is that a yes", "Ist das ein Ja")),
+                         (why, ("I was never shown", "Diese Lage wurde mir nie"))):
+        replies = session.handle(line)
+        assert len(replies) == 1 and replies[0].text.startswith(starts), replies[0].text
+    assert (session.generation, session.budget.left) == (generation, left) and session.pending is not None
+    session.handle(yes)
+    assert session.pending is None and session.generation == generation + 1
+
+
 def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle(SEQUENCE)

@@ -22,7 +22,7 @@ from teach.domain import State
 from teach.errors import LearnError
 from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration
-from teach.session.commands import DONE_WORDS, IMPOSSIBLE_WORDS, SKIP_WORDS
+from teach.session.commands import DONE_WORDS, HESITATIONS, IMPOSSIBLE_WORDS, LIKELY_WORDS, SKIP_WORDS, UNSURE_WORDS
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
 from teach.session.journal import Answered, Asked, Situated, parse_state_text, state_text
 from teach.session.learning import DONE_ABOUT, Learning
@@ -147,6 +147,11 @@ class Asking:
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
         if key in IMPOSSIBLE_WORDS:
             return self._cannot_happen(question)
+        hesitant = _without_hesitation(key)
+        if hesitant in UNSURE_WORDS:  # "maybe": neither a yes nor a no; the question stays open
+            return [Reply(ReplyKind.QUESTION, m.NOT_SURE(self.lang))]
+        if hesitant in LIKELY_WORDS and question.kind in MUST_KINDS:  # "I think so": not acted on as a yes
+            return [Reply(ReplyKind.QUESTION, m.IS_THAT_A_YES(self.lang))]
         yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
         if question.kind in MUST_KINDS and is_no(line, self.lang):
             return [Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]  # the question stays open
@@ -229,3 +234,11 @@ def _asked_about(question: Question) -> str | None:
     if question.kind == "must-goal":
         return DONE_ABOUT
     return question.action if question.kind == "must-precondition" else None
+
+
+def _without_hesitation(key: str) -> str:
+    """A normalized answer without the sounds it starts with ("hmm i think so" is "i think so")."""
+    words = key.split()
+    while words and words[0] in HESITATIONS:
+        words.pop(0)
+    return " ".join(words)

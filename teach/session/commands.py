@@ -153,6 +153,20 @@ IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen
 """Answers saying the asked-about situation cannot happen: free, and never asked again."""
 SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
                                      "ich weiss nicht", "keine ahnung", "uberspringen"}
+HESITATIONS = {"hmm", "hm", "um", "uh", "erm", "well", "oh", "ah", "ahm", "ahem", "naja", "na", "also", "tja"}
+"""Sounds and words a hesitant answer starts with, set aside before it is compared ("hmm, I think so")."""
+UNSURE_WORDS = {normalize(said) for said in ("maybe", "perhaps", "depends", "it depends", "not sure", "i'm not sure",
+                                             "i am not sure", "no idea", "hard to say", "sometimes", "vielleicht",
+                                             "kommt darauf an", "kommt drauf an", "nicht sicher",
+                                             "ich bin nicht sicher", "schwer zu sagen", "manchmal")}
+"""Answers that neither allow nor forbid: the question stays open, and 'skip' is offered."""
+LIKELY_WORDS = {normalize(said) for said in ("i think so", "i guess so", "i suppose so", "probably", "should be",
+                                             "ich glaube schon", "ich denke schon", "glaube schon", "denke schon",
+                                             "wahrscheinlich", "vermutlich")}
+"""A yes with a doubt: asked again as "is that a yes?" (a care robot does not act on a guess)."""
+WHY_ASKING = {normalize(said) for said in ("", "do you ask", "are you asking", "you ask", "ask", "that", "this",
+                                           "is that", "fragst du", "fragst du das", "das", "diese frage")}
+"""What follows 'why' while a question is open when it asks about the question itself ("why do you ask?")."""
 WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what next", "what should i do",
                                                "what do i do", "what shall i do", "what can you do",
                                                "was jetzt", "was nun", "und jetzt", "was soll ich tun",

@@ -63,6 +63,7 @@ from teach.session.commands import (
     NUMBERED,
     SKIP_WORDS,
     WHAT_NOW_WORDS,
+    WHY_ASKING,
     Command,
     Verb,
     parse_command,
@@ -473,6 +474,8 @@ class SessionManager(CompatMembers):
         return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
 
     def cmd_why(self, rest: str) -> list[Reply]:
+        if self.pending is not None and normalize(rest) in WHY_ASKING:  # "why do you ask?"
+            return [Reply(ReplyKind.INFO, m.WHY_I_ASK(self.lang))]
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
         if not rest.strip():  # 'why' alone said "No action or condition named '' in the tree."
