@@ -199,3 +199,14 @@ def test_every_possible_action_changes_something_the_session_can_see(domain):
     # of one of its own visible effects, so whenever it can run it is recorded
     for action in domain.actions:
         assert any(literal.negated() in action.pre for literal in action.ram), action.name
+
+
+@pytest.mark.parametrize(("lang", "line", "action"), [
+    ("en", "wait until someone asks", "WaitForRequest"),  # was offered as "find someone"
+    ("de", "warte auf eine Bitte", "WaitForRequest"),  # was offered as the bare "warte"
+    ("en", "head back to the office", "ReturnToOffice"),
+    ("de", "geh zurück ins Büro", "ReturnToOffice"),  # was unknown
+])
+def test_everyday_sayings_name_their_step(domain, lang, line, action):
+    tokens = PhraseBook(domain).parse(line, lang)
+    assert [(t.kind, t.name) for t in tokens] == [("action", action)]
