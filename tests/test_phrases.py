@@ -656,12 +656,14 @@ def test_snacks_is_taught_in_german_imperatives_too():
 
 def test_no_step_is_offered_that_leaves_out_a_word_of_another():
     """"wait until someone asks" was "Did you mean “find someone”?" (a yes would have gone looking for
-    someone): a word the offered phrase leaves unexplained ("wait") names another step, so nothing is
-    offered; little words left over ("offer her a snack") still let it be offered."""
+    someone; it is a phrase of waiting for a request now): a word the offered phrase leaves
+    unexplained ("offer" in "find someone to offer") names another step, so nothing is offered;
+    little words left over ("offer her a snack") still let it be offered."""
     snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
-    with pytest.raises(UnknownPhrase) as unknown:
-        snacks.parse("wait until someone asks")
-    assert unknown.value.suggestion is None
+    for line in ("find someone to offer", "wait until someone wants snacks"):
+        with pytest.raises(UnknownPhrase) as unknown:
+            snacks.parse(line)
+        assert unknown.value.suggestion is None, line
     for line, meant in (("offer her a snack", "OfferSnack"), ("go back to my office", "ReturnToOffice")):
         with pytest.raises(UnknownPhrase) as unknown:
             snacks.parse(line)
