@@ -121,6 +121,10 @@ FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first
 RUNNING_ACTION = Text("→ {action}", "→ {action}")
 NOTHING_TO_DO = Text("There is nothing to do: the task is already finished. Say 'reset' for a new start.",
                      "Es gibt nichts zu tun: die Aufgabe ist schon erledigt. Sag 'neu' für einen neuen Start.")
+STARTED_AS_SHOWN = Text("Where nothing holds, nothing can be done in this world, so I begin where {demo} begins "
+                        "('start' sets up another situation).",
+                        "Wo nichts gilt, lässt sich in dieser Welt nichts tun; ich beginne deshalb dort, wo {demo} "
+                        "beginnt ('situation' stellt eine andere Lage her).")
 NO_STEP_POSSIBLE = Text("Nothing can be done from here in this world. Set up a situation with 'start' and "
                         "what holds; 'reset' then starts anew from there.",
                         "Von hier aus lässt sich in dieser Welt nichts tun. Stell mit 'situation' und dem, was "

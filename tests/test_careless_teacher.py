@@ -144,11 +144,23 @@ def test_the_careless_dialogue_teaches_the_task_in_the_symbolic_world(tmp_path, 
 def test_a_new_start_in_blocksworld_is_one_the_world_can_be_in(tmp_path):
     """Blocksworld's state where nothing holds (no block on the table, the hand neither empty nor
     full) allows no action: a session there was a dead end, and 'reset' always went back to it.
-    The session says how to leave it; after a 'start' a new start walks from there, 'reset N' the
-    same each time; the ball's start (where nothing holds and it can look for the ball) stays."""
+    The session begins where a demonstration beside the domain file begins (a careless teacher did
+    not get past the first line: every step refused, "what now?" told to type a whole situation);
+    without one it says how to leave it. After a 'start' a new start walks from there, 'reset N'
+    the same each time; the ball's start (where nothing holds and it can look for the ball) stays."""
     domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
     settings = Settings("blocks", base=tmp_path, world="symbolic", record=False)
     manager = SessionManager(settings, domain, SymbolicWorld(domain))
+    told = "\n".join(r.text for r in manager.greet())
+    assert "I begin where held-out/d01.csv begins" in told
+    first = read_demo_set(ROOT / "demos" / "blocksworld" / "held-out", domain)[1][0].steps[0].state
+    assert manager.world.state() == first
+    alone = tmp_path / "alone" / "domain.toml"  # no demonstration beside it
+    alone.parent.mkdir()
+    alone.write_bytes((ROOT / "demos" / "blocksworld" / "domain.toml").read_bytes())
+    domain = load_domain(alone)
+    manager = SessionManager(Settings("blocks2", base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
     told = "\n".join(r.text for r in manager.greet())
     assert "none of the 29 conditions holds" in told and "Set up a situation with 'start'" in told
     manager.handle("start clear a, clear b, clear c, clear d, handempty, ontable a, ontable b, ontable c, ontable d")
@@ -165,6 +177,18 @@ def test_a_new_start_in_blocksworld_is_one_the_world_can_be_in(tmp_path):
     world.arrange(ball.state(["BallFound", "BallClose"]))
     world.reset(2)
     assert world.state() == ball.state([])
+
+
+def test_no_way_is_offered_that_the_refused_step_would_only_undo(tmp_path):
+    """ "take d off a" with d on the table was offered "To get there: put down a, pick up d, stack d
+    a." (to take it off again); a way the step does more than undo is still offered."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = SessionManager(Settings("blocks", base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
+    manager.handle("start clear b, clear c, clear d, holding a, ontable b, ontable c, ontable d")
+    assert [r.kind for r in manager.handle("take d off a")] == [ReplyKind.ERROR, ReplyKind.STATE]
+    assert [r.kind for r in manager.handle("put d on the table")] == [ReplyKind.ERROR, ReplyKind.STATE]
+    assert manager.handle("put b on c")[1].text == "To get there: put down a, pick up b."
 
 
 def test_blocksworld_conditions_said_in_a_persons_order(tmp_path):

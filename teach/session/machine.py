@@ -82,6 +82,7 @@ from teach.session.replies import Reply, ReplyKind
 from teach.session.resumed import restore_open, restore_situation
 from teach.session.settings import Settings, WorldKind
 from teach.session.showing import Showing, steps_said
+from teach.session.starting import demonstrated_start
 from teach.session.store import SessionStore
 from teach.session.tree_words import tree_lines
 from teach.session.turn import Turn
@@ -633,10 +634,20 @@ class SessionManager(CompatMembers):
     def _start_replies(self) -> list[Reply]:
         """The situation a session or a new start begins in; where the domain's action model allows
         no action there and the task is not done (blocksworld's state where nothing holds), how to
-        leave it."""
+        leave it: begin where a demonstration beside the domain file begins (``teach.session.starting``),
+        or say how to set a situation up."""
         domain, state = self.domain, self.world.state()
         stuck = domain.has_model and not domain.goal_holds(state) and not possible_actions(domain, state)
-        return [self._state_reply()] + ([Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))] if stuck else [])
+        if not stuck:
+            return [self._state_reply()]
+        found = demonstrated_start(domain)
+        if found is None:
+            return [self._state_reply(), Reply(ReplyKind.INFO, m.NO_STEP_POSSIBLE(self.lang))]
+        path, start = found
+        self.world.arrange(start)
+        self.record.add(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
+        shown = f"{path.parent.name}/{path.name}"
+        return [Reply(ReplyKind.INFO, m.STARTED_AS_SHOWN(self.lang, demo=shown)), self._state_reply()]
 
     def _what_now(self) -> list[Reply]:
         """ "what now?": the situation and the steps the domain's model allows from it (every step

@@ -13,7 +13,7 @@ from teach.bt.tick import TickResult
 from teach.domain import Domain, State
 from teach.messages import Lang
 from teach.session.replies import Reply, ReplyKind
-from teach.symbolic import steps_towards
+from teach.symbolic import apply_action, steps_towards
 from teach.world.protocol import Outcome, RunResult, Ticker
 
 
@@ -78,9 +78,14 @@ WAY_STEPS = 3
 
 def way_there(domain: Domain, action: str, state: State, lang: Lang) -> list[Reply]:
     """After a step of the teacher's was refused, the steps that would make it possible ("To get
-    there: go to the ball, grasp the ball, go to the bin."), if the domain's model has a short way."""
+    there: go to the ball, grasp the ball, go to the bin."), if the domain's model has a short way
+    that the step does not merely undo (putting d on a to take it off again)."""
     steps = steps_towards(domain, state, action, WAY_STEPS)
     if not steps:
         return []
+    for step in steps[:-1]:
+        state = apply_action(domain, state, step)
+    if apply_action(domain, apply_action(domain, state, steps[-1]), action) == state:
+        return []  # the step would only undo the way's last one ("take d off a" where d is on the table)
     labels = ", ".join(domain.action(name).label(lang) for name in steps)
     return [Reply(ReplyKind.INFO, m.WAY_THERE(lang, steps=labels))]
