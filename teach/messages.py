@@ -240,6 +240,8 @@ ANSWER_FIRST = Text("Please answer my question first (an action, 'done' or 'skip
 DONE_WORD = Text("done", "fertig")
 YES_WORD = Text("yes", "ja")
 SKIP_WORD = Text("skip", "weiter")
+ANSWER_ONE_OF = Text("Please answer with one of: {options} (or 'that cannot happen').",
+                     "Bitte antworte mit einem von: {options} (oder 'das gibt es nicht').")
 NOT_SURE = Text("Not sure? Then say 'skip': I will not do anything there on a guess. Or tell me what to do there.",
                 "Nicht sicher? Dann sag 'weiter': Dort tue ich nichts auf Verdacht. Oder sag mir, was ich dort tun "
                 "soll.")

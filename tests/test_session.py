@@ -680,6 +680,21 @@ def test_a_doubtful_answer_is_not_taken_as_one(ball, tmp_path, lang, unsure, lik
     assert session.pending is None and session.generation == generation + 1
 
 
+@pytest.mark.parametrize(("lang", "line", "hint"), [
+    ("en", "2", "Please answer with one of: yes / find the ball / "),
+    ("de", "die zweite", "Bitte antworte mit einem von: ja / Ball finden / ")])
+def test_an_answer_nothing_is_close_to_says_what_the_question_takes(ball, tmp_path, lang, line, hint):
+    """ "2" (the second option?) was only "I don't know “2”." while a question was open."""
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(SEQUENCE if lang == "en" else "Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, "
+                   "Ball in den Eimer legen")
+    session.handle("done" if lang == "en" else "fertig")
+    session.handle("ask" if lang == "en" else "frag")
+    replies = session.handle(line)
+    assert [r.kind.name for r in replies] == ["ERROR", "INFO"] and replies[1].text.startswith(hint)
+    assert session.pending is not None
+
+
 def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle(SEQUENCE)

@@ -123,14 +123,22 @@ class Asking:
     def _question_reply(self, question: Question) -> Reply:
         text = question.text(self.vocabulary.domain, self.lang)
         self.record.observer.on_question(text, self.budget.left)
+        return Reply(ReplyKind.QUESTION, f"{text}\n   ({self._options(question)})")
+
+    def _options(self, question: Question) -> str:
+        """The answers a question takes: "yes / find the ball / … / done / skip"."""
         yes = [m.YES_WORD(self.lang)] if question.kind in MUST_KINDS else []
         domain = self.vocabulary.domain
         named = actions_to_name(domain)  # blocksworld's 40, "stack a a" among them, filled five lines
         left = unnamed(domain, named)
         more = [m.MORE_ACTIONS(self.lang, count=left)] if left else []
-        options = " / ".join(yes + [a.label(self.lang) for a in named] + more +
-                             [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
-        return Reply(ReplyKind.QUESTION, f"{text}\n   ({options})")
+        return " / ".join(yes + [a.label(self.lang) for a in named] + more +
+                          [m.DONE_WORD(self.lang), m.SKIP_WORD(self.lang)])
+
+    def answer_hint(self) -> Reply:
+        """After an answer nothing was close to ("2", "the second one"): what the open question takes."""
+        assert self.pending is not None
+        return Reply(ReplyKind.INFO, m.ANSWER_ONE_OF(self.lang, options=self._options(self.pending)))
 
     def next_question(self) -> Question | None:
         return self.learning.next_question(self.seed)

@@ -220,6 +220,8 @@ class SessionManager(CompatMembers):
                 if self.world.events:  # "jemand nimmt den Ball weg" was met with the actions alone
                     can += m.WHAT_CAN_HAPPEN(self.lang, events=self._event_names())
                 replies.append(Reply(ReplyKind.INFO, can))
+            elif not shown.suggestions and self.pending is not None:  # "2", "the second one"
+                replies.append(self.asking.answer_hint())
         except ConditionGuess as guess:  # "start in the office": a yes reads it with the condition meant
             self.retype = line.replace(guess.said, guess.meant, 1) if guess.said in line else None
             replies = [Reply(ReplyKind.ERROR, str(guess))]
