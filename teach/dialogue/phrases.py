@@ -37,15 +37,18 @@ _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "
 _IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
                                         "einem", "einer", "einfach", "doch", "kannst", "konntest", "du",
                                         "again", "once", "more", "nochmal", "noch", "einmal", "wieder", "erneut",
-                                        "else",
+                                        "else", "oh", "ah", "ach", "so", "hmm", "hm", "um", "uh", "sorry",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
                                         "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball
 first"), and "again" (a step shown once more after a slip is the same step: "grab it again",
-"such den Ball nochmal"), and "else" ("find someone else" is finding someone)."""
+"such den Ball nochmal"), "else" ("find someone else" is finding someone), and the sounds of a
+teacher catching up ("ach so, erst hinfahren" was "I don't know “ach so”")."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
+_RUN_TOGETHER = ("dorthin", "dahin", "hin")
+"""Place words German runs together with the verb after them ("hinfahren"), longest first."""
 _NAMING_A_PLACE = {"zum", "zur", "ins", "im"}
 """Besides the linking words: what, after a word for a place, names the place itself ("hin zum Ball")."""
 _PARTICLES = {"up", "down", "away", "off", "out", "back"}
@@ -389,7 +392,7 @@ class PhraseBook:
     def _read(self, chunks: list[str], lang: Lang, perturb: bool, topic: str | None,
               tokens: list[Token]) -> list[Token]:
         for index, chunk in enumerate(chunks):
-            words = _place_said(self.key(chunk))
+            words = _place_said(self._separated(self.key(chunk)))
             if not words:
                 continue
             later = ", ".join(chunks[index + 1:])
@@ -624,6 +627,16 @@ class PhraseBook:
         """The words of a phrase that matter for matching (two phrases with one key read the same):
         fillers dropped, but not the words this domain's forms name as objects (block "a")."""
         return tuple(w for w in _words(text) if w not in self._ignored)
+
+    def _separated(self, words: tuple[str, ...]) -> tuple[str, ...]:
+        """A German verb run together with its place word ("hinfahren", "hingehen") as the two words
+        ("hin fahren": to what was named last), where the phrases know the verb."""
+        known = self._vocabulary["action"]
+        split: list[str] = []
+        for word in words:
+            place = next((p for p in _RUN_TOGETHER if word.startswith(p) and word[len(p):] in known), None)
+            split += [place, word[len(place):]] if place else [word]
+        return tuple(split)
 
     def _rephrased(self, words: tuple[str, ...]) -> list[tuple[str, ...]]:
         """Other orders of ``words`` people use for a step, tried where the line reads no other way:
