@@ -695,6 +695,20 @@ def test_an_answer_nothing_is_close_to_says_what_the_question_takes(ball, tmp_pa
     assert session.pending is not None
 
 
+def test_a_step_where_the_task_is_already_finished_says_how_to_start_anew(ball, tmp_path):
+    """After a demonstration the world stays where the task is done; "find the ball" there was
+    "✓ find the ball (nothing changed: not recorded)", which reads as done. It is refused with how to
+    start anew; what happens in the world (an event) still opens a demonstration."""
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    replies = session.handle("find the ball")
+    assert [r.kind.name for r in replies] == ["ERROR", "STATE"] and "'reset'" in replies[0].text
+    assert session.open is None
+    session.handle("change something")
+    assert session.open is not None
+
+
 def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle(SEQUENCE)

@@ -523,7 +523,11 @@ class SessionManager(CompatMembers):
         return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
 
     def _act(self, tokens: list[Token]) -> list[Reply]:
-        """Do the parsed steps in the world, recording each in the open demonstration (opened if need be)."""
+        """Do the parsed steps in the world, recording each in the open demonstration (opened if need be).
+        Steps where the task is already finished and no demonstration is open are refused: they
+        changed nothing and were ticked as done ("✓ find the ball (nothing changed)")."""
+        if self.open is None and tokens and tokens[0].kind == "action" and self.domain.goal_holds(self.world.state()):
+            return [Reply(ReplyKind.ERROR, m.ALREADY_FINISHED(self.lang)), self._state_reply()]
         self.topic = self.phrases.topic(tokens) or self.topic
         return self.showing.act(tokens, self.facilitator) + [self._state_reply()]
 
