@@ -692,6 +692,8 @@ def test_an_answer_nothing_is_close_to_says_what_the_question_takes(ball, tmp_pa
     session.handle("ask" if lang == "en" else "frag")
     replies = session.handle(line)
     assert [r.kind.name for r in replies] == ["ERROR", "INFO"] and replies[1].text.startswith(hint)
+    replies = session.handle("what now?" if lang == "en" else "was jetzt?")  # no "I don't know" first
+    assert [r.kind.name for r in replies] == ["INFO"] and replies[0].text.startswith(hint)
     assert session.pending is not None
 
 

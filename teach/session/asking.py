@@ -22,7 +22,15 @@ from teach.domain import State
 from teach.errors import LearnError
 from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration
-from teach.session.commands import DONE_WORDS, HESITATIONS, IMPOSSIBLE_WORDS, LIKELY_WORDS, SKIP_WORDS, UNSURE_WORDS
+from teach.session.commands import (
+    DONE_WORDS,
+    HESITATIONS,
+    IMPOSSIBLE_WORDS,
+    LIKELY_WORDS,
+    SKIP_WORDS,
+    UNSURE_WORDS,
+    WHAT_NOW_WORDS,
+)
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
 from teach.session.journal import Answered, Asked, Situated, parse_state_text, state_text
 from teach.session.learning import DONE_ABOUT, Learning
@@ -155,6 +163,8 @@ class Asking:
             return [Reply(ReplyKind.INFO, m.KEEP_CAREFUL(self.lang))]
         if key in IMPOSSIBLE_WORDS:
             return self._cannot_happen(question)
+        if key in WHAT_NOW_WORDS:  # "what now?" with a question open: what it takes
+            return [self.answer_hint()]
         hesitant = _without_hesitation(key)
         if hesitant in UNSURE_WORDS:  # "maybe": neither a yes nor a no; the question stays open
             return [Reply(ReplyKind.QUESTION, m.NOT_SURE(self.lang))]
