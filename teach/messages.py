@@ -87,6 +87,8 @@ UNDONE_DEMONSTRATION = Text("Undone: your demonstration {name} (set aside, not l
 UNDONE_ANSWER = Text("Undone: your answer to “{question}”.", "Rückgängig: deine Antwort auf „{question}“.")
 WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne: {names}.")
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
+EVENT_NOT_NOW = Text("“{event}” cannot happen now (nothing changed, not recorded).",
+                     "„{event}“ kann jetzt nicht passieren (nichts hat sich geändert, nicht aufgezeichnet).")
 COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
 WHAT_NOW = Text("From here I can: {actions}. Tell me the next step, or say 'done' when the task is finished "
                 "('help' for more).",

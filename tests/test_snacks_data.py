@@ -210,3 +210,15 @@ def test_every_possible_action_changes_something_the_session_can_see(domain):
 def test_everyday_sayings_name_their_step(domain, lang, line, action):
     tokens = PhraseBook(domain).parse(line, lang)
     assert [(t.kind, t.name) for t in tokens] == [("action", action)]
+
+
+def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):
+    """ "someone takes a snack" with no tray carried was "Event: someone takes a snack." and written
+    into the demonstration as something that happened, though the world refused it."""
+    manager = session("events", domain, world(domain), tmp_path)
+    replies = manager.handle("someone takes a snack")
+    assert [r.kind.name for r in replies] == ["ERROR", "STATE"] and "cannot happen now" in replies[0].text
+    assert manager.open is None
+    manager.handle("wait for a request, take the tray")
+    assert [r.kind.name for r in manager.handle("someone takes a snack")][0] == "INFO"
+    assert manager.open is not None and manager.open.steps[-1].action == EXTERNAL_ACTION

@@ -114,6 +114,11 @@ class Showing:
         for index, token in enumerate(tokens):
             if token.kind == "event":
                 result = self.world.perturb(token.name)
+                if not result.ok:  # it was said to have happened and written as a step of the demonstration
+                    replies.append(Reply(ReplyKind.ERROR, m.EVENT_NOT_NOW(self.lang, event=token.text)))
+                    if facilitator and result.message:
+                        replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
+                    break
                 self.external(result.before, token.text)
                 self.record.observer.on_external(token.name)
                 self.record.save_open()
