@@ -707,6 +707,7 @@ def test_a_step_where_the_task_is_already_finished_says_how_to_start_anew(ball, 
     replies = session.handle("find the ball")
     assert [r.kind.name for r in replies] == ["ERROR", "STATE"] and "'reset'" in replies[0].text
     assert session.open is None
+    assert "already finished" in session.handle("what now?")[1].text  # not "say 'done'": nothing is open
     session.handle("change something")
     assert session.open is not None
 

@@ -20,6 +20,7 @@ import difflib
 import re
 import unicodedata
 from collections.abc import Iterable, Mapping
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from itertools import pairwise
 
@@ -34,10 +35,13 @@ _SHOWN_CHARS = 60  # an unknown part is quoted at most this long
 _FILLERS = {"the", "a", "an", "please", "now", "bitte", "jetzt", "mal", "den", "die", "das", "dem", "der",
             "des", "ein", "eine", "einen", "to", "zu"}
 # phrase matching drops these; "to" and "zu" stay, so "move the bin" and "move to the bin" differ
-_IGNORED = (_FILLERS - {"to", "zu"}) | {"ok", "okay", "also", "just", "pls", "can", "could", "would", "you",
-                                        "einem", "einer", "einfach", "doch", "kannst", "konntest", "du",
-                                        "again", "once", "more", "nochmal", "noch", "einmal", "wieder", "erneut",
-                                        "else", "oh", "ah", "ach", "so", "hmm", "hm", "um", "uh", "sorry",
+INTERJECTIONS = frozenset({"oh", "ah", "ach", "hmm", "hm", "um", "uh", "erm", "ahm", "sorry", "naja", "tja"})
+"""The sounds of a teacher catching up or hesitating, set aside before a step, a command or an
+answer is read ("ach so, erst hinfahren", "sorry, undo", "hmm, I think so")."""
+_IGNORED = (_FILLERS - {"to", "zu"}) | INTERJECTIONS | {"ok", "okay", "also", "just", "pls", "can", "could", "would",
+                                                        "you", "einem", "einer", "einfach", "doch", "kannst",
+                                                        "konntest", "du", "again", "once", "more", "nochmal", "noch",
+                                                        "einmal", "wieder", "erneut", "else", "so",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
                                         "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball
@@ -71,10 +75,10 @@ _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 
 # words a teacher adds before a command ("ok done", "i'm done", "ich bin fertig") and after it ("help me");
 # after it only words no command takes as its argument ("show all" keeps its "all")
-_CHAT_BEFORE = {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now", "please", "just",
-                "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut", "jetzt", "bitte", "mal", "dann", "und",
-                "no", "oh", "ah", "oops", "sorry", "wait", "hmm", "hm", "um", "uh", "nein", "ach", "ups", "hoppla",
-                "warte", "moment", "entschuldigung"}
+_CHAT_BEFORE = INTERJECTIONS | {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now",
+                                "please", "just", "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut",
+                                "jetzt", "bitte", "mal", "dann", "und", "no", "oops", "wait", "nein", "ups", "hoppla",
+                                "warte", "moment", "entschuldigung"}
 _CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
 _HELP_MARKS = re.compile(r"^[?¿]+$")
 
@@ -253,7 +257,7 @@ def command_hint(line: str, lang: Lang, commands: Iterable[str]) -> str | None:
         return None
     words = line.split()
 
-    def chat(word: str, around: set[str]) -> bool:
+    def chat(word: str, around: AbstractSet[str]) -> bool:
         return all(w in around for w in _words(word))
 
     said = len(words)

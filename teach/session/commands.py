@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from enum import Enum
 
-from teach.dialogue.phrases import normalize
+from teach.dialogue.phrases import INTERJECTIONS, normalize
 from teach.messages import Lang, Text
 from teach.session.arguments import says_full, step_number, whole_number
 
@@ -153,7 +153,7 @@ IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen
 """Answers saying the asked-about situation cannot happen: free, and never asked again."""
 SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
                                      "ich weiss nicht", "keine ahnung", "uberspringen"}
-HESITATIONS = {"hmm", "hm", "um", "uh", "erm", "well", "oh", "ah", "ahm", "ahem", "naja", "na", "also", "tja"}
+HESITATIONS = INTERJECTIONS | {"well", "na", "also"}
 """Sounds and words a hesitant answer starts with, set aside before it is compared ("hmm, I think so")."""
 UNSURE_WORDS = {normalize(said) for said in ("maybe", "perhaps", "depends", "it depends", "not sure", "i'm not sure",
                                              "i am not sure", "no idea", "hard to say", "sometimes", "vielleicht",

@@ -659,8 +659,9 @@ class SessionManager(CompatMembers):
         """ "what now?": the situation and the steps the domain's model allows from it (every step
         where it declares no preconditions), or that the task is finished here."""
         domain, state = self.domain, self.world.state()
-        if domain.has_model and domain.goal_holds(state):
-            return [self._state_reply(), Reply(ReplyKind.INFO, m.WHAT_NOW_FINISHED(self.lang))]
+        if domain.has_model and domain.goal_holds(state):  # 'done' ends a demonstration only if one is open
+            finished = m.WHAT_NOW_FINISHED if self.open is not None else m.ALREADY_FINISHED
+            return [self._state_reply(), Reply(ReplyKind.INFO, finished(self.lang))]
         possible = possible_actions(domain, state)
         if not possible:
             return self._start_replies()
