@@ -126,6 +126,15 @@ def test_a_file_that_is_not_a_dialogue_is_refused_with_its_line(tmp_path, capsys
                  "--lenient"]) == 0
 
 
+def test_a_dialogue_may_say_what_a_session_understands(tmp_path, capsys):
+    """ "what now?", doubtful answers and "that cannot happen" are understood by a session, but a
+    scripted replay refused them as "neither a command nor something the robot can do"."""
+    dialogue = tmp_path / "everyday.dialogue"
+    dialogue.write_text("find the ball\nwhat now?\nhmm, maybe\nI think so\nthat cannot happen\n", encoding="utf-8")
+    assert main(["replay", str(dialogue), "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 0
+    assert "From here I can" in capsys.readouterr().out
+
+
 def test_replacing_another_session_needs_overwrite(tmp_path, capsys):
     dialogue = replayed(tmp_path)
     other = tmp_path / "other.dialogue"

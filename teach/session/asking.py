@@ -24,12 +24,12 @@ from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration
 from teach.session.commands import (
     DONE_WORDS,
-    HESITATIONS,
     IMPOSSIBLE_WORDS,
     LIKELY_WORDS,
     SKIP_WORDS,
     UNSURE_WORDS,
     WHAT_NOW_WORDS,
+    without_hesitation,
 )
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
 from teach.session.journal import Answered, Asked, Situated, parse_state_text, state_text
@@ -165,7 +165,7 @@ class Asking:
             return self._cannot_happen(question)
         if key in WHAT_NOW_WORDS:  # "what now?" with a question open: what it takes
             return [self.answer_hint()]
-        hesitant = _without_hesitation(key)
+        hesitant = without_hesitation(key)
         if hesitant in UNSURE_WORDS:  # "maybe": neither a yes nor a no; the question stays open
             return [Reply(ReplyKind.QUESTION, m.NOT_SURE(self.lang))]
         if hesitant in LIKELY_WORDS and question.kind in MUST_KINDS:  # "I think so": not acted on as a yes
@@ -252,11 +252,3 @@ def _asked_about(question: Question) -> str | None:
     if question.kind == "must-goal":
         return DONE_ABOUT
     return question.action if question.kind == "must-precondition" else None
-
-
-def _without_hesitation(key: str) -> str:
-    """A normalized answer without the sounds it starts with ("hmm i think so" is "i think so")."""
-    words = key.split()
-    while words and words[0] in HESITATIONS:
-        words.pop(0)
-    return " ".join(words)

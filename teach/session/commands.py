@@ -155,6 +155,15 @@ SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "
                                      "ich weiss nicht", "keine ahnung", "uberspringen"}
 HESITATIONS = INTERJECTIONS | {"well", "na", "also"}
 """Sounds and words a hesitant answer starts with, set aside before it is compared ("hmm, I think so")."""
+
+
+def without_hesitation(key: str) -> str:
+    """A normalized answer without the sounds it starts with ("hmm i think so" is "i think so")."""
+    words = key.split()
+    while words and words[0] in HESITATIONS:
+        words.pop(0)
+    return " ".join(words)
+
 UNSURE_WORDS = {normalize(said) for said in ("maybe", "perhaps", "depends", "it depends", "not sure", "i'm not sure",
                                              "i am not sure", "no idea", "hard to say", "sometimes", "vielleicht",
                                              "kommt darauf an", "kommt drauf an", "nicht sicher",

@@ -9,7 +9,18 @@ from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, norm
 from teach.dialogue.script import Script
 from teach.errors import FormatError, TeachError
 from teach.messages import Lang
-from teach.session.commands import COMMAND_NAMES, DONE_WORDS, SKIP_WORDS, Verb, parse_command
+from teach.session.commands import (
+    COMMAND_NAMES,
+    DONE_WORDS,
+    IMPOSSIBLE_WORDS,
+    LIKELY_WORDS,
+    SKIP_WORDS,
+    UNSURE_WORDS,
+    WHAT_NOW_WORDS,
+    Verb,
+    parse_command,
+    without_hesitation,
+)
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
@@ -18,7 +29,8 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
     lang = Lang.parse(language)
-    answers = DONE_WORDS | SKIP_WORDS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
+    answers = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | UNSURE_WORDS | LIKELY_WORDS | \
+        {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, line in script.lines:
         command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
@@ -26,7 +38,7 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
             from teach.sim.guide import parse_guide_line
 
             parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
-        if command is not None or is_new_action_answer(line) or normalize(line) in answers \
+        if command is not None or is_new_action_answer(line) or without_hesitation(normalize(line)) in answers \
                 or is_yes(line, lang) or is_no(line, lang):
             continue
         found, topic = _names_actions_or_events(line, phrases, lang, topic)
