@@ -135,6 +135,8 @@ def read_demo_set(folder: str | Path, domain: Domain | None = None) -> tuple[Dom
     """All ``*.csv`` demonstrations of a folder in sorted name order, with their domain; a set
     holds at most ``MAX_DEMOS`` files and ``MAX_SET_LINES`` lines (teach.limits)."""
     folder = Path(folder)
+    if not os.path.lexists(folder):
+        raise FormatError("no such folder", folder)
     if not folder.is_dir():
         raise FormatError("not a folder of demonstrations", folder)
     if domain is None:

@@ -126,6 +126,20 @@ def test_a_file_that_is_not_a_dialogue_is_refused_with_its_line(tmp_path, capsys
                  "--lenient"]) == 0
 
 
+@pytest.mark.parametrize("args", [("learn", "{ball}/delta22", "-o", "{out}"),
+                                  ("learn", "{ball}/delta22", "--approach", "pabt", "-o", "{out}"),
+                                  ("test", "{ball}/reference/table61.xml", "{ball}/delta55")])
+def test_a_mistyped_folder_is_said_to_be_missing(tmp_path, capsys, args):
+    """`teach learn demos/ball/delta22 --approach pabt` learned from the domain file of the folder
+    above and wrote a tree; without pabt, and for `teach test`, a missing folder was "needs a folder
+    of CSV demonstrations" / "not a folder of demonstrations"."""
+    out = tmp_path / "out.xml"
+    filled = [arg.format(ball=ROOT / "demos" / "ball", out=out) for arg in args]
+    assert main(filled) == 2
+    assert one_line(capsys.readouterr().err).endswith(("no such file or folder", "no such folder"))
+    assert not out.exists()
+
+
 def test_a_dialogue_may_say_what_a_session_understands(tmp_path, capsys):
     """ "what now?", doubtful answers and "that cannot happen" are understood by a session, but a
     scripted replay refused them as "neither a command nor something the robot can do"."""

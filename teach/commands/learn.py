@@ -98,6 +98,8 @@ def _inputs(args: argparse.Namespace):  # type: ignore[no-untyped-def]
     from teach.errors import FormatError
 
     source: Path = args.source
+    if not source.exists():  # "delta22" was learned (pabt: from the domain file of the folder above)
+        raise FormatError("no such file or folder", source)
     domain = load_domain(args.domain) if args.domain else None
     if args.approach == "pabt":
         if domain is None:
