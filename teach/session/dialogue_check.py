@@ -9,18 +9,7 @@ from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, norm
 from teach.dialogue.script import Script
 from teach.errors import FormatError, TeachError
 from teach.messages import Lang
-from teach.session.commands import (
-    COMMAND_NAMES,
-    DONE_WORDS,
-    IMPOSSIBLE_WORDS,
-    LIKELY_WORDS,
-    SKIP_WORDS,
-    UNSURE_WORDS,
-    WHAT_NOW_WORDS,
-    Verb,
-    parse_command,
-    without_hesitation,
-)
+from teach.session.commands import ANSWER_SAYINGS, COMMAND_NAMES, Verb, parse_command, without_hesitation
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
@@ -29,8 +18,7 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
     lang = Lang.parse(language)
-    answers = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | UNSURE_WORDS | LIKELY_WORDS | \
-        {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
+    answers = ANSWER_SAYINGS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, line in script.lines:
         command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
