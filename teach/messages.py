@@ -94,9 +94,6 @@ WHAT_NOW = Text("From here I can: {actions}. Tell me the next step, or say 'done
                 "('help' for more).",
                 "Von hier aus kann ich: {actions}. Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe "
                 "erledigt ist ('hilfe' für mehr).")
-ALREADY_FINISHED = Text("The task is already finished here: say 'reset' for a new start, or 'start' and a situation.",
-                        "Die Aufgabe ist hier schon erledigt: sag 'neu' für einen neuen Start, oder 'situation' und "
-                        "eine Lage.")
 WHAT_NOW_FINISHED = Text("The task is finished here: say 'done' if this is how it should end, or 'reset' for a new "
                          "start ('help' for more).",
                          "Die Aufgabe ist hier erledigt: sag 'fertig', wenn sie so enden soll, oder 'neu' für einen "

@@ -157,13 +157,6 @@ HESITATIONS = INTERJECTIONS | {"well", "na", "also"}
 """Sounds and words a hesitant answer starts with, set aside before it is compared ("hmm, I think so")."""
 
 
-def without_hesitation(key: str) -> str:
-    """A normalized answer without the sounds it starts with ("hmm i think so" is "i think so")."""
-    words = key.split()
-    while words and words[0] in HESITATIONS:
-        words.pop(0)
-    return " ".join(words)
-
 UNSURE_WORDS = {normalize(said) for said in ("maybe", "perhaps", "depends", "it depends", "not sure", "i'm not sure",
                                              "i am not sure", "no idea", "hard to say", "sometimes", "vielleicht",
                                              "kommt darauf an", "kommt drauf an", "nicht sicher",
@@ -185,6 +178,14 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
 ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | UNSURE_WORDS | LIKELY_WORDS
 """Every whole line a session takes as an answer or a plea, not as a step or a command (after
 ``without_hesitation``): what a dialogue file may say besides steps and commands."""
+
+
+def without_hesitation(key: str) -> str:
+    """A normalized answer without the sounds it starts with ("hmm i think so" is "i think so")."""
+    words = key.split()
+    while words and words[0] in HESITATIONS:
+        words.pop(0)
+    return " ".join(words)
 
 
 def parse_command(line: str) -> tuple[Command | None, str]:

@@ -305,7 +305,7 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if command is None and is_yes(line, self.lang):  # "yes" to nothing asked (it was "I don't know 'yes'")
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
-        if command is None and normalize(line) in WHAT_NOW_WORDS | SKIP_WORDS:  # "what now?", "I don't know"
+        if command is None and (normalize(line) in WHAT_NOW_WORDS or normalize(line) in SKIP_WORDS):  # "I don't know"
             return self._what_now()
         if command is None:
             return self._teach_actions(line)
@@ -527,7 +527,7 @@ class SessionManager(CompatMembers):
         Steps where the task is already finished and no demonstration is open are refused: they
         changed nothing and were ticked as done ("✓ find the ball (nothing changed)")."""
         if self.open is None and tokens and tokens[0].kind == "action" and self.domain.goal_holds(self.world.state()):
-            return [Reply(ReplyKind.ERROR, m.ALREADY_FINISHED(self.lang)), self._state_reply()]
+            return [Reply(ReplyKind.ERROR, m.NOTHING_TO_DO(self.lang)), self._state_reply()]
         self.topic = self.phrases.topic(tokens) or self.topic
         return self.showing.act(tokens, self.facilitator) + [self._state_reply()]
 
@@ -660,7 +660,7 @@ class SessionManager(CompatMembers):
         where it declares no preconditions), or that the task is finished here."""
         domain, state = self.domain, self.world.state()
         if domain.has_model and domain.goal_holds(state):  # 'done' ends a demonstration only if one is open
-            finished = m.WHAT_NOW_FINISHED if self.open is not None else m.ALREADY_FINISHED
+            finished = m.WHAT_NOW_FINISHED if self.open is not None else m.NOTHING_TO_DO
             return [self._state_reply(), Reply(ReplyKind.INFO, finished(self.lang))]
         possible = possible_actions(domain, state)
         if not possible:
