@@ -207,12 +207,18 @@ def test_a_suggestion_says_which_words_and_which_token(book):
     assert names(book.confirm(suggestion)) == ["FindBall", "ApproachBin", "GraspBall"]
 
 
-@pytest.mark.parametrize("line", ["go to the b", "go get it", "nein danke bitte"])
+@pytest.mark.parametrize("line", ["go to the b", "go for it", "nein danke bitte"])
 def test_no_suggestion_unless_one_phrase_is_clearly_nearest(book, line):
-    # "go to the b" is the ball or the bin; "go get it" only looks like "go to the bin"
+    # "go to the b" is the ball or the bin; "go for it" only looks like "go to the bin"
     with pytest.raises(UnknownPhrase) as info:
         book.parse(line, "de" if line[0] in "hn" else "en")
     assert info.value.suggestion is None and "mean" not in info.value.message
+
+
+@pytest.mark.parametrize("line", ["go get it", "go and get it", "go get the ball", "go and grab the ball"])
+def test_an_errand_reads_as_its_step(book, line):
+    # "go get it" once looked like "go to the bin"; only the ball is got
+    assert names(book.parse(line)) == ["GraspBall"]
 
 
 def test_hingehen_with_nothing_named_is_offered_as_geh_hin_is(book):

@@ -74,13 +74,59 @@ def test_a_done_word_before_the_task_is_done_is_refused_never_read_as_an_action(
     assert open_actions(manager) == [1]  # "finished" once offered "find the ball": Enter would record it
 
 
-@pytest.mark.parametrize(("lang", "line"), [("en", "go get it"), ("de", "Nimm gehen!")])
+@pytest.mark.parametrize(("lang", "line"), [("en", "go for it"), ("de", "Nimm gehen!")])
 def test_unclear_words_are_not_guessed_into_a_step(ball, tmp_path, lang, line):
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang].split(",")[0])
     reply = said(manager, line)
     assert manager.suggestion is None and "Did you mean" not in reply and "Meintest" not in reply
     assert said(manager, "") == "" and open_actions(manager) == [1]  # Enter records nothing
+
+
+@pytest.mark.parametrize("line", ["go get it", "go and grab it", "go get the ball", "Go and get the ball!"])
+def test_an_errand_is_the_step_it_sends_the_robot_on(ball, tmp_path, line):
+    """ "go get it" was once guessed as "go to the bin", then unknown: it is "get it" (grasp the
+    ball); with the ball out of reach that is refused with the way there, nothing recorded."""
+    manager = session(ball, tmp_path, "en")
+    said(manager, "look for the ball")
+    reply = said(manager, line)
+    assert "To get there: go to the ball." in reply and open_actions(manager) == [1]
+    said(manager, "go to the ball")
+    said(manager, line)
+    assert manager.suggestion is None and open_actions(manager) == [1, 2, 3]
+
+
+@pytest.mark.parametrize("line", ["go back", "go there", "go to it"])
+def test_go_before_a_place_is_no_errand(ball, tmp_path, line):
+    manager = session(ball, tmp_path, "en")
+    said(manager, "look for the ball")
+    said(manager, line)
+    assert open_actions(manager) == ([1] if line == "go back" else [1, 2])
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "start over"), ("en", "Start again!"), ("en", "from the beginning"),
+                                            ("de", "nochmal von vorn"), ("de", "von vorne")])
+def test_starting_over_is_a_new_start(ball, tmp_path, lang, line):
+    """ "start over" was "unknown condition 'over'" (read as 'start' with conditions)."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    reply = said(manager, line)
+    assert "condition" not in reply and "Bedingung" not in reply
+    assert manager.world.state() == (False,) * len(ball.conditions)
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "any questions?"), ("en", "Do you have any questions?"),
+                                            ("de", "hast du Fragen?"), ("de", "Noch Fragen?")])
+def test_asking_for_questions_lets_the_robot_ask(ball, tmp_path, lang, line):
+    manager = session(ball, tmp_path, lang, questions=5)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    if manager.pending is not None:
+        said(manager, "skip" if lang == "en" else "weiter")
+    used = manager.budget.used
+    said(manager, line)
+    assert manager.pending is not None and manager.budget.used == used + 1
 
 
 @pytest.mark.parametrize("line", ["hingehen", "Hingehen!", "geh hin"])

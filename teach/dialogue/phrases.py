@@ -57,13 +57,16 @@ _NAMING_A_PLACE = {"zum", "zur", "ins", "im"}
 """Besides the linking words: what, after a word for a place, names the place itself ("hin zum Ball")."""
 _PARTICLES = {"up", "down", "away", "off", "out", "back"}
 """Particles of phrasal verbs, which people put after the object ("pick b up", "put c down")."""
+_ERRAND = ("go", "and")
+"""Words before a step that only say the robot should set off to do it ("go get the ball", "go
+and grab it"): one step, not a "go" of its own."""
 _LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
 """Words that link a step's objects ("stack b on a", "on top of a"), left out where a line reads no
 other way."""
 # the word after one of these in a phrase names an object a pronoun may stand for
 _ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
              "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
-_SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|\band\b|\bund dann\b|\bdann\b"
+_SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|(?<!\bgo )\band\b|\bund dann\b|\bdann\b"
                     r"|\bdanach\b|\bund\b)\s*", re.IGNORECASE)
 
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
@@ -645,9 +648,15 @@ class PhraseBook:
     def _rephrased(self, words: tuple[str, ...]) -> list[tuple[str, ...]]:
         """Other orders of ``words`` people use for a step, tried where the line reads no other way:
         without linking words before objects ("stack b on a"), the particle of a phrasal verb after
-        its object moved back ("put c down": "put down c")."""
+        its object moved back ("put c down": "put down c"), without the "go (and)" of an errand ("go
+        get the ball": "get the ball"; not "go back", "go there")."""
         unlinked = self._unlinked(words)
         found = [unlinked] if unlinked != words else []
+        errand = words
+        while errand and errand[0] in _ERRAND:
+            errand = errand[1:]
+        if errand != words and errand and errand[0] not in _LINKS | _PARTICLES | _PLACES.keys():
+            found.append(errand)
         linked_once = self._linked_once(words)
         if linked_once != words:
             found.append(linked_once)

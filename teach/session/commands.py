@@ -81,11 +81,22 @@ class Verb(Enum):
     START = _Declared(("start",), ("situation",), Text("start COND ...", "start BEDINGUNG ..."),
                       Text("put the world in a situation (named conditions true)",
                            "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"), argued=True)
-    RESET = _Declared(("reset",), ("neu",), Text("reset [N]", "neu [N]"),
-                      Text("a new start (random in MuJoCo; N: start number N, the same each time)",
-                           "ein neuer Start (in MuJoCo zufällig; N: Start Nummer N, jedes Mal derselbe)"), argued=True)
-    ASK = _Declared(("ask",), ("frag", "frage"), Text("ask", "frag"),
-                    Text("let the robot ask a question", "den Roboter fragen lassen"))
+    RESET = _Declared(("reset", "start over", "start again", "begin again", "from the beginning",
+                       "start from the beginning", "from the start"),
+                      ("neu", "von vorn", "von vorne", "nochmal von vorn", "nochmal von vorne", "neu anfangen",
+                       "neu beginnen", "von vorn anfangen", "von vorne anfangen"),
+                      Text("reset [N]", "neu [N]"),
+                      Text("a new start (random in MuJoCo; N: start number N, the same each time); "
+                           "also 'start over'",
+                           "ein neuer Start (in MuJoCo zufällig; N: Start Nummer N, jedes Mal derselbe); "
+                           "auch 'von vorn'"), argued=True)
+    ASK = _Declared(("ask", "any questions", "do you have any questions", "do you have questions",
+                     "have you got any questions", "questions", "ask me"),
+                    ("frag", "frage", "hast du fragen", "hast du noch fragen", "noch fragen",
+                     "irgendwelche fragen", "fragen", "frag mich"),
+                    Text("ask", "frag"),
+                    Text("let the robot ask a question; also 'any questions?'",
+                         "den Roboter fragen lassen; auch 'hast du Fragen?'"))
     MODEL = _Declared(("model",), ("modell",), Text("model FILE", "modell DATEI"),
                       Text("load action definitions (pre/ram) and plan with them",
                            "Handlungsbeschreibungen laden und damit planen"), argued=True)
