@@ -70,6 +70,16 @@ def test_someone_else_is_someone():
     assert [(t.name, t.guessed) for t in snacks.parse("find someone else")] == [("FindPartner", False)]
 
 
+@pytest.mark.parametrize("line", ["go to her", "go to them", "go to him"])
+def test_a_person_pronoun_never_stands_for_a_thing(line):
+    """"go to her" (snacks, the tray just taken) was "go back to the office": the one phrase the
+    pronoun made, recorded as the step."""
+    snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
+    with pytest.raises(UnknownPhrase):
+        snacks.parse(line, topic="tray")
+    assert names(snacks.parse("find them")) == names(snacks.parse("find her")) == ["FindPartner"]
+
+
 def test_english_with_and_then_and_without_separators(book):
     tokens = book.parse("find the ball and then go to the ball grasp the ball")
     assert names(tokens) == ["FindBall", "ApproachBall", "GraspBall"]

@@ -49,6 +49,10 @@ first"), and "again" (a step shown once more after a slip is the same step: "gra
 "such den Ball nochmal"), "else" ("find someone else" is finding someone), and the sounds of a
 teacher catching up ("ach so, erst hinfahren" was "I don't know “ach so”")."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+_PERSONS = frozenset({"person", "people", "someone", "somebody", "caregiver", "resident", "partner", "patient",
+                      "nurse", "guest", "visitor", "man", "woman", "child", "friend"})
+"""English words for people: what "him", "her" and "them" may stand for ("go to her" was "go back
+to the office", the one phrase a pronoun made; "them" also stands for a plural, "put them away")."""
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
 _RUN_TOGETHER = ("dorthin", "dahin", "hin")
@@ -480,7 +484,7 @@ class PhraseBook:
         kind = "event" if perturb else "action"
         options = []
         for noun in self._nouns:
-            if noun in words:
+            if noun in words or not _may_stand_for(words, noun):
                 continue
             for variant in _substituted(words, noun, places):
                 entry = next((e for e in self._entries.get(variant, []) if e.kind == kind), None)
@@ -695,6 +699,13 @@ class PhraseBook:
     def _last_noun(self, words: Iterable[str]) -> str | None:
         found = [w for w in words if w in self._nouns]
         return found[-1] if found else None
+
+
+def _may_stand_for(words: tuple[str, ...], noun: str) -> bool:
+    """The English pronouns among ``words`` may all mean ``noun``: "him" and "her" a person, "them"
+    a person or a plural ("it" and the German pronouns anything: German names things "ihn" and "sie")."""
+    person = noun in _PERSONS
+    return all(person or (word == "them" and noun.endswith("s")) for word in words if word in ("him", "her", "them"))
 
 
 def _alike(typed: str, word: str) -> bool:
