@@ -80,11 +80,12 @@ def test_ball_pairs_smallest_case_the_thesis_pair():
     ball = bench_ball_pairs.load()
     pair = tuple(d for d in ball.delta2 if d.name in ("d01", "d33"))
     runs = bench_ball_pairs.run_pair(ball, pair)  # type: ignore[arg-type]
-    assert runs[0].shows_all and runs[0].questions == 0 and len(runs) == 6
+    assert runs[0].shows_all and runs[0].questions == 0 and 1 < len(runs) <= 6  # at most 5 questions
     assert all(r.training_kept and sum(r.outcomes.values()) == 32 for r in runs)
     assert all(r.outcomes["unsafe"] == r.outcomes["false done"] == 0 for r in runs)  # the safe learner
-    assert [len(r.answers) for r in runs] == list(range(6))
-    assert runs[5].reproduced > runs[0].reproduced  # the answers pay
+    assert [len(r.answers) for r in runs] == list(range(len(runs)))
+    assert runs[-1].reproduced > runs[0].reproduced  # the answers pay
+    assert len(runs) == 6 or runs[-1].reproduced == 43  # fewer questions only when nothing is left to ask
     # the thesis's specialization reproduced 35/43 from this pair; the guessing learner does not do worse
     assert bench_ball_pairs.run_pair(ball, pair, budget=0, safe=False)[0].reproduced >= 35  # type: ignore[arg-type]
 

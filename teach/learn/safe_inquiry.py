@@ -9,8 +9,9 @@ literals one "yes" rules out. In order:
 1. **conflicts**: a state the demonstrations labelled two ways; the answer decides it; then
    a situation where the domain's declared goal does not hold but the tree says "done" (only
    an answer can have taught that);
-2. **the most settling situation**, in a domain of at most ``SETTLING_STATES`` states: the
-   state where the robot does nothing now whose answer is expected to rule out the most
+2. **the most settling situation**, in a domain of at most ``SETTLING_STATES`` states: of the
+   states where the robot does nothing now, first those where the most predicted runs of the
+   tree end (``_runs_ending_stuck``), then the one whose answer is expected to rule out the most
    unsure literals. The answer is predicted under hypotheses drawn from what the data leaves
    open (each unsure literal needed or not), each by the plan it would give; whichever action
    the teacher then names, its unsure literals that do not hold there are ruled out. (A "may I
@@ -201,8 +202,9 @@ made it hold, the action undoes it: usually needed); others are dropped with eve
 
 
 def _most_settling(learner: Learner, does: Callable[[State], str], skip: set[State]) -> SituationQuestion | None:
-    """In a domain of at most ``SETTLING_STATES`` states: the situation where the robot does nothing
-    now whose answer is expected to rule out the most unsure literals (whichever action the
+    """In a domain of at most ``SETTLING_STATES`` states: of the situations where the robot does
+    nothing now, first those where the most predicted runs end (``_runs_ending_stuck``), then the
+    one whose answer is expected to rule out the most unsure literals (whichever action the
     teacher names there rules out its own unsure literals that do not hold), the answers
     predicted by ``_predicted_answers``. Asked as "may I still do X?" with X the likeliest answer.
     In a larger domain the group questions of ``_hypotheses`` come first instead."""
@@ -213,19 +215,56 @@ def _most_settling(learner: Learner, does: Callable[[State], str], skip: set[Sta
     if not any(unsure.values()):
         return None
     labelled = learner.labelled_masks()
-    probes = [learner.state_of(mask) for mask in range(1 << width) if mask not in labelled and learner.possible(mask)]
-    probes = [state for state in probes if state not in skip and does(state) == "nothing"]
+    masks = [mask for mask in range(1 << width) if mask not in labelled and learner.possible(mask)]
+    masks = [mask for mask in masks if learner.state_of(mask) not in skip and does(learner.state_of(mask)) == "nothing"]
+    probes = [learner.state_of(mask) for mask in masks]
+    ending = _runs_ending_stuck(learner, does)
     chance = random.Random(len(labelled) * 7919 + len(skip))  # the same session asks the same questions
-    best: tuple[int, State, str | None, list[Lit]] | None = None
-    for state, votes in zip(probes, _predicted_answers(learner, probes, unsure, reasoned, chance), strict=True):
+    best: tuple[tuple[int, int], State, str | None, list[Lit]] | None = None
+    for mask, state, votes in zip(masks, probes, _predicted_answers(learner, probes, unsure, reasoned, chance),
+                                  strict=True):
         if not votes:
             continue
         gain = sum(count * len(_false_in(state, unsure.get(answer, []))) for answer, count in votes.items())
         likely = max(votes, key=votes.__getitem__)
         settles = _false_in(state, unsure.get(likely, []))
-        if settles and (best is None or gain > best[0]):
-            best = (gain, state, likely, settles)
+        if settles and (best is None or (ending.get(mask, 0), gain) > best[0]):
+            best = ((ending.get(mask, 0), gain), state, likely, settles)
     return None if best is None else may_i(learner, best[1], best[2], best[3], does(best[1]))
+
+
+MAX_RUN = 20
+"""The most steps a predicted run of the tree is followed (``_runs_ending_stuck``)."""
+
+
+def _runs_ending_stuck(learner: Learner, does: Callable[[State], str]) -> dict[int, int]:
+    """For each state (a bitmask), how many runs of the tree end there doing nothing: one run from
+    each ``predicted`` state, each step by the learned effects of the action the tree runs, until it
+    is done, does nothing, repeats a state or has gone ``MAX_RUN`` steps. A question is worth most
+    where many starts lead the robot to a halt: on the ball "ball in hand, bin far away" lies on
+    most ways to the bin, and literals settled alone left it unasked (78 pairs of demonstrations +
+    5 questions, Δ5 mean / worst over 4 draws: 38.9 / 28.5 by literals alone, 40.6 / 31.2 with
+    these runs first). Runs start from the states the learned effects lead to, not from every
+    state: a run from a state that cannot happen ends where no start leads (strips-6x5 after 5
+    demonstrations + 5 questions, 12 draws: runs from every state 74% reached, literals alone 79%,
+    runs from these 78%)."""
+    effects = {name: knowledge.effects for name, knowledge in learner.model.actions.items() if knowledge.demonstrated}
+    ending: dict[int, int] = {}
+    for start in predicted(learner):
+        if not learner.possible(start):
+            continue
+        mask, seen = start, set()
+        for _ in range(MAX_RUN):
+            action = does(learner.state_of(mask))
+            if action == "nothing":
+                ending[mask] = ending.get(mask, 0) + 1
+                break
+            if action not in effects or mask in seen:
+                break  # done, or a loop
+            seen.add(mask)
+            made_true, made_false = effects[action]
+            mask = (mask | made_true) & ~made_false
+    return ending
 
 
 def _open_literals(learner: Learner) -> tuple[dict[str | None, list[Lit]], dict[str | None, set[Lit]]]:
