@@ -168,7 +168,10 @@ def test_no_with_nothing_asked_says_how_to_undo(ball, tmp_path, lang, no, hint):
 
 
 @pytest.mark.parametrize(("lang", "yes", "reply"), [("en", "yes", "No question is open."),
-                                                     ("de", "ja", "Es ist keine Frage offen.")])
+                                                     ("de", "ja", "Es ist keine Frage offen."),
+                                                     ("en", "maybe", "No question is open."),
+                                                     ("en", "hmm, I think so", "No question is open."),
+                                                     ("de", "vielleicht", "Es ist keine Frage offen.")])
 def test_yes_with_nothing_asked_says_so(ball, tmp_path, lang, yes, reply):
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang].split(",")[0])

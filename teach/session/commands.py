@@ -186,6 +186,8 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
                                                "was soll ich machen", "was mache ich jetzt", "was kannst du")}
 """Whole lines asking what to do next (also, with no question open, the "I don't know"s of
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
+DOUBTS = UNSURE_WORDS | LIKELY_WORDS
+"""The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
 ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | UNSURE_WORDS | LIKELY_WORDS
 """Every whole line a session takes as an answer or a plea, not as a step or a command (after
 ``without_hesitation``): what a dialogue file may say besides steps and commands."""

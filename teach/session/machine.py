@@ -59,6 +59,7 @@ from teach.session.commands import (
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
     COMMANDS,
+    DOUBTS,
     LOOKING,
     NUMBERED,
     SKIP_WORDS,
@@ -68,6 +69,7 @@ from teach.session.commands import (
     Verb,
     parse_command,
     typo_of_command,
+    without_hesitation,
 )
 from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
@@ -303,8 +305,8 @@ class SessionManager(CompatMembers):
         self.asking.in_a_row = 0
         if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
-        if command is None and is_yes(line, self.lang):  # "yes" to nothing asked (it was "I don't know 'yes'")
-            return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+        if command is None and (is_yes(line, self.lang) or without_hesitation(normalize(line)) in DOUBTS):
+            return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]  # "yes"/"maybe" to nothing asked
         if command is None and (normalize(line) in WHAT_NOW_WORDS or normalize(line) in SKIP_WORDS):  # "I don't know"
             return self._what_now()
         if command is None:
