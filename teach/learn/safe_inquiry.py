@@ -215,21 +215,22 @@ def _most_settling(learner: Learner, does: Callable[[State], str], skip: set[Sta
     if not any(unsure.values()):
         return None
     labelled = learner.labelled_masks()
-    masks = [mask for mask in range(1 << width) if mask not in labelled and learner.possible(mask)]
-    masks = [mask for mask in masks if learner.state_of(mask) not in skip and does(learner.state_of(mask)) == "nothing"]
-    probes = [learner.state_of(mask) for mask in masks]
+    unseen = [mask for mask in range(1 << width) if mask not in labelled and learner.possible(mask)]
+    idle = [(mask, state) for mask, state in ((mask, learner.state_of(mask)) for mask in unseen)
+            if state not in skip and does(state) == "nothing"]
+    probes = [state for _mask, state in idle]
     ending = _runs_ending_stuck(learner, does)
     chance = random.Random(len(labelled) * 7919 + len(skip))  # the same session asks the same questions
     best: tuple[tuple[int, int], State, str | None, list[Lit]] | None = None
-    for mask, state, votes in zip(masks, probes, _predicted_answers(learner, probes, unsure, reasoned, chance),
-                                  strict=True):
+    for (mask, state), votes in zip(idle, _predicted_answers(learner, probes, unsure, reasoned, chance), strict=True):
         if not votes:
             continue
         gain = sum(count * len(_false_in(state, unsure.get(answer, []))) for answer, count in votes.items())
         likely = max(votes, key=votes.__getitem__)
         settles = _false_in(state, unsure.get(likely, []))
-        if settles and (best is None or (ending.get(mask, 0), gain) > best[0]):
-            best = ((ending.get(mask, 0), gain), state, likely, settles)
+        worth = (ending.get(mask, 0), gain)
+        if settles and (best is None or worth > best[0]):
+            best = (worth, state, likely, settles)
     return None if best is None else may_i(learner, best[1], best[2], best[3], does(best[1]))
 
 

@@ -188,7 +188,7 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
 DOUBTS = UNSURE_WORDS | LIKELY_WORDS
 """The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
-ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | UNSURE_WORDS | LIKELY_WORDS
+ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS
 """Every whole line a session takes as an answer or a plea, not as a step or a command (after
 ``without_hesitation``): what a dialogue file may say besides steps and commands."""
 
