@@ -61,11 +61,11 @@ def _run(path: Path) -> RunRecord:
 
 
 def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: int | None = None,
-            tick: int | None = None) -> Group:
+            tick: int | None = None, dialogue: bool = False) -> Group:
     """Everything a researcher reviews, in session order within each section, each event with
     its place on the recording's timelines ("step 5 · tick 20": ``--step 5`` or ``--tick 20``
     shows the tree there); with ``step`` or ``tick``, also the tree there coloured by each node's
-    status."""
+    status; with ``dialogue``, every line said, last (a study reads what the teacher typed)."""
     parts: list[RenderableType] = [_header(contents)]
     parts += [Text("\nDemonstrations", style="bold underline")]
     parts += [_demonstration(d, contents.conditions) for d in contents.demonstrations] or [Text("  none")]
@@ -83,6 +83,8 @@ def summary(contents: RecordingContents, runs: Sequence[RunRecord] = (), step: i
     parts += [Text("\nFinal tree", style="bold underline"), _final_tree(contents)]
     parts += [Text("\nReplay", style="bold underline"), _replay(contents)]
     parts += [Text("\nStudy figures", style="bold underline"), study_figures(contents, runs)]
+    if dialogue:
+        parts += [Text("\nDialogue", style="bold underline"), _dialogue(contents)]
     return Group(*parts)
 
 
@@ -145,6 +147,15 @@ def _questions(contents: RecordingContents) -> RenderableType:
             parts.append(Text.assemble("     → ", _at(q.answer_step, q.answer_moment), (q.answer, "bold"),
                                        f": {q.change}" if q.change else ""))
     return Group(*parts)
+
+
+def _dialogue(contents: RecordingContents) -> RenderableType:
+    """Every line of the session as it was said, the teacher's and the robot's, in order."""
+    if not contents.dialogue:
+        return Text("  none recorded")
+    return Group(*(Text.assemble("  ", _at(line.step, line.moment),
+                                 (f"{line.speaker}: ", "bold" if line.speaker == "teacher" else "dim"), line.text)
+                   for line in contents.dialogue))
 
 
 _EVENTS = {"specialize": "from a demonstration", "answer": "from an answer"}

@@ -62,6 +62,18 @@ def test_cli_prints_summary(recording: Path, capsys: pytest.CaptureFixture[str])
     assert "session test-session" in out and "demo-002" in out
 
 
+def test_the_dialogue_is_printed_on_request_in_order(recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The summary listed demonstrations, questions and trees, not what was said: a study reads
+    what the teacher typed (`--dialogue`)."""
+    assert main(["review", str(recording)]) == 0
+    assert "Dialogue" not in capsys.readouterr().out
+    assert main(["review", str(recording), "--dialogue"]) == 0
+    out = capsys.readouterr().out
+    said = out[out.index("Dialogue"):]
+    assert re.search(r"\[step 1 · tick \d+\] teacher: find the ball", said)
+    assert said.index("teacher: find the ball") < said.index("robot: I find the ball.")
+
+
 def test_cli_truncated_recording_is_one_line_status_2(recording: Path, tmp_path: Path,
                                                       capsys: pytest.CaptureFixture[str]) -> None:
     broken = tmp_path / "broken.rrd"

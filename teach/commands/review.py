@@ -5,13 +5,15 @@ Example:
     teach review recordings/quickstart.rrd --open
     teach review recordings/quickstart.rrd --step 12
     teach review recordings/quickstart.rrd --tick 40
+    teach review recordings/quickstart.rrd --dialogue
 
 Prints the demonstrations (action sequences with their states), the questions with their
 answers, each tree generation with its node count, the runs (their .btlog files beside the
 recording, for Groot2), the final tree, the replay result and the study figures, each event
 with its place on the recording's timelines ("step 5 · tick 20"); ``--step N`` adds the tree at
 step N (a typed line) coloured by each node's status there, ``--tick N`` the tree at moment N of
-the viewer's ``tick`` timeline (a tick of a run, a step of a demonstration or a line).
+the viewer's ``tick`` timeline (a tick of a run, a step of a demonstration or a line),
+``--dialogue`` every line the teacher and the robot said, each with its place.
 """
 
 from __future__ import annotations
@@ -30,6 +32,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--step", type=_step, metavar="N", help="also show the tree at step N, coloured by status")
     parser.add_argument("--tick", type=_step, metavar="N",
                         help="also show the tree at moment N of the viewer's tick timeline, coloured by status")
+    parser.add_argument("--dialogue", action="store_true",
+                        help="also print every line the teacher and the robot said, with its step and tick")
 
 
 def _step(text: str) -> int:
@@ -46,7 +50,8 @@ def run(args: argparse.Namespace) -> int:
     from teach.review import read_runs, summary
 
     contents = read_recording(args.recording)
-    shown = summary(contents, read_runs(args.recording), args.step, args.tick)  # all checked before anything is printed
+    runs = read_runs(args.recording)
+    shown = summary(contents, runs, args.step, args.tick, args.dialogue)  # all checked before anything is printed
     Console().print(shown)
     if args.open:
         open_viewer(args.recording)
