@@ -116,6 +116,18 @@ def test_starting_over_is_a_new_start(ball, tmp_path, lang, line):
     assert manager.world.state() == (False,) * len(ball.conditions)
 
 
+@pytest.mark.parametrize(("lang", "line"), [("en", "now you try"), ("en", "Your turn!"), ("en", "try again"),
+                                            ("en", "keep going"), ("de", "jetzt du"), ("de", "mach weiter")])
+def test_handing_over_lets_the_robot_run(ball, tmp_path, lang, line):
+    """ "now you try" after a demonstration was "I don't know": it is 'run'."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    said(manager, "neu" if lang == "de" else "reset")
+    said(manager, line)
+    assert manager.world.state()[ball.condition_names.index("BallPlaced")]
+
+
 @pytest.mark.parametrize(("lang", "line"), [("en", "any questions?"), ("en", "Do you have any questions?"),
                                             ("de", "hast du Fragen?"), ("de", "Noch Fragen?")])
 def test_asking_for_questions_lets_the_robot_ask(ball, tmp_path, lang, line):

@@ -66,9 +66,14 @@ class Verb(Enum):
     PERTURB = _Declared(("perturb",), ("stören", "ereignis"), Text("perturb EVENT", "stören EREIGNIS"),
                         Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)"),
                         argued=True)
-    RUN = _Declared(("run",), ("los", "ausführen"), Text("run [N]", "los [N]"),
-                    Text("let the robot do the task (N: stop after N actions)",
-                         "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten)"), argued=True)
+    RUN = _Declared(("run", "now you try", "you try", "your turn", "try it", "try it yourself", "try again",
+                     "continue", "keep going", "go on", "carry on"),
+                    ("los", "ausführen", "jetzt du", "du bist dran", "mach du", "versuch es", "versuch es nochmal",
+                     "probier es", "probier", "mach weiter", "weitermachen"),
+                    Text("run [N]", "los [N]"),
+                    Text("let the robot do the task (N: stop after N actions); also 'now you try'",
+                         "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten); auch 'jetzt du'"),
+                    argued=True)
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
     SHOW = _Declared(("show", "tree", "what did you learn", "what have you learned", "what have you learnt"),
