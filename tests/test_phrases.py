@@ -225,10 +225,13 @@ def test_no_suggestion_unless_one_phrase_is_clearly_nearest(book, line):
     assert info.value.suggestion is None and "mean" not in info.value.message
 
 
-@pytest.mark.parametrize("line", ["go get it", "go and get it", "go get the ball", "go and grab the ball"])
-def test_an_errand_reads_as_its_step(book, line):
+@pytest.mark.parametrize(("line", "lang"), [("go get it", "en"), ("go and get it", "en"), ("go get the ball", "en"),
+                                            ("go and grab the ball", "en"), ("geh und nimm den Ball", "de"),
+                                            ("geh und nimm ihn", "de")])
+def test_an_errand_reads_as_its_step(book, line, lang):
     # "go get it" once looked like "go to the bin"; only the ball is got
-    assert names(book.parse(line)) == ["GraspBall"]
+    assert names(book.parse(line, lang)) == ["GraspBall"]
+    assert names(book.parse("geh zum Ball und nimm ihn", "de")) == ["ApproachBall", "GraspBall"]
 
 
 def test_hingehen_with_nothing_named_is_offered_as_geh_hin_is(book):

@@ -61,9 +61,9 @@ _NAMING_A_PLACE = {"zum", "zur", "ins", "im"}
 """Besides the linking words: what, after a word for a place, names the place itself ("hin zum Ball")."""
 _PARTICLES = {"up", "down", "away", "off", "out", "back"}
 """Particles of phrasal verbs, which people put after the object ("pick b up", "put c down")."""
-_ERRAND = ("go", "and")
+_ERRAND = ("go", "and", "geh", "gehe", "und")
 """Words before a step that only say the robot should set off to do it ("go get the ball", "go
-and grab it"): one step, not a "go" of its own."""
+and grab it", "geh und hol ihn"): one step, not a "go" of its own."""
 _LINKS = {"on", "onto", "top", "of", "from", "off", "to", "into", "in", "at", "with", "auf", "von", "an", "mit", "zu"}
 """Words that link a step's objects ("stack b on a", "on top of a"), left out where a line reads no
 other way."""
@@ -71,7 +71,7 @@ other way."""
 _ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
              "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
 _SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|(?<!\bgo )\band\b|\bund dann\b|\bdann\b"
-                    r"|\bdanach\b|\bund\b)\s*", re.IGNORECASE)
+                    r"|\bdanach\b|(?<!\bgeh )(?<!\bgehe )\bund\b)\s*", re.IGNORECASE)
 
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
 _TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close
