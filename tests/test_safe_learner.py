@@ -147,7 +147,9 @@ def test_five_answers_from_the_truth_reproduce_more_of_delta5() -> None:
     before = count_reproduced(learner.tree, domain, delta5)
     changed = ask(domain, learner, 5)
     after = count_reproduced(learner.tree, domain, delta5)
-    assert after >= 31 and after > before  # measured: 28 -> 31 of 43 (the declared goal gives the 28)
+    # measured: 28 -> 31 of 43 by literals settled, 30 since their expectation is over the hypotheses that
+    # act (the Table 6.1 answers of bench-teach: 28 -> 43); the declared goal gives the 28
+    assert after >= 30 and after > before
     assert changed >= 4
 
 
