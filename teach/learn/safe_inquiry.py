@@ -14,7 +14,8 @@ literals one "yes" rules out. In order:
    tree end (``_runs_ending_stuck``), then the one whose answer is expected to rule out the most
    unsure literals. The answer is predicted under hypotheses drawn from what the data leaves
    open (each unsure literal needed or not), each by the plan it would give; whichever action
-   the teacher then names, its unsure literals that do not hold there are ruled out. (A "may I
+   the teacher then names, its unsure literals that do not hold there are ruled out. The
+   expectation is over the hypotheses that act there, until an asked situation taught nothing. (A "may I
    still grasp the ball?" where every hypothesis has the robot do something else first would
    only teach that something else.) Measured on other data than the ball task it was first
    looked at on: ``bench/bench_snacks_draws.py``;
