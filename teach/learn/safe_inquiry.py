@@ -207,8 +207,9 @@ def _most_settling(learner: Learner, does: Callable[[State], str], skip: set[Sta
     nothing now, first those where the most predicted runs end (``_runs_ending_stuck``), then the
     one whose answer is expected to rule out the most unsure literals (whichever action the
     teacher names there rules out its own unsure literals that do not hold), the answers
-    predicted by ``_predicted_answers``. Asked as "may I still do X?" with X the likeliest answer.
-    In a larger domain the group questions of ``_hypotheses`` come first instead."""
+    predicted by ``_predicted_answers`` and expected over the hypotheses that act there (below).
+    Asked as "may I still do X?" with X the likeliest answer. In a larger domain the group
+    questions of ``_hypotheses`` come first instead."""
     width = len(learner.names)
     if 1 << width > SETTLING_STATES:
         return None
@@ -223,7 +224,7 @@ def _most_settling(learner: Learner, does: Callable[[State], str], skip: set[Sta
     ending = _runs_ending_stuck(learner, does)
     # The teacher names a step wherever the goal can be reached, so the literals an answer settles
     # are expected among the hypotheses that act there; a hypothesis doing nothing mostly holds a
-    # precondition that is not one (the ball: 38.9 -> 42.4 of 43 over 4 draws). Once an asked
+    # precondition that is not one (the ball's pairs, 4 draws: 40.6 -> 42.35 of 43). Once an asked
     # situation taught nothing (no way to the goal there, or it cannot happen), the domain has such
     # states, and the hypotheses doing nothing are counted against a situation again.
     answered_everywhere = all(learner.state_mask(state) in labelled for state in skip)
