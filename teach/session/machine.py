@@ -303,15 +303,16 @@ class SessionManager(CompatMembers):
         if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
         self.asking.in_a_row = 0
-        if command is None and is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
+        if command is not None:
+            return self._handler(command)(rest)
+        said = normalize(line)
+        if is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
-        if command is None and (is_yes(line, self.lang) or without_hesitation(normalize(line)) in DOUBTS):
-            return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]  # "yes"/"maybe" to nothing asked
-        if command is None and (normalize(line) in WHAT_NOW_WORDS or normalize(line) in SKIP_WORDS):  # "I don't know"
+        if is_yes(line, self.lang) or without_hesitation(said) in DOUBTS:  # "yes"/"maybe" to nothing asked
+            return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+        if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
-        if command is None:
-            return self._teach_actions(line)
-        return self._handler(command)(rest)
+        return self._teach_actions(line)
 
     # --- commands --------------------------------------------------------------------------
 
