@@ -260,6 +260,9 @@ CONTRADICTS = Text("That contradicts what you showed me: {why}", "Das widerspric
 THANKS = Text("Thank you. {change}", "Danke. {change}")
 NO_TO_WHAT = Text("No question is open. If my last step was wrong, say 'undo' (or 'that was wrong').",
                   "Es ist keine Frage offen. War mein letzter Schritt falsch, sag 'zurück' (oder 'das war falsch').")
+PRAISED = Text("Thank you!", "Danke!")
+PRAISED_GO_ON = Text("Thank you! Tell me the next step, or say 'done' when the task is finished.",
+                     "Danke! Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")

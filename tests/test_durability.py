@@ -149,6 +149,17 @@ def test_a_dialogue_may_say_what_a_session_understands(tmp_path, capsys):
     assert "From here I can" in capsys.readouterr().out
 
 
+def test_a_dialogue_may_praise_and_ask_where_things_are(tmp_path, capsys):
+    """Praise and "where is …?" are understood by a session (thanked, the situation), so a scripted
+    replay reads them too; praise before a step is set aside, as in the session."""
+    dialogue = tmp_path / "kind.dialogue"
+    dialogue.write_text("find the ball\nwhere is the ball?\ngood, now go to the ball\nGreat, well done!\n",
+                        encoding="utf-8")
+    assert main(["replay", str(dialogue), "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "✓ go to the ball" in out and "Thank you! Tell me the next step" in out
+
+
 def test_replacing_another_session_needs_overwrite(tmp_path, capsys):
     dialogue = replayed(tmp_path)
     other = tmp_path / "other.dialogue"

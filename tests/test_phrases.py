@@ -26,11 +26,11 @@ from teach.dialogue.phrases import (
 )
 from teach.domain import load_domain
 from teach.messages import Lang
-from teach.session.commands import COMMANDS
+from teach.session.commands import COMMAND_NAMES
 from teach.sim.perturb import PERTURBATIONS
 
 EVENTS = {name: (p.en, p.de) for name, p in PERTURBATIONS.items()}  # what the MuJoCo world offers
-COMMAND_WORDS = [name for command in COMMANDS for name in command.names]
+COMMAND_WORDS = COMMAND_NAMES  # what the session passes
 
 
 @pytest.fixture()

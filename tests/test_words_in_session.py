@@ -265,3 +265,70 @@ def test_a_line_that_names_nothing_is_told_what_can_happen_too(ball, tmp_path):
     told = said(manager, "jemand nimmt den Ball weg")
     assert "Ich kann: Ball finden" in told
     assert "Was dabei passieren kann (sag es, wenn es passiert): etwas ändern" in told
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "well done"), ("en", "Great, well done!"), ("en", "thank you robot"),
+                                            ("de", "gut gemacht"), ("de", "Danke!")])
+def test_praise_after_a_run_is_thanked_back(ball, tmp_path, lang, line):
+    """ "well done" after the robot finished was "You have not shown me any steps yet" (read as 'done')."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    said(manager, "neu" if lang == "de" else "reset")
+    said(manager, "los" if lang == "de" else "run")
+    replies = manager.handle(line)
+    assert [(r.kind, r.text) for r in replies] == [(ReplyKind.INFO, "Danke!" if lang == "de" else "Thank you!")]
+
+
+@pytest.mark.parametrize("line", ["well done", "thanks"])
+def test_praise_during_a_demonstration_says_what_comes_next_and_ends_nothing(ball, tmp_path, line):
+    manager = session(ball, tmp_path, "en")
+    said(manager, WHOLE["en"].split(",")[0])
+    assert "Tell me the next step" in said(manager, line) and open_actions(manager) == [1] and not manager.demos
+    said(manager, ", ".join(WHOLE["en"].split(", ")[1:]))
+    assert "say 'done' if this is how it should end" in said(manager, line) and not manager.demos
+
+
+@pytest.mark.parametrize(("lang", "line", "actions"), [("en", "good, now go to the ball", [1, 2]),
+                                                        ("en", "thanks, that was wrong", []),
+                                                        ("de", "super, jetzt zum Ball", [1, 2])])
+def test_praise_before_a_step_or_command_is_set_aside(ball, tmp_path, lang, line, actions):
+    """ "good, now go to the ball" was "I don't know 'good'"."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    said(manager, line)
+    assert open_actions(manager) == actions
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "go"), ("en", "Go ahead!"), ("en", "off you go"),
+                                            ("de", "leg los"), ("de", "fang an")])
+def test_go_alone_lets_the_robot_run(ball, tmp_path, lang, line):
+    """ "go" was "I don't know 'go'"; "go to the bin please" stays a step (``test_phrases``)."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    said(manager, "neu" if lang == "de" else "reset")
+    said(manager, line)
+    assert manager.world.state()[ball.condition_names.index("BallPlaced")]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "where is the ball?"), ("en", "what do you see?"),
+                                            ("en", "Where are you"), ("de", "wo ist der Ball?"),
+                                            ("de", "was siehst du")])
+def test_asking_where_things_are_shows_the_situation(ball, tmp_path, lang, line):
+    """ "where is the ball?" and "what do you see" were "I don't know"."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    replies = manager.handle(line)
+    assert [r.kind for r in replies] == [ReplyKind.STATE] and open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "bye"), ("en", "Goodbye!"), ("de", "tschüss"), ("de", "ciao")])
+def test_saying_goodbye_saves_and_leaves(ball, tmp_path, lang, line):
+    """ "bye" was "I don't know 'bye'"; with steps open it warns first, as 'quit' does."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    said(manager, line)
+    assert not manager.finished
+    said(manager, line)
+    assert manager.finished

@@ -26,6 +26,9 @@ class _Declared:
     argued: bool = False
     """It reads words after it (a number, steps, conditions, a name): a line of a misspelt word
     and more words may be it ("rset 3"); for any other the more words say it was not meant."""
+    alone: tuple[str, ...] = ()
+    """Words (either language) that name it only as the whole line: "go" is 'run', "go to the
+    ball" a step."""
 
 
 class Verb(Enum):
@@ -67,13 +70,15 @@ class Verb(Enum):
                         Text("something happens (an external action)", "etwas passiert (äußeres Ereignis)"),
                         argued=True)
     RUN = _Declared(("run", "now you try", "you try", "your turn", "try it", "try it yourself", "try again",
-                     "continue", "keep going", "go on", "carry on"),
+                     "continue", "keep going", "go on", "carry on", "go ahead", "off you go", "go now", "you do it",
+                     "let's see"),
                     ("los", "ausführen", "jetzt du", "du bist dran", "mach du", "versuch es", "versuch es nochmal",
-                     "probier es", "probier", "mach weiter", "weitermachen"),
+                     "probier es", "probier", "mach weiter", "weitermachen", "leg los", "fang an", "mach mal",
+                     "mach du mal", "lass sehen", "lass mal sehen"),
                     Text("run [N]", "los [N]"),
                     Text("let the robot do the task (N: stop after N actions); also 'now you try'",
                          "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten); auch 'jetzt du'"),
-                    argued=True)
+                    argued=True, alone=("go",))
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
     SHOW = _Declared(("show", "tree", "what did you learn", "what have you learned", "what have you learnt"),
@@ -81,8 +86,13 @@ class Verb(Enum):
                      Text("show [full]", "baum [ganz]"),
                      Text("show the learned tree; also 'what did you learn?'",
                           "den gelernten Baum zeigen; auch 'was hast du gelernt?'"))
-    STATE = _Declared(("state",), ("zustand",), Text("state [full]", "zustand [ganz]"),
-                      Text("show the current situation", "die aktuelle Lage zeigen"))
+    STATE = _Declared(("state", "status", "what do you see", "what can you see", "where are you", "where are we",
+                       "what's going on", "what is going on", "what's the situation", "what is the situation"),
+                      ("zustand", "status", "was siehst du", "wo bist du", "wo sind wir", "wie ist die lage",
+                       "was ist los"),
+                      Text("state [full]", "zustand [ganz]"),
+                      Text("show the current situation; also 'what do you see?'",
+                           "die aktuelle Lage zeigen; auch 'was siehst du?'"))
     START = _Declared(("start",), ("situation",), Text("start COND ...", "start BEDINGUNG ..."),
                       Text("put the world in a situation (named conditions true)",
                            "die Welt in eine Lage bringen (die genannten Bedingungen gelten)"), argued=True)
@@ -114,15 +124,18 @@ class Verb(Enum):
                          "warum ein Schritt oder eine Bedingung im Baum ist (warum {example})"), argued=True)
     SAVE = _Declared(("save",), ("speichern",), Text("save", "speichern"),
                      Text("save everything now", "alles jetzt speichern"))
-    QUIT = _Declared(("quit", "exit"), ("beenden", "tschüss"), Text("quit / Ctrl-D", "beenden / Strg-D"),
-                     Text("save and leave (--resume goes on later)", "speichern und beenden (--resume macht später "
-                          "weiter)"))
+    QUIT = _Declared(("quit", "exit", "good bye", "bye bye", "see you", "see you later"),
+                     ("beenden", "tschüss", "auf wiedersehen", "bis dann", "bis später"),
+                     Text("quit / Ctrl-D", "beenden / Strg-D"),
+                     Text("save and leave (--resume goes on later); also 'bye'",
+                          "speichern und beenden (--resume macht später weiter); auch 'tschüss'"),
+                     alone=("bye", "goodbye", "ciao", "tschau", "feierabend"))
 
     @property
     def names(self) -> tuple[str, ...]:
         """The words and sayings that name it in either language, normalized (see ``normalize``), each
         also without its apostrophes, as people type them ("thats it", "das wars")."""
-        sayings = (*self.value.en, *self.value.de)
+        sayings = (*self.value.en, *self.value.de, *self.value.alone)
         return tuple(dict.fromkeys(normalize(spelled) for word in sayings
                                    for spelled in (word, word.replace("'", ""))))
 
@@ -147,8 +160,9 @@ class Verb(Enum):
 Command = Verb
 """What a line names: one of the verbs, each with its words, usage and help."""
 COMMANDS: tuple[Verb, ...] = tuple(Verb)
-COMMAND_NAMES = tuple(name for command in COMMANDS for name in command.names)
-"""Every word and saying that names a command, in both languages (``command_hint`` finds them in chatty lines)."""
+COMMAND_NAMES = tuple(name for command in COMMANDS for name in command.names if name not in command.value.alone)
+"""Every word and saying that names a command, in both languages (``command_hint`` finds them in chatty
+lines), but those that name it only alone ("go to the bin please" is no chatty 'go')."""
 
 NUMBERED: dict[Verb, Callable[[str, Lang], int | None]] = {Verb.RUN: whole_number, Verb.RESET: whole_number,
                                                           Verb.UNDO: step_number}
@@ -191,6 +205,48 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
                                                "was soll ich machen", "was mache ich jetzt", "was kannst du")}
 """Whole lines asking what to do next (also, with no question open, the "I don't know"s of
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
+PRAISE_WORDS = {normalize(said) for said in ("thanks", "thank you", "thanks a lot", "good job", "great job", "nice job",
+                                             "well done", "good", "very good", "great", "perfect", "nice", "excellent",
+                                             "awesome", "super", "bravo", "good robot", "good boy", "good girl",
+                                             "danke", "danke schön", "dankeschön", "vielen dank", "gut gemacht",
+                                             "sehr gut", "gut", "prima", "toll", "super", "klasse", "perfekt", "brav",
+                                             "spitze", "wunderbar")}
+"""Praise and thanks (with no question open): thanked back, with the next step to take, never
+read as 'done' ("well done" after a run was "You have not shown me any steps")."""
+_PRAISE_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
+                  "das war", "das hast du", "hast du", "gemacht"}
+
+
+def is_praise(line: str) -> bool:
+    """Whether a whole line only praises or thanks ("great, well done!", "thank you robot",
+    "super, das hast du gut gemacht")."""
+    words = normalize(line).split()
+    sayings = sorted(PRAISE_WORDS | _PRAISE_AROUND | HESITATIONS, key=lambda saying: -len(saying.split()))
+    praised = False
+    while words:
+        for saying in sayings:
+            length = len(saying.split())
+            if " ".join(words[:length]) == saying:
+                praised = praised or saying in PRAISE_WORDS
+                del words[:length]
+                break
+        else:
+            return False
+    return praised
+
+
+def after_praise(line: str) -> str:
+    """The line without the praise it starts with ("good, now go to the ball" is "now go to the
+    ball"); the line itself if it starts with none."""
+    words = line.split()
+    for cut in range(len(words) - 1, 0, -1):
+        if is_praise(" ".join(words[:cut])):
+            return " ".join(words[cut:])
+    return line
+
+
+WHERE_STARTS = ("where is ", "where s ", "where are ", "wo ist ", "wo sind ", "wo liegt ")
+"""How a line asking where something is starts ("where is the ball?"): answered with the situation."""
 DOUBTS = UNSURE_WORDS | LIKELY_WORDS
 """The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
 ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS
@@ -216,7 +272,7 @@ def parse_command(line: str) -> tuple[Command | None, str]:
     words = line.split(maxsplit=1)
     head = normalize(words[0]) if words else ""
     for command in COMMANDS:
-        if head and head in command.names:
+        if head and head in command.names and head not in command.value.alone:
             return command, words[1] if len(words) > 1 else ""
     return None, line
 

@@ -9,7 +9,16 @@ from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, norm
 from teach.dialogue.script import Script
 from teach.errors import FormatError, TeachError
 from teach.messages import Lang
-from teach.session.commands import ANSWER_SAYINGS, COMMAND_NAMES, Verb, parse_command, without_hesitation
+from teach.session.commands import (
+    ANSWER_SAYINGS,
+    COMMAND_NAMES,
+    WHERE_STARTS,
+    Verb,
+    after_praise,
+    is_praise,
+    parse_command,
+    without_hesitation,
+)
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
@@ -20,7 +29,10 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     lang = Lang.parse(language)
     answers = ANSWER_SAYINGS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
-    for number, line in script.lines:
+    for number, said in script.lines:
+        if is_praise(said) or normalize(said).startswith(WHERE_STARTS):  # "well done", "where is the ball?"
+            continue
+        line = after_praise(said)  # "good, now go to the ball"
         command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
         if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
             from teach.sim.guide import parse_guide_line
@@ -31,7 +43,7 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
             continue
         found, topic = _names_actions_or_events(line, phrases, lang, topic)
         if not found:
-            shown = repr(line) if len(line) <= 40 else repr(line[:37]) + "..."
+            shown = repr(said) if len(said) <= 40 else repr(said[:37]) + "..."
             raise FormatError(f"{shown} is neither a command nor something the robot can do or the world can undergo "
                               "(is this a dialogue? --lenient types such lines anyway)", script.path, number)
 

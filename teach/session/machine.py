@@ -64,9 +64,12 @@ from teach.session.commands import (
     NUMBERED,
     SKIP_WORDS,
     WHAT_NOW_WORDS,
+    WHERE_STARTS,
     WHY_ASKING,
     Command,
     Verb,
+    after_praise,
+    is_praise,
     parse_command,
     typo_of_command,
     without_hesitation,
@@ -286,6 +289,10 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+        if self.pending is None and self.pending_model is None:
+            if is_praise(line):  # "well done" is no 'done'
+                return self._thanked()
+            line = after_praise(line)  # "great, now you try"
         line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
         steps = self._steps_after_all(command, rest, line)
@@ -312,6 +319,8 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
+        if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
+            return self.cmd_state("")
         return self._teach_actions(line)
 
     # --- commands --------------------------------------------------------------------------
@@ -657,6 +666,15 @@ class SessionManager(CompatMembers):
         self.record.add(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
         shown = f"{path.parent.name}/{path.name}"
         return [Reply(ReplyKind.INFO, m.STARTED_AS_SHOWN(self.lang, demo=shown)), self._state_reply()]
+
+    def _thanked(self) -> list[Reply]:
+        """Praise thanked back; during a demonstration with what comes next (as "what now?" where the
+        task is finished)."""
+        if self.open is None:
+            return [Reply(ReplyKind.INFO, m.PRAISED(self.lang))]
+        if self.domain.has_model and self.domain.goal_holds(self.world.state()):
+            return [Reply(ReplyKind.INFO, f"{m.PRAISED(self.lang)} {m.WHAT_NOW_FINISHED(self.lang)}")]
+        return [Reply(ReplyKind.INFO, m.PRAISED_GO_ON(self.lang))]
 
     def _what_now(self) -> list[Reply]:
         """ "what now?": the situation and the steps the domain's model allows from it (every step
