@@ -332,3 +332,28 @@ def test_saying_goodbye_saves_and_leaves(ball, tmp_path, lang, line):
     assert not manager.finished
     said(manager, line)
     assert manager.finished
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "hello"), ("en", "Hi robot!"), ("de", "hallo"),
+                                            ("de", "Guten Morgen")])
+def test_a_greeting_is_greeted_back(ball, tmp_path, lang, line):
+    """ "hallo" was "Did you mean 'halt'?"."""
+    manager = session(ball, tmp_path, lang)
+    replies = manager.handle(line)
+    assert [r.kind for r in replies] == [ReplyKind.SAY] and replies[0].text.startswith(("Hello!", "Hallo!"))
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "hey, find the ball"), ("de", "hallo, such den Ball")])
+def test_a_greeting_before_a_step_is_set_aside(ball, tmp_path, lang, line):
+    manager = session(ball, tmp_path, lang)
+    said(manager, line)
+    assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("de", "nimm ihn dir"), ("en", "grab it yourself")])
+def test_a_step_for_yourself_is_the_step(ball, tmp_path, lang, line):
+    """ "nimm ihn dir" ("take it for yourself") was "I don't know"."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, ", ".join(WHOLE[lang].split(", ")[:2]))
+    said(manager, line)
+    assert open_actions(manager) == [1, 2, 3]

@@ -40,8 +40,8 @@ INTERJECTIONS = frozenset({"oh", "ah", "ach", "hmm", "hm", "um", "uh", "erm", "a
 answer is read ("ach so, erst hinfahren", "sorry, undo", "hmm, I think so")."""
 _IGNORED = (_FILLERS - {"to", "zu"}) | INTERJECTIONS | {"ok", "okay", "also", "just", "pls", "can", "could", "would",
                                                         "you", "einem", "einer", "einfach", "doch", "kannst",
-                                                        "konntest", "du", "again", "once", "more", "nochmal", "noch",
-                                                        "einmal", "wieder", "erneut", "else", "so",
+                                                        "konntest", "du", "dir", "yourself", "again", "once", "more",
+                                                        "nochmal", "noch", "einmal", "wieder", "erneut", "else", "so",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
                                         "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball

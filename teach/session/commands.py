@@ -213,34 +213,51 @@ PRAISE_WORDS = {normalize(said) for said in ("thanks", "thank you", "thanks a lo
                                              "spitze", "wunderbar")}
 """Praise and thanks (with no question open): thanked back, with the next step to take, never
 read as 'done' ("well done" after a run was "You have not shown me any steps")."""
-_PRAISE_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
+_COURTESY_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
                   "das war", "das hast du", "hast du", "gemacht"}
 
 
-def is_praise(line: str) -> bool:
-    """Whether a whole line only praises or thanks ("great, well done!", "thank you robot",
-    "super, das hast du gut gemacht")."""
+GREETINGS = {normalize(said) for said in ("hello", "hi", "hey", "hi there", "hello there", "good morning",
+                                          "good afternoon", "good evening", "hallo", "guten morgen", "guten tag",
+                                          "guten abend", "servus", "moin", "grüß gott", "grüß dich")}
+"""Whole lines greeting the robot: greeted back with what it can do, as at the start ("hallo" was
+"Did you mean 'halt'?")."""
+
+
+def _only(line: str, sayings: set[str]) -> bool:
+    """Whether a line says nothing but some of ``sayings`` and the words around them ("great,
+    well done!", "thank you robot", "super, das hast du gut gemacht")."""
     words = normalize(line).split()
-    sayings = sorted(PRAISE_WORDS | _PRAISE_AROUND | HESITATIONS, key=lambda saying: -len(saying.split()))
-    praised = False
+    known = sorted(sayings | _COURTESY_AROUND | HESITATIONS, key=lambda saying: -len(saying.split()))
+    said = False
     while words:
-        for saying in sayings:
+        for saying in known:
             length = len(saying.split())
             if " ".join(words[:length]) == saying:
-                praised = praised or saying in PRAISE_WORDS
+                said = said or saying in sayings
                 del words[:length]
                 break
         else:
             return False
-    return praised
+    return said
 
 
-def after_praise(line: str) -> str:
-    """The line without the praise it starts with ("good, now go to the ball" is "now go to the
-    ball"); the line itself if it starts with none."""
+def is_praise(line: str) -> bool:
+    """Whether a whole line only praises or thanks the robot."""
+    return _only(line, PRAISE_WORDS)
+
+
+def is_greeting(line: str) -> bool:
+    """Whether a whole line only greets the robot ("hello robot", "guten Morgen")."""
+    return _only(line, GREETINGS)
+
+
+def after_courtesy(line: str) -> str:
+    """The line without the praise or greeting it starts with ("good, now go to the ball" is "now
+    go to the ball", "hallo, such den Ball" "such den Ball"); the line itself if it starts with none."""
     words = line.split()
     for cut in range(len(words) - 1, 0, -1):
-        if is_praise(" ".join(words[:cut])):
+        if _only(" ".join(words[:cut]), PRAISE_WORDS | GREETINGS):
             return " ".join(words[cut:])
     return line
 

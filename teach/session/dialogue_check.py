@@ -14,7 +14,8 @@ from teach.session.commands import (
     COMMAND_NAMES,
     WHERE_STARTS,
     Verb,
-    after_praise,
+    after_courtesy,
+    is_greeting,
     is_praise,
     parse_command,
     without_hesitation,
@@ -30,9 +31,9 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     answers = ANSWER_SAYINGS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, said in script.lines:
-        if is_praise(said) or normalize(said).startswith(WHERE_STARTS):  # "well done", "where is the ball?"
+        if is_praise(said) or is_greeting(said) or normalize(said).startswith(WHERE_STARTS):  # "well done", "hello"
             continue
-        line = after_praise(said)  # "good, now go to the ball"
+        line = after_courtesy(said)  # "good, now go to the ball"
         command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
         if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
             from teach.sim.guide import parse_guide_line

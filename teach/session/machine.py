@@ -68,7 +68,8 @@ from teach.session.commands import (
     WHY_ASKING,
     Command,
     Verb,
-    after_praise,
+    after_courtesy,
+    is_greeting,
     is_praise,
     parse_command,
     typo_of_command,
@@ -292,7 +293,9 @@ class SessionManager(CompatMembers):
         if self.pending is None and self.pending_model is None:
             if is_praise(line):  # "well done" is no 'done'
                 return self._thanked()
-            line = after_praise(line)  # "great, now you try"
+            if is_greeting(line):  # "hallo" was "Did you mean 'halt'?"
+                return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
+            line = after_courtesy(line)  # "great, now you try"
         line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
         steps = self._steps_after_all(command, rest, line)
