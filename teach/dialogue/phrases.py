@@ -53,6 +53,11 @@ _PERSONS = frozenset({"person", "people", "someone", "somebody", "caregiver", "r
                       "nurse", "guest", "visitor", "man", "woman", "child", "friend"})
 """English words for people: what "him", "her" and "them" may stand for ("go to her" was "go back
 to the office", the one phrase a pronoun made; "them" also stands for a plural, "put them away")."""
+_PERSONS_DE = frozenset({"person", "leute", "jemand", "pflegekraft", "bewohner", "bewohnerin", "partner",
+                         "gesprachspartner", "patient", "patientin", "gast", "besucher", "kind", "freund"})
+"""German words for people, normalized: a domain naming one has people to do things for."""
+_RECEIVERS = frozenset({"him", "her", "them", "ihm", "ihr", "ihnen"})
+"""Pronouns for whom something is done ("offer her a drink"), left out where the phrase needs none."""
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
 _RUN_TOGETHER = ("dorthin", "dahin", "hin")
@@ -491,7 +496,19 @@ class PhraseBook:
                 if entry is not None:
                     options.append((entry, noun))
                     break
+        if not options:
+            options = self._without_receiver(words, kind)
         return options
+
+    def _without_receiver(self, words: tuple[str, ...], kind: str) -> list[tuple[_Entry, str]]:
+        """The phrase ``words`` make without a pronoun for the person something is done for, in a domain
+        with people: "offer her a drink" is "offer a drink", "biete ihm einen Snack an" "biete einen Snack an"."""
+        people = [noun for noun in self._nouns if noun in _PERSONS or noun in _PERSONS_DE]
+        if not people or not any(word in _RECEIVERS for word in words[1:]):
+            return []
+        left = tuple(word for word in words if word not in _RECEIVERS)
+        entry = next((e for e in self._entries.get(left, []) if e.kind == kind), None)
+        return [] if entry is None else [(entry, people[0])]
 
     def _choose(self, piece: _Piece, topic: str | None) -> tuple[_Entry | None, str | None]:
         """The one meaning of a piece: unique, or the one about the topic; (None, None) if ambiguous."""
