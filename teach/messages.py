@@ -260,6 +260,10 @@ CONTRADICTS = Text("That contradicts what you showed me: {why}", "Das widerspric
 THANKS = Text("Thank you. {change}", "Danke. {change}")
 NO_TO_WHAT = Text("No question is open. If my last step was wrong, say 'undo' (or 'that was wrong').",
                   "Es ist keine Frage offen. War mein letzter Schritt falsch, sag 'zurück' (oder 'das war falsch').")
+STATED_HOLDS = Text("Yes, I know: {condition}.", "Ja, ich weiß: {condition}.")
+STATED_UNTRUE = Text("That is not what I see: {condition}.", "Das sehe ich anders: {condition}.")
+STATED_WHAT_HAPPENED = Text(" If something happened, say what: {events}.",
+                            " Wenn etwas passiert ist, sag was: {events}.")
 PRAISED = Text("Thank you!", "Danke!")
 PRAISED_GO_ON = Text("Thank you! Tell me the next step, or say 'done' when the task is finished.",
                      "Danke! Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")

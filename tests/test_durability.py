@@ -150,14 +150,15 @@ def test_a_dialogue_may_say_what_a_session_understands(tmp_path, capsys):
 
 
 def test_a_dialogue_may_praise_and_ask_where_things_are(tmp_path, capsys):
-    """Praise and "where is …?" are understood by a session (thanked, the situation), so a scripted
-    replay reads them too; praise before a step is set aside, as in the session."""
+    """Greetings, praise, "where is …?" and how things are ("I can see the ball now") are understood
+    by a session, so a scripted replay reads them too; praise before a step is set aside, as in the
+    session."""
     dialogue = tmp_path / "kind.dialogue"
-    dialogue.write_text("find the ball\nwhere is the ball?\ngood, now go to the ball\nGreat, well done!\n",
-                        encoding="utf-8")
+    dialogue.write_text("hello\nfind the ball\nwhere is the ball?\nI can see the ball now\n"
+                        "good, now go to the ball\nGreat, well done!\n", encoding="utf-8")
     assert main(["replay", str(dialogue), "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "✓ go to the ball" in out and "Thank you! Tell me the next step" in out
+    assert "✓ go to the ball" in out and "Thank you! Tell me the next step" in out and "Yes, I know" in out
 
 
 def test_replacing_another_session_needs_overwrite(tmp_path, capsys):

@@ -357,3 +357,18 @@ def test_a_step_for_yourself_is_the_step(ball, tmp_path, lang, line):
     said(manager, ", ".join(WHOLE[lang].split(", ")[:2]))
     said(manager, line)
     assert open_actions(manager) == [1, 2, 3]
+
+
+@pytest.mark.parametrize(("lang", "line", "reply"), [
+    ("en", "I can see the ball now", "Yes, I know: I can see the ball."),
+    ("en", "the ball is in the bin", "That is not what I see: the ball is not in the bin."),
+    ("de", "der Ball ist jetzt im Eimer", "Das sehe ich anders: der Ball ist nicht im Eimer."),
+    ("de", "ich sehe den Ball", "Ja, ich weiß: ich sehe den Ball.")])
+def test_telling_the_robot_how_things_are_is_answered_and_changes_nothing(ball, tmp_path, lang, line, reply):
+    """ "the tray is empty now" was "I don't know": the robot agrees, or says what it sees instead and
+    what could have made it so; the world, not a line, decides."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    before = manager.world.state()
+    assert said(manager, line).startswith(reply)
+    assert manager.world.state() == before and open_actions(manager) == [1]

@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
 
         script = heard_script(script, domain, settings.lang)
     if not args.lenient:
-        check_lines(script, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)
+        check_lines(script, domain, PhraseBook(domain, dialogue_events(settings, domain)), settings.lang)
     oracle: SituationOracle | None = None
     model_oracle: ModelOracle | None = None
     if args.oracle:

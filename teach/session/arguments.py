@@ -23,6 +23,30 @@ MAX_LIKE = 4
 _STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
 
 
+_NARRATING = {"now", "already", "still", "yet", "again", "jetzt", "nun", "schon", "noch", "wieder", "ok", "okay",
+              "look", "see", "schau", "guck"}
+"""Words a teacher telling the robot how things are adds around a condition ("the tray is empty now")."""
+
+
+def stated_condition(domain: Domain, text: str) -> tuple[str, bool] | None:
+    """The condition and value a whole line states as one of its labels, in either language ("the tray
+    is empty now": TrayEmpty true; "ich sehe den Ball nicht": BallFound false), or None."""
+    words = normalize(text).split()
+    while words and words[0] in _NARRATING:
+        words.pop(0)
+    while words and words[-1] in _NARRATING:
+        words.pop()
+    said = " ".join(words)
+    if not said:
+        return None
+    for condition in domain.conditions:
+        for value in (True, False):
+            labels = (condition.label("en", value), condition.label("de", value))
+            if any(said == normalize(label) for label in labels):
+                return condition.name, value
+    return None
+
+
 def says_full(text: str) -> bool:
     """Whether 'show' or 'state' asks for everything ("show full", "zeige alles")."""
     return normalize(text) in _FULL_WORDS

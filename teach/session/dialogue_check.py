@@ -7,8 +7,10 @@ from __future__ import annotations
 from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, command_hint, is_no, is_yes, normalize
 from teach.dialogue.script import Script
+from teach.domain import Domain
 from teach.errors import FormatError, TeachError
 from teach.messages import Lang
+from teach.session.arguments import stated_condition
 from teach.session.commands import (
     ANSWER_SAYINGS,
     COMMAND_NAMES,
@@ -23,7 +25,7 @@ from teach.session.commands import (
 from teach.session.guiding import STOP_WORDS, is_new_action_answer
 
 
-def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
+def check_lines(script: Script, domain: Domain, phrases: PhraseBook, language: str) -> None:
     """Refuse a file that is not a dialogue (XML, a README, a CSV): every input line must be a
     command, something the robot can do or the world can undergo, or an answer word; the
     first line that is none of these is named with its number."""
@@ -31,7 +33,8 @@ def check_lines(script: Script, phrases: PhraseBook, language: str) -> None:
     answers = ANSWER_SAYINGS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, said in script.lines:
-        if is_praise(said) or is_greeting(said) or normalize(said).startswith(WHERE_STARTS):  # "well done", "hello"
+        if is_praise(said) or is_greeting(said) or normalize(said).startswith(WHERE_STARTS) \
+                or stated_condition(domain, said) is not None:  # "well done", "hello", "the bin is within reach"
             continue
         line = after_courtesy(said)  # "good, now go to the ball"
         command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session

@@ -49,6 +49,7 @@ from teach.session.arguments import (
     condition_names,
     node_named,
     says_full,
+    stated_condition,
     step_number,
     untrue_asked,
     whole_number,
@@ -324,6 +325,9 @@ class SessionManager(CompatMembers):
             return self._what_now()
         if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
             return self.cmd_state("")
+        stated = stated_condition(self.domain, line)
+        if stated is not None:  # "the tray is empty now": told how things are, not a step
+            return self._told(*stated)
         return self._teach_actions(line)
 
     # --- commands --------------------------------------------------------------------------
@@ -669,6 +673,18 @@ class SessionManager(CompatMembers):
         self.record.add(Situated(state_text(self.world.state()), "start"))  # on disk before the teacher sees it
         shown = f"{path.parent.name}/{path.name}"
         return [Reply(ReplyKind.INFO, m.STARTED_AS_SHOWN(self.lang, demo=shown)), self._state_reply()]
+
+    def _told(self, name: str, value: bool) -> list[Reply]:
+        """The teacher said how a condition is: agreed with, or what the robot sees instead (the world
+        decides, never a line), and which events could have made it so."""
+        held = self.world.state()[self.domain.condition_names.index(name)]
+        condition = self.domain.condition(name)
+        if held == value:
+            return [Reply(ReplyKind.INFO, m.STATED_HOLDS(self.lang, condition=condition.label(self.lang, value)))]
+        text = m.STATED_UNTRUE(self.lang, condition=condition.label(self.lang, held))
+        if self.world.events:
+            text += m.STATED_WHAT_HAPPENED(self.lang, events=self._event_names())
+        return [Reply(ReplyKind.INFO, text)]
 
     def _thanked(self) -> list[Reply]:
         """Praise thanked back; during a demonstration with what comes next (as "what now?" where the
