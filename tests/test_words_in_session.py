@@ -117,9 +117,12 @@ def test_starting_over_is_a_new_start(ball, tmp_path, lang, line):
 
 
 @pytest.mark.parametrize(("lang", "line"), [("en", "now you try"), ("en", "Your turn!"), ("en", "try again"),
-                                            ("en", "keep going"), ("de", "jetzt du"), ("de", "mach weiter")])
+                                            ("en", "keep going"), ("de", "jetzt du"), ("de", "mach weiter"),
+                                            ("en", "go"), ("en", "Go ahead!"), ("en", "off you go"),
+                                            ("de", "leg los"), ("de", "fang an")])
 def test_handing_over_lets_the_robot_run(ball, tmp_path, lang, line):
-    """ "now you try" after a demonstration was "I don't know": it is 'run'."""
+    """ "now you try" and "go" after a demonstration were "I don't know": they are 'run' ("go to the
+    bin please" stays a step: ``test_phrases``)."""
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang])
     said(manager, "fertig" if lang == "de" else "done")
@@ -298,18 +301,6 @@ def test_praise_before_a_step_or_command_is_set_aside(ball, tmp_path, lang, line
     said(manager, WHOLE[lang].split(",")[0])
     said(manager, line)
     assert open_actions(manager) == actions
-
-
-@pytest.mark.parametrize(("lang", "line"), [("en", "go"), ("en", "Go ahead!"), ("en", "off you go"),
-                                            ("de", "leg los"), ("de", "fang an")])
-def test_go_alone_lets_the_robot_run(ball, tmp_path, lang, line):
-    """ "go" was "I don't know 'go'"; "go to the bin please" stays a step (``test_phrases``)."""
-    manager = session(ball, tmp_path, lang)
-    said(manager, WHOLE[lang])
-    said(manager, "fertig" if lang == "de" else "done")
-    said(manager, "neu" if lang == "de" else "reset")
-    said(manager, line)
-    assert manager.world.state()[ball.condition_names.index("BallPlaced")]
 
 
 @pytest.mark.parametrize(("lang", "line"), [("en", "where is the ball?"), ("en", "what do you see?"),
