@@ -207,16 +207,15 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
 PRAISE_WORDS = {normalize(said) for said in ("thanks", "thank you", "thanks a lot", "good job", "great job", "nice job",
                                              "well done", "good", "very good", "great", "perfect", "nice", "excellent",
-                                             "awesome", "super", "bravo", "good robot", "good boy", "good girl",
+                                             "awesome", "bravo", "good robot", "good boy", "good girl",
                                              "danke", "danke schön", "dankeschön", "vielen dank", "gut gemacht",
                                              "sehr gut", "gut", "prima", "toll", "super", "klasse", "perfekt", "brav",
                                              "spitze", "wunderbar")}
 """Praise and thanks (with no question open): thanked back, with the next step to take, never
 read as 'done' ("well done" after a run was "You have not shown me any steps")."""
 _COURTESY_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
-                  "das war", "das hast du", "hast du", "gemacht"}
-
-
+                    "das war", "das hast du", "hast du", "gemacht"}
+"""Words that go with praise or a greeting ("thank you very much, robot", "das hast du gut gemacht")."""
 GREETINGS = {normalize(said) for said in ("hello", "hi", "hey", "hi there", "hello there", "good morning",
                                           "good afternoon", "good evening", "hallo", "guten morgen", "guten tag",
                                           "guten abend", "servus", "moin", "grüß gott", "grüß dich")}
