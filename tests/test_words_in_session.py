@@ -363,3 +363,31 @@ def test_telling_the_robot_how_things_are_is_answered_and_changes_nothing(ball, 
     before = manager.world.state()
     assert said(manager, line).startswith(reply)
     assert manager.world.state() == before and open_actions(manager) == [1]
+
+
+GREETING_DOMAIN = '''name = "greeter"
+goal = ["Greeted"]
+
+[[condition]]
+name = "Greeted"
+en = "I have greeted the visitor"
+de = "ich habe den Besuch begrüßt"
+
+[[action]]
+id = 1
+name = "Greet"
+en = ["say hello", "hello", "thank you"]
+de = ["hallo sagen", "hallo"]
+pre = ["!Greeted"]
+ram = ["Greeted"]
+'''
+
+
+@pytest.mark.parametrize("line", ["hello", "thank you"])
+def test_a_domain_phrase_stays_a_step_though_it_sounds_like_courtesy(tmp_path, line):
+    """A domain whose robot greets: its phrase "hello" is the step, not a greeting to the robot."""
+    (tmp_path / "domain.toml").write_text(GREETING_DOMAIN, encoding="utf-8")
+    greeter = load_domain(tmp_path / "domain.toml")
+    manager = session(greeter, tmp_path, "en")
+    said(manager, line)
+    assert open_actions(manager) == [1]

@@ -291,7 +291,7 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
-        if self.pending is None and self.pending_model is None:
+        if self.pending is None and self.pending_model is None and not self._names_steps(line):
             if is_praise(line):  # "well done" is no 'done'
                 return self._thanked()
             if is_greeting(line):  # "hallo" was "Did you mean 'halt'?"
@@ -326,7 +326,7 @@ class SessionManager(CompatMembers):
         if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
             return self.cmd_state("")
         stated = stated_condition(self.domain, line)
-        if stated is not None:  # "the tray is empty now": told how things are, not a step
+        if stated is not None and not self._names_steps(line):  # "the tray is empty now": told how things are
             return self._told(*stated)
         return self._teach_actions(line)
 
@@ -537,6 +537,15 @@ class SessionManager(CompatMembers):
         return self.definitions.show(ask=False)
 
     # --- demonstrations ---------------------------------------------------------------------
+
+    def _names_steps(self, line: str) -> bool:
+        """Whether ``line`` is one of the domain's phrases as it stands (no typo read): then it is a
+        step, even where it also reads as praise, a greeting or how things are (a domain may have a
+        "say hello")."""
+        try:
+            return not any(token.guessed for token in self.phrases.parse(line, self.lang, topic=self.topic))
+        except TeachError:
+            return False
 
     def _teach_actions(self, text: str) -> list[Reply]:
         return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
