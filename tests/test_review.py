@@ -74,6 +74,18 @@ def test_the_dialogue_is_printed_on_request_in_order(recording: Path, capsys: py
     assert said.index("teacher: find the ball") < said.index("robot: I find the ball.")
 
 
+def test_what_the_robot_was_asked_to_tell_is_in_the_dialogue(tmp_path: Path) -> None:
+    """ "what do you see?" got the situation on screen, but the recording's dialogue showed the
+    question unanswered (the state line after each step is status, not dialogue)."""
+    dialogue = tmp_path / "asking.dialogue"
+    dialogue.write_text("find the ball\nwhat do you see?\n", encoding="utf-8")
+    assert main(["replay", str(dialogue), "--world", "symbolic", "--base", str(tmp_path)]) == 0
+    said = [(d.speaker, d.text) for d in read_recording(tmp_path / "recordings" / "asking.rrd").dialogue]
+    asked = said.index(("teacher", "what do you see?"))
+    assert said[asked + 1][0] == "robot" and "I can see the ball" in said[asked + 1][1]
+    assert not any(text.startswith("I can see the ball") for _, text in said[:asked])  # after a step: status only
+
+
 def test_cli_truncated_recording_is_one_line_status_2(recording: Path, tmp_path: Path,
                                                       capsys: pytest.CaptureFixture[str]) -> None:
     broken = tmp_path / "broken.rrd"

@@ -171,6 +171,8 @@ def test_shown_replies_are_said_in_short_form():
     question = spoken_line(Reply(ReplyKind.QUESTION, "Did you mean “grasp the ball”?"), "en")
     assert question is not None and question.text == "Did you mean grasp the ball?" and question.urgent
     assert spoken_line(Reply(ReplyKind.STATE, "the ball is in my hand", state=None), "en") is None
+    asked = spoken_line(Reply(ReplyKind.STATE, "the ball is in my hand", asked=True), "en")  # "what do you see?"
+    assert asked is not None and asked.text == "the ball is in my hand"
     listing = spoken_line(Reply(ReplyKind.INFO, "Type what the robot should do.\n  help   show this help"), "en")
     assert listing is not None and listing.text == "Type what the robot should do."
 

@@ -20,6 +20,7 @@ members (``domain``, ``journal``, ``pending`` …) are windows onto these owners
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -466,7 +467,7 @@ class SessionManager(CompatMembers):
         return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
-        return [self._state_reply(full=says_full(rest))]
+        return [dataclasses.replace(self._state_reply(full=says_full(rest)), asked=True)]
 
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.showing.has_steps:

@@ -25,8 +25,11 @@ class Reply:
     text: str = ""
     tree: Node | None = None
     state: dict[str, bool] | None = None
+    asked: bool = False
+    """The teacher asked for it ("state", "what do you see?"): the situation is then a line of the
+    dialogue too, not only the status shown after each step."""
 
     @property
     def spoken(self) -> bool:
         """Whether it is a line of the dialogue (questions are reported as questions)."""
-        return self.kind in (ReplyKind.SAY, ReplyKind.INFO, ReplyKind.ERROR) and bool(self.text)
+        return (self.kind in (ReplyKind.SAY, ReplyKind.INFO, ReplyKind.ERROR) or self.asked) and bool(self.text)

@@ -28,8 +28,8 @@ class Line:
 
 def spoken_line(reply: Reply, lang: str) -> Line | None:
     """What to say for ``reply``, or None when it is not said."""
-    if reply.kind is ReplyKind.STATE or not reply.text or (reply.kind is ReplyKind.TREE and reply.tree is not None
-                                                            and not reply.text):
+    if reply.kind is ReplyKind.STATE and not reply.asked or not reply.text \
+            or (reply.kind is ReplyKind.TREE and reply.tree is not None and not reply.text):
         return None
     lines = [line.strip() for line in reply.text.splitlines() if line.strip()]
     if reply.kind is ReplyKind.TREE:  # said whole, each line a sentence of its own
