@@ -292,7 +292,9 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
-        if self.pending is None and self.pending_model is None and not self._names_steps(line):
+        polite = self.pending is None and self.pending_model is None and \
+            (is_praise(line) or is_greeting(line) or after_courtesy(line) != line)
+        if polite and not self._names_steps(line):
             if is_praise(line):  # "well done" is no 'done'
                 return self._thanked()
             if is_greeting(line):  # "hallo" was "Did you mean 'halt'?"
