@@ -265,6 +265,7 @@ STATED_UNTRUE = Text("That is not what I see: {condition}.", "Das sehe ich ander
 STATED_WHAT_HAPPENED = Text(" If something happened, say what: {events}.",
                             " Wenn etwas passiert ist, sag was: {events}.")
 PRAISED = Text("Thank you!", "Danke!")
+ALL_RIGHT = Text("All right.", "In Ordnung.")
 PRAISED_GO_ON = Text("Thank you! Tell me the next step, or say 'done' when the task is finished.",
                      "Danke! Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")

@@ -391,3 +391,12 @@ def test_a_domain_phrase_stays_a_step_though_it_sounds_like_courtesy(tmp_path, l
     manager = session(greeter, tmp_path, "en")
     said(manager, line)
     assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "line", "reply"), [("en", "sorry", "All right."), ("en", "never mind", "All right."),
+                                                     ("de", "schon gut", "In Ordnung.")])
+def test_a_line_that_asks_for_nothing_is_let_be(ball, tmp_path, lang, line, reply):
+    """ "sorry" was "I don't know 'sorry'" and a list of what the robot can do."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    assert said(manager, line) == reply and open_actions(manager) == [1]

@@ -263,9 +263,14 @@ def after_courtesy(line: str) -> str:
 
 WHERE_STARTS = ("where is ", "where s ", "where are ", "wo ist ", "wo sind ", "wo liegt ")
 """How a line asking where something is starts ("where is the ball?"): answered with the situation."""
+NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
+                                                "no problem", "all good", "entschuldigung", "egal",
+                                                "schon gut", "macht nichts", "kein problem", "alles gut")}
+"""Whole lines that ask for nothing (with no question open): "All right.", nothing done ("sorry"
+was "I don't know 'sorry'" and a list of what the robot can do)."""
 DOUBTS = UNSURE_WORDS | LIKELY_WORDS
 """The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
-ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS
+ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS | NO_MATTER_WORDS
 """Every whole line a session takes as an answer or a plea, not as a step or a command (after
 ``without_hesitation``): what a dialogue file may say besides steps and commands."""
 

@@ -63,6 +63,7 @@ from teach.session.commands import (
     COMMANDS,
     DOUBTS,
     LOOKING,
+    NO_MATTER_WORDS,
     NUMBERED,
     SKIP_WORDS,
     WHAT_NOW_WORDS,
@@ -326,6 +327,8 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
+        if said in NO_MATTER_WORDS:  # "sorry", "never mind"
+            return [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
         if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
             return self.cmd_state("")
         stated = stated_condition(self.domain, line)
