@@ -88,6 +88,15 @@ def test_the_person_something_is_done_for_may_be_a_pronoun(line, lang):
     assert [(t.name, t.guessed) for t in snacks.parse(line, lang)] == [("OfferSnack", False)]
 
 
+@pytest.mark.parametrize(("line", "action"), [("warte bis jemand fragt", "WaitForRequest"),
+                                             ("such jemanden zum Reden", "FindPartner")])
+def test_snacks_german_says_what_the_english_says(line, action):
+    """"warte bis jemand fragt" was unknown and "such jemanden zum Reden" "Did you mean …?", where the
+    English "wait until someone asks" and "find someone to talk to" were phrases."""
+    snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
+    assert [(t.name, t.guessed) for t in snacks.parse(line, "de")] == [(action, False)]
+
+
 def test_a_receiver_pronoun_is_kept_where_there_are_no_people(book):
     with pytest.raises(UnknownPhrase):
         book.parse("grasp her the ball")
