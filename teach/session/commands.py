@@ -6,6 +6,7 @@ member here and its handler."""
 from __future__ import annotations
 
 import difflib
+import functools
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from enum import Enum
@@ -205,29 +206,36 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
                                                "was soll ich machen", "was mache ich jetzt", "was kannst du")}
 """Whole lines asking what to do next (also, with no question open, the "I don't know"s of
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
-PRAISE_WORDS = {normalize(said) for said in ("thanks", "thank you", "thanks a lot", "good job", "great job", "nice job",
-                                             "well done", "good", "very good", "great", "perfect", "nice", "excellent",
-                                             "awesome", "bravo", "good robot", "good boy", "good girl",
-                                             "danke", "danke schön", "dankeschön", "vielen dank", "gut gemacht",
-                                             "sehr gut", "gut", "prima", "toll", "super", "klasse", "perfekt", "brav",
-                                             "spitze", "wunderbar")}
+PRAISE_WORDS = frozenset(normalize(said) for said in (
+    "thanks", "thank you", "thanks a lot", "good job", "great job", "nice job", "well done", "good", "very good",
+    "great", "perfect", "nice", "excellent", "awesome", "bravo", "good robot", "good boy", "good girl", "danke",
+    "danke schön", "dankeschön", "vielen dank", "gut gemacht", "sehr gut", "gut", "prima", "toll", "super", "klasse",
+    "perfekt", "brav", "spitze", "wunderbar"))
 """Praise and thanks (with no question open): thanked back, with the next step to take, never
 read as 'done' ("well done" after a run was "You have not shown me any steps")."""
 _COURTESY_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
                     "das war", "das hast du", "hast du", "gemacht"}
 """Words that go with praise or a greeting ("thank you very much, robot", "das hast du gut gemacht")."""
-GREETINGS = {normalize(said) for said in ("hello", "hi", "hey", "hi there", "hello there", "good morning",
-                                          "good afternoon", "good evening", "hallo", "guten morgen", "guten tag",
-                                          "guten abend", "servus", "moin", "grüß gott", "grüß dich")}
+GREETINGS = frozenset(normalize(said) for said in (
+    "hello", "hi", "hey", "hi there", "hello there", "good morning", "good afternoon", "good evening", "hallo",
+    "guten morgen", "guten tag", "guten abend", "servus", "moin", "grüß gott", "grüß dich"))
 """Whole lines greeting the robot: greeted back with what it can do, as at the start ("hallo" was
 "Did you mean 'halt'?")."""
+_COURTESY = PRAISE_WORDS | GREETINGS
+"""What ``after_courtesy`` sets aside before a step or a command."""
 
 
-def _only(line: str, sayings: set[str]) -> bool:
+@functools.cache
+def _longest_first(sayings: frozenset[str]) -> tuple[str, ...]:
+    """``sayings`` and the words around them, the longest first (read greedily by ``_only``)."""
+    return tuple(sorted(sayings | _COURTESY_AROUND | HESITATIONS, key=lambda saying: -len(saying.split())))
+
+
+def _only(line: str, sayings: frozenset[str]) -> bool:
     """Whether a line says nothing but some of ``sayings`` and the words around them ("great,
     well done!", "thank you robot", "super, das hast du gut gemacht")."""
     words = normalize(line).split()
-    known = sorted(sayings | _COURTESY_AROUND | HESITATIONS, key=lambda saying: -len(saying.split()))
+    known = _longest_first(sayings)
     said = False
     while words:
         for saying in known:
@@ -256,7 +264,7 @@ def after_courtesy(line: str) -> str:
     go to the ball", "hallo, such den Ball" "such den Ball"); the line itself if it starts with none."""
     words = line.split()
     for cut in range(len(words) - 1, 0, -1):
-        if _only(" ".join(words[:cut]), PRAISE_WORDS | GREETINGS):
+        if _only(" ".join(words[:cut]), _COURTESY):
             return " ".join(words[cut:])
     return line
 

@@ -20,7 +20,6 @@ members (``domain``, ``journal``, ``pending`` …) are windows onto these owners
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -293,14 +292,14 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
-        polite = self.pending is None and self.pending_model is None and \
-            (is_praise(line) or is_greeting(line) or after_courtesy(line) != line)
-        if polite and not self._names_steps(line):
-            if is_praise(line):  # "well done" is no 'done'
-                return self._thanked()
-            if is_greeting(line):  # "hallo" was "Did you mean 'halt'?"
-                return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
-            line = after_courtesy(line)  # "great, now you try"
+        if self.pending is None and self.pending_model is None:
+            praised, greeted, rest = is_praise(line), is_greeting(line), after_courtesy(line)
+            if (praised or greeted or rest != line) and not self._names_steps(line):
+                if praised:  # "well done" is no 'done'
+                    return self._thanked()
+                if greeted:  # "hallo" was "Did you mean 'halt'?"
+                    return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
+                line = rest  # "great, now you try"
         line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
         steps = self._steps_after_all(command, rest, line)
@@ -472,7 +471,7 @@ class SessionManager(CompatMembers):
         return [self._tree_reply(self.learning.tree if full else self.pruned, full)]
 
     def cmd_state(self, rest: str) -> list[Reply]:
-        return [dataclasses.replace(self._state_reply(full=says_full(rest)), asked=True)]
+        return [self._state_reply(full=says_full(rest), asked=True)]
 
     def cmd_start(self, rest: str) -> list[Reply]:
         if self.showing.has_steps:
@@ -723,11 +722,12 @@ class SessionManager(CompatMembers):
         actions = ", ".join(domain.action(name).label(self.lang) for name in possible)
         return [self._state_reply(), Reply(ReplyKind.INFO, m.WHAT_NOW(self.lang, actions=actions))]
 
-    def _state_reply(self, full: bool = False) -> Reply:
-        """The situation in words; the conditions' names and values too for a facilitator or 'state full'."""
+    def _state_reply(self, full: bool = False, asked: bool = False) -> Reply:
+        """The situation in words; the conditions' names and values too for a facilitator or 'state full';
+        ``asked``: the teacher asked for it (a line of the dialogue then, ``Reply.asked``)."""
         state = self.world.state()
         values = dict(zip(self.domain.condition_names, state, strict=True)) if full or self.facilitator else None
-        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang), state=values)
+        return Reply(ReplyKind.STATE, describe_situation(self.domain, state, self.lang), state=values, asked=asked)
 
     def _tick_clock(self) -> None:
         self.step += 1
