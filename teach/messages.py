@@ -265,9 +265,13 @@ STATED_UNTRUE = Text("That is not what I see: {condition}.", "Das sehe ich ander
 STATED_WHAT_HAPPENED = Text(" If something happened, say what: {events}.",
                             " Wenn etwas passiert ist, sag was: {events}.")
 PRAISED = Text("Thank you!", "Danke!")
+HELLO_AGAIN = Text("Hello!", "Hallo!")
+TAKE_YOUR_TIME = Text("Take your time.", "Lass dir Zeit.")
+TAKE_YOUR_TIME_ASKED = Text("Take your time: my question is still open ('skip' leaves it).",
+                            "Lass dir Zeit: meine Frage ist noch offen ('weiter' lässt sie offen).")
 ALL_RIGHT = Text("All right.", "In Ordnung.")
-PRAISED_GO_ON = Text("Thank you! Tell me the next step, or say 'done' when the task is finished.",
-                     "Danke! Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
+GO_ON = Text("Tell me the next step, or say 'done' when the task is finished.",
+             "Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")

@@ -154,11 +154,12 @@ def test_a_dialogue_may_praise_and_ask_where_things_are(tmp_path, capsys):
     by a session, so a scripted replay reads them too; praise before a step is set aside, as in the
     session."""
     dialogue = tmp_path / "kind.dialogue"
-    dialogue.write_text("hello\nfind the ball\nwhere is the ball?\nI can see the ball now\n"
-                        "good, now go to the ball\nGreat, well done!\n", encoding="utf-8")
+    dialogue.write_text("hello\nfind the ball\nwhere is the ball?\nI can see the ball now\nhmm\nwait, no\nok\n"
+                        "good, now go to the ball\nGreat, well done!\n👍\n", encoding="utf-8")
     assert main(["replay", str(dialogue), "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "✓ go to the ball" in out and "Thank you! Tell me the next step" in out and "Yes, I know" in out
+    assert "Take your time." in out and "If my last step was wrong" in out
 
 
 def test_replacing_another_session_needs_overwrite(tmp_path, capsys):

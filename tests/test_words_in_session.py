@@ -8,6 +8,7 @@ import pytest
 from conftest import ROOT
 from test_session import teach_two_demonstrations
 
+from teach import messages as m
 from teach.demos import read_demo_set
 from teach.domain import load_domain
 from teach.learn.learner import Update
@@ -394,9 +395,76 @@ def test_a_domain_phrase_stays_a_step_though_it_sounds_like_courtesy(tmp_path, l
 
 
 @pytest.mark.parametrize(("lang", "line", "reply"), [("en", "sorry", "All right."), ("en", "never mind", "All right."),
-                                                     ("de", "schon gut", "In Ordnung.")])
+                                                     ("en", "ok", "All right."), ("de", "schon gut", "In Ordnung."),
+                                                     ("de", "alles klar", "In Ordnung.")])
 def test_a_line_that_asks_for_nothing_is_let_be(ball, tmp_path, lang, line, reply):
-    """ "sorry" was "I don't know 'sorry'" and a list of what the robot can do."""
+    """ "sorry" was "I don't know 'sorry'" and a list of what the robot can do, "ok" "No question is
+    open"; during a demonstration the reply says what comes next."""
+    manager = session(ball, tmp_path, lang)
+    assert said(manager, line) == reply
+    said(manager, WHOLE[lang].split(",")[0])
+    assert said(manager, line) == f"{reply} {m.GO_ON(Lang.parse(lang))}" and open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "hello"), ("de", "Guten Morgen")])
+def test_a_greeting_during_a_demonstration_says_what_comes_next(ball, tmp_path, lang, line):
+    """It repeated the whole opening line ("Show me how to do the task … I can: …")."""
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang].split(",")[0])
-    assert said(manager, line) == reply and open_actions(manager) == [1]
+    replies = manager.handle(line)
+    hello = m.HELLO_AGAIN(Lang.parse(lang))
+    assert [(r.kind, r.text) for r in replies] == [(ReplyKind.SAY, f"{hello} {m.GO_ON(Lang.parse(lang))}")]
+    assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize("line", ["👍", "great :)", "👏👏", "thumbs up", "cool"])
+def test_praise_in_marks_is_thanked_back(ball, tmp_path, line):
+    """ "👍" was "I don't know '👍'" (and "thumbs up", "cool")."""
+    manager = session(ball, tmp_path, "en")
+    said(manager, WHOLE["en"].split(",")[0])
+    assert said(manager, line) == f"Thank you! {m.GO_ON(Lang.EN)}" and open_actions(manager) == [1]
+
+
+def test_a_thumb_to_may_i_is_asked_back_as_a_yes(ball, tmp_path):
+    """A care robot does not act on a "👍": it asks whether that is a yes, and the question stays open."""
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    asked = manager.pending
+    assert asked is not None and asked.kind.startswith("must-")
+    assert said(manager, "👍") == m.IS_THAT_A_YES(Lang.EN) and manager.pending is asked
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "hmm"), ("en", "wait"), ("en", "hold on, robot"),
+                                            ("de", "einen Moment"), ("de", "warte mal")])
+def test_asking_the_robot_to_wait_is_waited_for(ball, tmp_path, lang, line):
+    """ "wait" and "hmm" were "I don't know" and a list of actions: nothing is done."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    assert said(manager, line) == f"{m.TAKE_YOUR_TIME(Lang.parse(lang))} {m.GO_ON(Lang.parse(lang))}"
+    assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize("line", ["hmm", "wait a moment"])
+def test_waiting_leaves_a_question_open(ball, tmp_path, line):
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    asked = manager.pending
+    assert asked is not None
+    assert said(manager, line) == m.TAKE_YOUR_TIME_ASKED(Lang.EN) and manager.pending is asked
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "wait, no"), ("en", "no wait"), ("de", "nein, warte")])
+def test_a_no_with_a_wait_is_a_no(ball, tmp_path, lang, line):
+    """ "wait, no" was "I don't know": with nothing asked it says how to take a step back."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    assert said(manager, line) == m.NO_TO_WHAT(Lang.parse(lang)) and open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "undo undo"), ("de", "zurück zurück")])
+def test_a_command_said_twice_is_done_once(ball, tmp_path, lang, line):
+    """ "undo undo" was "expected a whole number, not 'undo'"."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, ", ".join(WHOLE[lang].split(", ")[:2]))
+    said(manager, line)
+    assert open_actions(manager) == [1]

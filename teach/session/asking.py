@@ -29,6 +29,7 @@ from teach.session.commands import (
     SKIP_WORDS,
     UNSURE_WORDS,
     WHAT_NOW_WORDS,
+    only_marks,
     without_hesitation,
 )
 from teach.session.describe import actions_to_name, unmet_goal, unnamed, why_refused
@@ -168,7 +169,8 @@ class Asking:
         hesitant = without_hesitation(key)
         if hesitant in UNSURE_WORDS:  # "maybe": neither a yes nor a no; the question stays open
             return [Reply(ReplyKind.QUESTION, m.NOT_SURE(self.lang))]
-        if hesitant in LIKELY_WORDS and question.kind in MUST_KINDS:  # "I think so": not acted on as a yes
+        doubtful_yes = hesitant in LIKELY_WORDS or only_marks(line)  # "I think so", "👍"
+        if doubtful_yes and question.kind in MUST_KINDS:  # not acted on as a yes
             return [Reply(ReplyKind.QUESTION, m.IS_THAT_A_YES(self.lang))]
         yes = question.kind in MUST_KINDS and bool(line.strip()) and is_yes(line, self.lang)
         if question.kind in MUST_KINDS and is_no(line, self.lang):

@@ -208,34 +208,47 @@ WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what nex
 ``SKIP_WORDS``): answered with the steps the domain's model allows from here."""
 PRAISE_WORDS = frozenset(normalize(said) for said in (
     "thanks", "thank you", "thanks a lot", "good job", "great job", "nice job", "well done", "good", "very good",
-    "great", "perfect", "nice", "excellent", "awesome", "bravo", "good robot", "good boy", "good girl", "danke",
-    "danke schön", "dankeschön", "vielen dank", "gut gemacht", "sehr gut", "gut", "prima", "toll", "super", "klasse",
-    "perfekt", "brav", "spitze", "wunderbar"))
+    "great", "perfect", "nice", "nice one", "excellent", "awesome", "cool", "yay", "bravo", "thumbs up", "good robot",
+    "good boy", "good girl", "danke", "danke schön", "dankeschön", "vielen dank", "gut gemacht", "sehr gut", "gut",
+    "prima", "toll", "super", "klasse", "perfekt", "brav", "spitze", "wunderbar", "daumen hoch"))
 """Praise and thanks (with no question open): thanked back, with the next step to take, never
 read as 'done' ("well done" after a run was "You have not shown me any steps")."""
-_COURTESY_AROUND = {"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was", "that s", "thats",
-                    "das war", "das hast du", "hast du", "gemacht"}
+_COURTESY_AROUND = frozenset({"robot", "roboter", "ok", "okay", "very much", "so much", "really", "that was",
+                              "that s", "thats", "das war", "das hast du", "hast du", "gemacht"})
 """Words that go with praise or a greeting ("thank you very much, robot", "das hast du gut gemacht")."""
 GREETINGS = frozenset(normalize(said) for said in (
     "hello", "hi", "hey", "hi there", "hello there", "good morning", "good afternoon", "good evening", "hallo",
     "guten morgen", "guten tag", "guten abend", "servus", "moin", "grüß gott", "grüß dich"))
 """Whole lines greeting the robot: greeted back with what it can do, as at the start ("hallo" was
 "Did you mean 'halt'?")."""
+APPROVING_MARKS = ("👍", "👏", "👌", "🙂", "😊", "😀", "😃", "😄", "😁", "❤️", "❤", "♥", "💪", "🎉",
+                   ":-)", ":)", ":D", "+1")
+"""Emoji and marks people praise with ("👍" was "I don't know '👍'"); to a "may I …?" question they
+are asked back as "is that a yes?" (a care robot does not act on a thumb)."""
+HOLD_ON_WORDS = frozenset(normalize(said) for said in (
+    "wait", "wait a moment", "wait a second", "wait a minute", "hold on", "hang on", "one moment", "just a moment",
+    "a moment", "moment", "one second", "one sec", "just a second", "let me think", "give me a moment", "warte",
+    "warte mal", "moment mal", "einen moment", "augenblick", "sekunde", "lass mich überlegen",
+    "lass mich nachdenken")) | (INTERJECTIONS - {"sorry"})
+"""Lines asking the robot to wait, or only hesitating ("hmm", "wait", "einen Moment"): it waits and
+says so, a question staying open ("wait" was "I don't know 'wait'", "wait, no" too)."""
+_WAITING_AROUND = frozenset({"robot", "roboter", "ok", "okay", "please", "bitte"})
+"""Words that go with a "wait" ("hold on, robot"); not "that's", which begins "that's not right"."""
 _COURTESY = PRAISE_WORDS | GREETINGS
 """What ``after_courtesy`` sets aside before a step or a command."""
 
 
 @functools.cache
-def _longest_first(sayings: frozenset[str]) -> tuple[str, ...]:
+def _longest_first(sayings: frozenset[str], around: frozenset[str]) -> tuple[str, ...]:
     """``sayings`` and the words around them, the longest first (read greedily by ``_only``)."""
-    return tuple(sorted(sayings | _COURTESY_AROUND | HESITATIONS, key=lambda saying: -len(saying.split())))
+    return tuple(sorted(sayings | around | HESITATIONS, key=lambda saying: -len(saying.split())))
 
 
-def _only(line: str, sayings: frozenset[str]) -> bool:
-    """Whether a line says nothing but some of ``sayings`` and the words around them ("great,
+def _only(line: str, sayings: frozenset[str], around: frozenset[str] = _COURTESY_AROUND) -> bool:
+    """Whether a line says nothing but some of ``sayings`` and the words ``around`` them ("great,
     well done!", "thank you robot", "super, das hast du gut gemacht")."""
     words = normalize(line).split()
-    known = _longest_first(sayings)
+    known = _longest_first(sayings, around)
     said = False
     while words:
         for saying in known:
@@ -250,8 +263,34 @@ def _only(line: str, sayings: frozenset[str]) -> bool:
 
 
 def is_praise(line: str) -> bool:
-    """Whether a whole line only praises or thanks the robot."""
-    return _only(line, PRAISE_WORDS)
+    """Whether a whole line only praises or thanks the robot, in words or marks ("👍", "great :)")."""
+    return only_marks(line) or _only(_without_marks(line), PRAISE_WORDS)
+
+
+def only_marks(line: str) -> bool:
+    """Whether a line is approving marks and nothing else that says anything ("👍", "👍👍!")."""
+    unmarked = _without_marks(line)
+    return unmarked != line.strip() and not normalize(unmarked)
+
+
+def _without_marks(line: str) -> str:
+    for mark in APPROVING_MARKS:
+        line = line.replace(mark, " ")
+    return line.strip()
+
+
+def is_holding_on(line: str) -> bool:
+    """Whether a whole line only asks the robot to wait or hesitates ("hmm", "hold on, robot")."""
+    return _only(line, HOLD_ON_WORDS, _WAITING_AROUND)
+
+
+def after_holding_on(line: str) -> str:
+    """The line without the words asking to wait it starts or ends with ("wait, no" and "no, wait":
+    "no"); the line itself where it has none there, "" where it is nothing else."""
+    words = line.split()
+    start = next((cut for cut in range(len(words), 0, -1) if is_holding_on(" ".join(words[:cut]))), 0)
+    end = next((cut for cut in range(start, len(words)) if is_holding_on(" ".join(words[cut:]))), len(words))
+    return line if (start, end) == (0, len(words)) else " ".join(words[start:end])
 
 
 def is_greeting(line: str) -> bool:
@@ -272,10 +311,12 @@ def after_courtesy(line: str) -> str:
 WHERE_STARTS = ("where is ", "where s ", "where are ", "wo ist ", "wo sind ", "wo liegt ")
 """How a line asking where something is starts ("where is the ball?"): answered with the situation."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
-                                                "no problem", "all good", "entschuldigung", "egal",
-                                                "schon gut", "macht nichts", "kein problem", "alles gut")}
+                                                "no problem", "all good", "ok", "okay", "ok then", "alright",
+                                                "all right", "fine", "got it", "i see", "understood",
+                                                "entschuldigung", "egal", "schon gut", "macht nichts", "kein problem",
+                                                "alles gut", "alles klar", "verstanden", "ach so", "aha")}
 """Whole lines that ask for nothing (with no question open): "All right.", nothing done ("sorry"
-was "I don't know 'sorry'" and a list of what the robot can do)."""
+was "I don't know 'sorry'" and a list of what the robot can do; "ok" "No question is open")."""
 DOUBTS = UNSURE_WORDS | LIKELY_WORDS
 """The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
 ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS | NO_MATTER_WORDS
@@ -295,6 +336,9 @@ def parse_command(line: str) -> tuple[Command | None, str]:
     """The command a line starts with (one of its single words) or is as a whole ("that was
     wrong"), and the rest of the line; ``(None, line)`` when it names none."""
     whole = normalize(line)
+    said = whole.split()
+    if len(said) > 1 and len(set(said)) == 1:  # "undo undo", "stop stop", "go go": once
+        whole = said[0]  # ("undo undo" was "expected a whole number, not 'undo'")
     for command in COMMANDS:
         if whole and whole in command.names:
             return command, ""

@@ -17,7 +17,9 @@ from teach.session.commands import (
     WHERE_STARTS,
     Verb,
     after_courtesy,
+    after_holding_on,
     is_greeting,
+    is_holding_on,
     is_praise,
     parse_command,
     without_hesitation,
@@ -33,23 +35,33 @@ def check_lines(script: Script, domain: Domain, phrases: PhraseBook, language: s
     answers = ANSWER_SAYINGS | {normalize(word(each)) for word in m.ANSWER_WORDS for each in Lang}
     topic: str | None = None  # "it" names what the line before named, as in the session
     for number, said in script.lines:
-        if is_praise(said) or is_greeting(said) or normalize(said).startswith(WHERE_STARTS) \
-                or stated_condition(domain, said) is not None:  # "well done", "hello", "the bin is within reach"
+        if is_praise(said) or is_greeting(said) or is_holding_on(said) or normalize(said).startswith(WHERE_STARTS) \
+                or stated_condition(domain, said) is not None:  # "well done", "hmm", "the bin is within reach"
             continue
-        line = after_courtesy(said)  # "good, now go to the ball"
-        command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
-        if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
-            from teach.sim.guide import parse_guide_line
-
-            parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
-        if command is not None or is_new_action_answer(line) or without_hesitation(normalize(line)) in answers \
-                or is_yes(line, lang) or is_no(line, lang):
-            continue
-        found, topic = _names_actions_or_events(line, phrases, lang, topic)
+        found = False
+        for line in dict.fromkeys((after_courtesy(said), after_courtesy(after_holding_on(said)))):
+            # "good, now go to the ball"; "wait, no" (but snacks' "wait until someone asks" as it is)
+            found, topic = _reads(line, phrases, lang, answers, topic, script, number)
+            if found:
+                break
         if not found:
             shown = repr(said) if len(said) <= 40 else repr(said[:37]) + "..."
             raise FormatError(f"{shown} is neither a command nor something the robot can do or the world can undergo "
                               "(is this a dialogue? --lenient types such lines anyway)", script.path, number)
+
+
+def _reads(line: str, phrases: PhraseBook, lang: Lang, answers: set[str], topic: str | None, script: Script,
+           number: int) -> tuple[bool, str | None]:
+    """Whether the session reads ``line`` as a command, an answer or steps (and the topic after it)."""
+    command, rest = parse_command(command_hint(line, lang, COMMAND_NAMES) or line)  # "ok done", as the session
+    if command is Verb.GUIDE and rest.strip() and normalize(rest) not in STOP_WORDS:
+        from teach.sim.guide import parse_guide_line
+
+        parse_guide_line(f"guide {rest}", script.path, number)  # a bad amount names its line
+    if command is not None or is_new_action_answer(line) or without_hesitation(normalize(line)) in answers \
+            or is_yes(line, lang) or is_no(line, lang):
+        return True, topic
+    return _names_actions_or_events(line, phrases, lang, topic)
 
 
 def _names_actions_or_events(line: str, phrases: PhraseBook, lang: Lang, topic: str | None) -> tuple[bool, str | None]:

@@ -71,6 +71,7 @@ from teach.session.commands import (
     Command,
     Verb,
     after_courtesy,
+    after_holding_on,
     is_greeting,
     is_praise,
     parse_command,
@@ -292,13 +293,20 @@ class SessionManager(CompatMembers):
                 return self.asking.apply_answer(tokens[0].name, tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+        waited = after_holding_on(line)
+        if waited != line and not self._names_steps(line):  # "hmm", "wait, no" (not snacks' "wait until …")
+            if not waited:
+                self.suggestion = suggestion  # "Did you mean …?" still waits for its yes
+                return self._waiting()
+            line = waited
         if self.pending is None and self.pending_model is None:
             praised, greeted, rest = is_praise(line), is_greeting(line), after_courtesy(line)
             if (praised or greeted or rest != line) and not self._names_steps(line):
                 if praised:  # "well done" is no 'done'
-                    return self._thanked()
-                if greeted:  # "hallo" was "Did you mean 'halt'?"
-                    return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
+                    return self._said_back(m.PRAISED(self.lang))
+                if greeted:  # "hallo" was "Did you mean 'halt'?"; during a demonstration, what comes next
+                    hello = m.HELLO(self.lang, actions=some_actions(self.domain, self.lang))
+                    return self._said_back(m.HELLO_AGAIN(self.lang), ReplyKind.SAY, alone=hello)
                 line = rest  # "great, now you try"
         line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
@@ -320,14 +328,14 @@ class SessionManager(CompatMembers):
         if command is not None:
             return self._handler(command)(rest)
         said = normalize(line)
+        if said in NO_MATTER_WORDS:  # "sorry", "never mind", "ok"
+            return self._said_back(m.ALL_RIGHT(self.lang))
         if is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if is_yes(line, self.lang) or without_hesitation(said) in DOUBTS:  # "yes"/"maybe" to nothing asked
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
-        if said in NO_MATTER_WORDS:  # "sorry", "never mind"
-            return [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
         if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
             return self.cmd_state("")
         stated = stated_condition(self.domain, line)
@@ -700,14 +708,21 @@ class SessionManager(CompatMembers):
             text += m.STATED_WHAT_HAPPENED(self.lang, events=self._event_names())
         return [Reply(ReplyKind.INFO, text)]
 
-    def _thanked(self) -> list[Reply]:
-        """Praise thanked back; during a demonstration with what comes next (as "what now?" where the
-        task is finished)."""
+    def _said_back(self, said: str, kind: ReplyKind = ReplyKind.INFO, alone: str | None = None) -> list[Reply]:
+        """Praise thanked back, a greeting greeted, a "wait" waited for: during a demonstration with
+        what comes next (as "what now?" where the task is finished; a greeting repeated the whole
+        opening line there), else ``alone`` (default: ``said``)."""
         if self.open is None:
-            return [Reply(ReplyKind.INFO, m.PRAISED(self.lang))]
+            return [Reply(kind, said if alone is None else alone)]
         if self.domain.has_model and self.domain.goal_holds(self.world.state()):
-            return [Reply(ReplyKind.INFO, f"{m.PRAISED(self.lang)} {m.WHAT_NOW_FINISHED(self.lang)}")]
-        return [Reply(ReplyKind.INFO, m.PRAISED_GO_ON(self.lang))]
+            return [Reply(kind, f"{said} {m.WHAT_NOW_FINISHED(self.lang)}")]
+        return [Reply(kind, f"{said} {m.GO_ON(self.lang)}")]
+
+    def _waiting(self) -> list[Reply]:
+        """ "hmm", "wait", "einen Moment": nothing done; an open question stays open."""
+        if self.pending is not None or self.pending_model is not None:
+            return [Reply(ReplyKind.QUESTION, m.TAKE_YOUR_TIME_ASKED(self.lang))]
+        return self._said_back(m.TAKE_YOUR_TIME(self.lang))
 
     def _what_now(self) -> list[Reply]:
         """ "what now?": the situation and the steps the domain's model allows from it (every step
