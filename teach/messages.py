@@ -329,6 +329,12 @@ RUN_AGAIN = Text("I try again from here (the steps of the last run are not kept 
                  "Vorführung; was du geantwortet hast, ist schon gelernt).")
 WHAT_INSTEAD = Text("Then what should I do there instead?", "Was soll ich dort dann stattdessen tun?")
 NO_TAKEN = Text("I take that as a no (I don't know “{rest}”).", "Ich verstehe das als Nein („{rest}“ kenne ich nicht).")
+QUESTION_AGAIN = Text("My question again ('why do you ask?' says why I ask, 'skip' leaves it):",
+                      "Noch einmal meine Frage ('warum fragst du?' sagt, warum ich frage, 'weiter' lässt sie offen):")
+CANNOT_HAPPEN_THEN = Text("Can that situation not happen at all? Then say 'that cannot happen' (I will not ask "
+                          "about it again). Otherwise answer, or say 'skip'.",
+                          "Kann es diese Lage gar nicht geben? Dann sag 'das gibt es nicht' (dann frage ich nicht mehr "
+                          "danach). Sonst antworte, oder sag 'weiter'.")
 CANNOT_HAPPEN = Text("Thank you: I will not ask about that situation again, and it cost no question.",
                      "Danke: Nach dieser Lage frage ich nicht mehr, und die Frage zählt nicht.")
 SITUATION_QUESTION = Text("If {situation}, what should I do?", "Angenommen, {situation}. Was soll ich dann tun?")

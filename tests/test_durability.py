@@ -144,9 +144,11 @@ def test_a_dialogue_may_say_what_a_session_understands(tmp_path, capsys):
     """ "what now?", doubtful answers and "that cannot happen" are understood by a session, but a
     scripted replay refused them as "neither a command nor something the robot can do"."""
     dialogue = tmp_path / "everyday.dialogue"
-    dialogue.write_text("find the ball\nwhat now?\nhmm, maybe\nI think so\nthat cannot happen\n", encoding="utf-8")
+    dialogue.write_text("find the ball\nwhat now?\nhmm, maybe\nI think so\nthat cannot happen\nhuh?\n"
+                        "that makes no sense\n", encoding="utf-8")
     assert main(["replay", str(dialogue), "--world", "symbolic", "--no-record", "--base", str(tmp_path)]) == 0
-    assert "From here I can" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "From here I can" in out and out.count("No question is open.") == 4
 
 
 def test_a_dialogue_may_praise_and_ask_where_things_are(tmp_path, capsys):

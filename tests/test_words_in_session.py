@@ -468,3 +468,31 @@ def test_a_command_said_twice_is_done_once(ball, tmp_path, lang, line):
     said(manager, ", ".join(WHOLE[lang].split(", ")[:2]))
     said(manager, line)
     assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize("line", ["huh?", "what do you mean?", "say that again", "wie bitte?"])
+def test_a_puzzled_answer_gets_the_question_again(ball, tmp_path, line):
+    """ "huh?" was "I don't know 'huh?'" and a list of answers, without the question."""
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    asked = manager.pending
+    assert asked is not None
+    replies = manager.handle(line)
+    assert replies[0].text == m.QUESTION_AGAIN(Lang.EN) and replies[1].kind is ReplyKind.QUESTION
+    assert manager.pending is asked and manager.budget.used == 1
+
+
+@pytest.mark.parametrize(("line", "ruled_out"), [("that makes no sense", False), ("how can that be?", False),
+                                                 ("that's not possible", True), ("das geht nicht", True)])
+def test_doubting_a_situation_is_asked_back_and_not_possible_rules_it_out(ball, tmp_path, line, ruled_out):
+    """ "that makes no sense" is asked back (the robot does not guess that a situation cannot
+    happen); "that's not possible" says it cannot, as "that cannot happen" does."""
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    asked = manager.pending
+    assert asked is not None
+    replies = manager.handle(line)
+    if ruled_out:
+        assert replies[0].text == m.CANNOT_HAPPEN(Lang.EN) and manager.pending is not asked
+    else:
+        assert [r.text for r in replies] == [m.CANNOT_HAPPEN_THEN(Lang.EN)] and manager.pending is asked

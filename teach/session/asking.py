@@ -26,6 +26,8 @@ from teach.session.commands import (
     DONE_WORDS,
     IMPOSSIBLE_WORDS,
     LIKELY_WORDS,
+    NONSENSE_WORDS,
+    PUZZLED_WORDS,
     SKIP_WORDS,
     UNSURE_WORDS,
     WHAT_NOW_WORDS,
@@ -166,6 +168,10 @@ class Asking:
             return self._cannot_happen(question)
         if key in WHAT_NOW_WORDS:  # "what now?" with a question open: what it takes
             return [self.answer_hint()]
+        if key in PUZZLED_WORDS:  # "huh?", "wie bitte?"
+            return [Reply(ReplyKind.INFO, m.QUESTION_AGAIN(self.lang)), self._question_reply(question)]
+        if key in NONSENSE_WORDS:  # "that makes no sense": perhaps it cannot happen, but that is not guessed
+            return [Reply(ReplyKind.QUESTION, m.CANNOT_HAPPEN_THEN(self.lang))]
         hesitant = without_hesitation(key)
         if hesitant in UNSURE_WORDS:  # "maybe": neither a yes nor a no; the question stays open
             return [Reply(ReplyKind.QUESTION, m.NOT_SURE(self.lang))]

@@ -178,10 +178,24 @@ LOOKING = frozenset({Verb.HELP, Verb.STATE, Verb.SHOW, Verb.STEPS, Verb.WHY, Ver
 """Commands that only look (or leave), allowed while a labelling question is open."""
 
 DONE_WORDS = set(Verb.DONE.names) | {"nothing", "nothing task is done", "nichts", "ziel erreicht"}
-IMPOSSIBLE_WORDS = {"that cannot happen", "that can t happen", "that cant happen", "cannot happen", "impossible",
-                    "that is impossible", "das gibt es nicht", "gibt es nicht", "das geht nicht", "unmoglich",
-                    "das ist unmoglich", "das kann nicht sein"}
+IMPOSSIBLE_WORDS = {normalize(said) for said in (
+    "that cannot happen", "that can't happen", "that cant happen", "cannot happen", "impossible", "that is impossible",
+    "that's impossible", "that's not possible", "that is not possible", "not possible", "that can't be",
+    "that cannot be", "das gibt es nicht", "gibt es nicht", "das geht nicht", "unmöglich", "das ist unmöglich",
+    "das kann nicht sein", "das ist nicht möglich", "nicht möglich")}
 """Answers saying the asked-about situation cannot happen: free, and never asked again."""
+PUZZLED_WORDS = {normalize(said) for said in (
+    "huh", "what", "pardon", "sorry what", "come again", "say that again", "say again", "repeat", "repeat that",
+    "repeat the question", "what was the question", "what do you mean", "i don't understand", "i do not understand",
+    "i don't get it", "wie bitte", "was", "hä", "bitte was", "was meinst du", "versteh ich nicht",
+    "ich verstehe nicht", "ich verstehe das nicht", "nochmal bitte", "was war die frage", "wiederhol das")}
+"""Answers that did not follow the question ("huh?", "wie bitte?"): it is asked again, as it was."""
+NONSENSE_WORDS = {normalize(said) for said in (
+    "that makes no sense", "makes no sense", "that doesn't make sense", "that does not make sense", "how can that be",
+    "how is that possible", "that's silly", "that is silly", "nonsense", "das ergibt keinen sinn",
+    "das macht keinen sinn", "wie soll das gehen", "unsinn", "quatsch", "so ein quatsch")}
+"""Answers doubting the asked-about situation ("that makes no sense"): asked whether it cannot
+happen at all, never taken as 'that cannot happen' on a guess."""
 SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
                                      "ich weiss nicht", "keine ahnung", "uberspringen"}
 HESITATIONS = INTERJECTIONS | {"well", "na", "also"}
@@ -319,7 +333,10 @@ NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind
 was "I don't know 'sorry'" and a list of what the robot can do; "ok" "No question is open")."""
 DOUBTS = UNSURE_WORDS | LIKELY_WORDS
 """The doubtful answers ("maybe", "I think so"): with no question open, said to have nothing to answer."""
-ANSWER_SAYINGS = DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | WHAT_NOW_WORDS | DOUBTS | NO_MATTER_WORDS
+ANSWERS_ONLY = DOUBTS | IMPOSSIBLE_WORDS | NONSENSE_WORDS
+"""What only answers a question ("maybe", "that cannot happen"): with none open, said to have nothing to answer."""
+ANSWER_SAYINGS = (DONE_WORDS | SKIP_WORDS | IMPOSSIBLE_WORDS | PUZZLED_WORDS | NONSENSE_WORDS | WHAT_NOW_WORDS | DOUBTS
+                  | NO_MATTER_WORDS)
 """Every whole line a session takes as an answer or a plea, not as a step or a command (after
 ``without_hesitation``): what a dialogue file may say besides steps and commands."""
 

@@ -57,10 +57,10 @@ from teach.session.arguments import (
 from teach.session.asking import Asking
 from teach.session.commands import (
     ANSWERING,
+    ANSWERS_ONLY,
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
     COMMANDS,
-    DOUBTS,
     LOOKING,
     NO_MATTER_WORDS,
     NUMBERED,
@@ -332,7 +332,7 @@ class SessionManager(CompatMembers):
             return self._said_back(m.ALL_RIGHT(self.lang))
         if is_no(line, self.lang):  # "no" to nothing asked: likely "that was wrong"
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
-        if is_yes(line, self.lang) or without_hesitation(said) in DOUBTS:  # "yes"/"maybe" to nothing asked
+        if is_yes(line, self.lang) or without_hesitation(said) in ANSWERS_ONLY:  # "yes"/"maybe" to nothing asked
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
