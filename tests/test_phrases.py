@@ -90,7 +90,8 @@ def test_a_person_pronoun_never_stands_for_a_thing(line):
 
 
 @pytest.mark.parametrize(("line", "lang"), [("offer her a drink", "en"), ("offer him a snack", "en"),
-                                           ("biete ihm einen Snack an", "de")])
+                                           ("biete ihm einen Snack an", "de"), ("give her a cookie", "en"),
+                                           ("serve him a drink", "en"), ("gib ihm etwas zu trinken", "de")])
 def test_the_person_something_is_done_for_may_be_a_pronoun(line, lang):
     """"offer her a drink" (snacks, someone just found) was "Did you mean “offer a drink”?"."""
     snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
@@ -98,7 +99,9 @@ def test_the_person_something_is_done_for_may_be_a_pronoun(line, lang):
 
 
 @pytest.mark.parametrize(("line", "action"), [("warte bis jemand fragt", "WaitForRequest"),
-                                             ("such jemanden zum Reden", "FindPartner")])
+                                             ("such jemanden zum Reden", "FindPartner"),
+                                             ("gib ihr einen Keks", "OfferSnack"),
+                                             ("bring das Tablett zurück", "ReturnToOffice")])
 def test_snacks_german_says_what_the_english_says(line, action):
     """"warte bis jemand fragt" was unknown and "such jemanden zum Reden" "Did you mean …?", where the
     English "wait until someone asks" and "find someone to talk to" were phrases."""

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from teach.dialogue.phrases import INTERJECTIONS, normalize
+from teach.errors import TeachError
 from teach.messages import Lang, Text
 from teach.session.arguments import says_full, step_number, whole_number
 
@@ -367,6 +368,28 @@ def parse_command(line: str) -> tuple[Command | None, str]:
     return None, line
 
 
+def _reads(command: Verb, rest: str, lang: Lang) -> bool:
+    """Whether ``command`` takes ``rest`` as what follows it: "give her a cookie" is no 'guide', "bring
+    the tray back" no 'wrong' (undo); they were offered as "Did you mean 'guide her a cookie'?"."""
+    if not rest:
+        return True
+    if command in (Verb.SHOW, Verb.STATE):
+        return says_full(rest)
+    if not command.value.argued:
+        return False
+    reads = NUMBERED.get(command)
+    try:
+        if reads is not None:
+            reads(rest, lang)
+        elif command is Verb.GUIDE:
+            from teach.sim.guide import parse_guide_line  # MuJoCo only where a guide line is asked about
+
+            parse_guide_line(f"guide {rest}")
+    except TeachError:
+        return False
+    return True
+
+
 TYPO_CUTOFF = 0.6
 """Similarity (``difflib``) from which a first word is read as a typo of a command word: "hlep"
 and "yse" (0.75, 0.67) are, "rum" for "run" too; two words that close are not guessed between."""
@@ -387,8 +410,7 @@ def typo_of_command(line: str, lang: Lang, answers: Iterable[str] = (),
     if typed in said or typed in answers or typed in rivals:  # a word it knows is no typo ("yes xyzzy")
         return None
     # with more words, only a command that reads them ("take a off c" was "did you mean 'state a off c'?")
-    known = {word for word, command in said.items()
-             if not rest or command.value.argued or command in (Verb.SHOW, Verb.STATE) and says_full(rest)}
+    known = {word for word, command in said.items() if _reads(command, rest, lang)}
     known.update(answers)
     scored = sorted(((difflib.SequenceMatcher(None, typed, word).ratio(), word) for word in known), reverse=True)
     if not scored or scored[0][0] < TYPO_CUTOFF or (len(scored) > 1 and scored[1][0] > scored[0][0] - 0.05):
