@@ -66,7 +66,8 @@ def test_a_step_shown_again_after_a_slip_is_the_same_step(book, line, lang, step
 
 @pytest.mark.parametrize(("line", "lang"), [("grab it, to the bin with it", "en"),
                                             ("get it, carry it over to the bin", "en"),
-                                            ("nimm ihn, zum Eimer damit", "de"), ("nimm ihn, mit ihm zum Eimer", "de")])
+                                            ("nimm ihn, zum Eimer damit", "de"), ("nimm ihn, mit ihm zum Eimer", "de"),
+                                            ("schnapp ihn dir, ab zum Eimer damit", "de")])
 def test_carrying_the_ball_to_the_bin_is_going_there(book, line, lang):
     """ "to the bin with it" (MuJoCo: "I don't know"; events came as close), "carry it over to the
     bin", "zum Eimer damit" were unknown."""

@@ -145,7 +145,7 @@ def test_asking_for_questions_lets_the_robot_ask(ball, tmp_path, lang, line):
     assert manager.pending is not None and manager.budget.used == used + 1
 
 
-@pytest.mark.parametrize("line", ["hingehen", "Hingehen!", "geh hin"])
+@pytest.mark.parametrize("line", ["hingehen", "Hingehen!", "geh hin", "geh da hin", "fahr dort hin"])
 def test_hingehen_after_the_ball_was_named_goes_to_it(ball, tmp_path, line):
     """ "hingehen" was once guessed as "Ball nehmen", then unclear; it is "hin gehen", read as "geh hin"
     is: to what was named last."""

@@ -60,6 +60,8 @@ _RECEIVERS = frozenset({"him", "her", "them", "ihm", "ihr", "ihnen"})
 """Pronouns for whom something is done ("offer her a drink"), left out where the phrase needs none."""
 _PLACES = {"there": ("to", "it"), "hin": ("zu", "ihm"), "dahin": ("zu", "ihm"), "dorthin": ("zu", "ihm")}
 """Words for the place of the object named last, read as "to it" ("go there", "geh hin")."""
+_THERE_DE = frozenset({"da", "dort"})
+"""German "there", said apart from its "hin" ("geh da hin")."""
 _RUN_TOGETHER = ("dorthin", "dahin", "hin")
 """Place words German runs together with the verb after them ("hinfahren"), longest first."""
 _NAMING_A_PLACE = {"zum", "zur", "ins", "im"}
@@ -744,9 +746,11 @@ def _misspelt(typed: str, words: tuple[str, ...]) -> bool:
 
 def _place_said(words: tuple[str, ...]) -> tuple[str, ...]:
     """``words`` without a word for a place the next words name ("geh hin zum Ball": "geh zum Ball");
-    alone, it stands for the place of what was named last (``_PLACES``)."""
+    alone, it stands for the place of what was named last (``_PLACES``), "da hin" and "dort hin" as
+    "hin" ("geh da hin" was unknown where "geh dahin" was the step)."""
     return tuple(word for word, after in zip(words, (*words[1:], ""), strict=False)
-                 if not (word in _PLACES and (after in _LINKS or after in _NAMING_A_PLACE)))
+                 if not (word in _PLACES and (after in _LINKS or after in _NAMING_A_PLACE))
+                 and not (word in _THERE_DE and after == "hin"))
 
 
 def _substituted(words: tuple[str, ...], noun: str, places: bool = True) -> list[tuple[str, ...]]:
