@@ -92,7 +92,8 @@ def test_a_person_pronoun_never_stands_for_a_thing(line):
 
 @pytest.mark.parametrize(("line", "lang"), [("offer her a drink", "en"), ("offer him a snack", "en"),
                                            ("biete ihm einen Snack an", "de"), ("give her a cookie", "en"),
-                                           ("serve him a drink", "en"), ("gib ihm etwas zu trinken", "de")])
+                                           ("serve him a drink", "en"), ("gib ihm etwas zu trinken", "de"),
+                                           ("offer them something", "en")])
 def test_the_person_something_is_done_for_may_be_a_pronoun(line, lang):
     """"offer her a drink" (snacks, someone just found) was "Did you mean “offer a drink”?"."""
     snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))
