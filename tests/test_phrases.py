@@ -74,6 +74,30 @@ def test_carrying_the_ball_to_the_bin_is_going_there(book, line, lang):
     assert names(book.parse(line, lang)) == ["GraspBall", "ApproachBin"]
 
 
+@pytest.mark.parametrize(("line", "event"), [("someone took the ball away", "take_ball"),
+                                             ("the bin was moved", "move_bin"), ("I pushed the robot", "push_robot"),
+                                             ("the ball was knocked away", "knock_ball")])
+def test_an_event_reported_as_it_happened_is_offered_and_read_after_perturb(book, line, event):
+    """ "someone took the ball away", "the bin was moved" were unknown, with nothing offered."""
+    with pytest.raises(UnknownPhrase) as unknown:
+        book.parse(line)
+    assert unknown.value.suggestion is not None and unknown.value.suggestion.candidate.name == event
+    assert [(t.kind, t.name, t.guessed) for t in book.parse(line, perturb=True)] == [("event", event, False)]
+
+
+@pytest.mark.parametrize(("line", "action"), [("the ball was grasped", "GraspBall"),
+                                              ("I moved to the bin", "ApproachBin")])
+def test_a_step_reported_as_done_is_the_step(book, line, action):
+    assert [(t.kind, t.name, t.guessed) for t in book.parse(line)] == [("action", action, False)]
+
+
+def test_a_report_two_steps_share_is_no_reading():
+    """ "b stacked on a" reports "stack a b" and "stack b a" alike."""
+    blocks = PhraseBook(load_domain(ROOT / "demos" / "blocksworld" / "domain.toml"))
+    with pytest.raises(UnknownPhrase):
+        blocks.parse("b stacked a")
+
+
 def test_someone_else_is_someone():
     """"find someone else" (snacks: the partner walked away) was "Did you mean “find someone”?"."""
     snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))

@@ -15,7 +15,7 @@ from conftest import ROOT
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
 from teach.demos import Demonstration, read_demo_set
-from teach.dialogue.phrases import PhraseBook
+from teach.dialogue.phrases import PhraseBook, UnknownPhrase
 from teach.dialogue.script import read_script
 from teach.domain import EXTERNAL_ACTION, Domain, load_domain
 from teach.replay import replay
@@ -222,3 +222,28 @@ def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):
     manager.handle("wait for a request, take the tray")
     assert [r.kind.name for r in manager.handle("someone takes a snack")][0] == "INFO"
     assert manager.open is not None and manager.open.steps[-1].action == EXTERNAL_ACTION
+
+
+@pytest.mark.parametrize(("line", "event"), [("she walked away", "partner_leaves"),
+                                             ("the person left", "partner_leaves"),
+                                             ("someone took a snack", "snack_taken")])
+def test_an_event_reported_in_the_past_is_offered_and_happens_once_confirmed(domain, tmp_path, line, event):
+    """ "she walked away" was "Did you mean 'they walk away'?" only by chance of spelling, "he took a
+    snack" unknown: a report of an event is offered as that event (never run on a guess: "hid
+    ball" may be a slip of "hide ball"), and a yes makes it happen."""
+    manager = session("reports", domain, world(domain), tmp_path)
+    manager.handle("wait for a request, take the tray, find someone")
+    replies = manager.handle(line)
+    assert [r.kind.name for r in replies] == ["ERROR"] and "Did you mean" in replies[0].text
+    assert manager.suggestion is not None and manager.suggestion.candidate.name == event
+    steps = len(manager.open.steps)
+    manager.handle("yes")
+    assert len(manager.open.steps) == steps + 1 and manager.open.steps[-1].action == EXTERNAL_ACTION
+
+
+def test_a_report_two_phrases_share_is_no_reading(domain, tmp_path):
+    """ "someone took the tray" reports "take the tray" (an action) and "someone takes the tray" (an
+    event) alike: it is not read as the step (only offered, as the near spelling of the event)."""
+    manager = session("shared", domain, world(domain), tmp_path)
+    with pytest.raises(UnknownPhrase):
+        manager.phrases.parse("someone took the tray", "en")

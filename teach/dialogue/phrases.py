@@ -24,6 +24,7 @@ from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from itertools import pairwise
 
+from teach.dialogue.reports import report_key
 from teach.domain import Domain
 from teach.errors import TeachError
 from teach.messages import Lang
@@ -330,6 +331,11 @@ class PhraseBook:
         self._vocabulary = {kind: sorted({w for key, entries in self._entries.items()
                                           if any(e.kind == kind for e in entries) for w in key} | _PRONOUNS)
                             for kind in ("action", "event")}
+        self._reports: dict[tuple[str, ...], dict[tuple[str, str], _Entry]] = {}
+        for key, entries in self._entries.items():
+            for entry in entries:
+                if entry.lang is not None:  # the phrases people say, not internal names
+                    self._reports.setdefault(report_key(key), {}).setdefault((entry.kind, entry.name), entry)
         self._longest = max((len(key) for key in self._entries), default=1)
         self._ranking: tuple[str | None, list[tuple[float, _Entry]]] = (None, [])
 
@@ -419,6 +425,8 @@ class PhraseBook:
                 pieces = self._segment(other, perturb)
                 if pieces is not None:
                     break
+            if pieces is None:
+                pieces = self._reported(words, perturb)  # "someone took the ball away", "the bin was moved"
             guessed = False
             for other in (words, *self._rephrased(words)) if pieces is None else ():
                 pieces = self._corrected(other, perturb)  # "unstak a from c": "unstack a c"
@@ -501,6 +509,20 @@ class PhraseBook:
         if not options:
             options = self._without_receiver(words, kind)
         return options
+
+    def _reported(self, words: tuple[str, ...], perturb: bool) -> list[_Piece] | None:
+        """The action (after "perturb": the event) ``words`` report, as one piece. An event reported
+        outside "perturb" is only offered (``_unknown``): "hid ball" may be a slip of "hide ball"."""
+        meant = self._report_of(words)
+        if meant is None or (meant.kind == "event") != perturb:
+            return None
+        return [_Piece(words, ((meant, None),))]
+
+    def _report_of(self, words: tuple[str, ...]) -> _Entry | None:
+        """The one action or event whose phrase ``words`` report (``teach.dialogue.reports``); None
+        where none or several do ("b stacked on a": "stack a b" and "stack b a")."""
+        found = self._reports.get(report_key(words), {})
+        return next(iter(found.values())) if len(found) == 1 else None
 
     def _without_receiver(self, words: tuple[str, ...], kind: str) -> list[tuple[_Entry, str]]:
         """The phrase ``words`` make without a pronoun for the person something is done for, in a domain
@@ -605,13 +627,17 @@ class PhraseBook:
                  tokens: list[Token], later: str) -> UnknownPhrase:
         """The error for a chunk read neither exactly nor as a clear typo, with the closest phrase
         as a confirmable suggestion. Outside "perturb" an event is offered only for a pronoun
-        ("hide it") or a typo of one of its phrases, and it runs only once the teacher says yes;
+        ("hide it"), a report of it ("someone took the ball away") or a typo of one of its phrases,
+        and it runs only once the teacher says yes;
         after "perturb" no event is offered for words closer to an action."""
         said = " ".join(words)
         ratio, entry = self._best(said, "event" if perturb else "action", objects=self._objects_named(words))
         if not perturb:
             events = self._resolved(words, perturb=True)
             events = [option for option in events if option[1] == topic] or events
+            reported = self._report_of(words)  # "someone took the ball away"
+            if not events and reported is not None and reported.kind == "event":
+                events = [(reported, "")]  # no pronoun stood for anything
             event_ratio, event = (1.0, events[0][0]) if events else self._best(said, "event")
             if event_ratio >= _EVENT_SUGGEST_CUTOFF and event_ratio > ratio:
                 ratio, entry = event_ratio, event
