@@ -24,6 +24,7 @@ from teach.dialogue.phrases import (
     is_yes,
     normalize,
 )
+from teach.dialogue.reports import stem
 from teach.domain import load_domain
 from teach.messages import Lang
 from teach.session.commands import COMMAND_NAMES
@@ -86,9 +87,18 @@ def test_an_event_reported_as_it_happened_is_offered_and_read_after_perturb(book
 
 
 @pytest.mark.parametrize(("line", "action"), [("the ball was grasped", "GraspBall"),
-                                              ("I moved to the bin", "ApproachBin")])
+                                              ("I moved to the bin", "ApproachBin"),
+                                              ("the ball was found again", "FindBall"),
+                                              ("I grabbed the ball", "GraspBall")])
 def test_a_step_reported_as_done_is_the_step(book, line, action):
     assert [(t.kind, t.name, t.guessed) for t in book.parse(line)] == [("action", action, False)]
+
+
+@pytest.mark.parametrize(("said", "base"), [("took", "take"), ("takes", "take"), ("moved", "move"), ("left", "leaves"),
+                                            ("walked", "walk"), ("grabbed", "grab"), ("added", "add"),
+                                            ("found", "find"), ("pushes", "push"), ("called", "call")])
+def test_a_reported_word_has_the_stem_of_its_base(said, base):
+    assert stem(said) == stem(base)
 
 
 def test_a_report_two_steps_share_is_no_reading():

@@ -18,20 +18,25 @@ _IRREGULAR = {"took": "take", "taken": "take", "left": "leave", "went": "go", "g
               "gave": "give", "given": "give", "brought": "bring", "threw": "throw", "thrown": "throw",
               "fell": "fall", "fallen": "fall", "got": "get", "gotten": "get", "ran": "run", "hit": "hit",
               "knocked": "knock", "dropped": "drop", "stole": "steal", "stolen": "steal", "lost": "lose",
-              "goes": "go", "going": "go"}
+              "goes": "go", "going": "go", "found": "find", "held": "hold", "caught": "catch"}
 """English past forms no suffix rule reaches (and a few a rule would cut wrongly)."""
 _SUFFIXES = ("ing", "ed", "es", "s", "d")
 """Inflections cut off a word longer than three letters, the first that fits."""
+_DOUBLED = frozenset("bgmnpt")
+"""Consonants doubled before "-ed" and "-ing" ("grabbed", "stopped"), undoubled after the cut."""
 
 
 def stem(word: str) -> str:
     """A crude English stem, the same for every inflection of a verb people use in reports:
-    "moved", "moves", "move" → "mov"; "took", "takes", "take" → "tak"; "left", "leaves" → "leav"."""
+    "moved", "moves", "move" → "mov"; "took", "takes", "take" → "tak"; "left", "leaves" → "leav";
+    "grabbed", "grab" → "grab"."""
     word = _IRREGULAR.get(word, word)
     if len(word) > 3 and not word.endswith("ss"):
         for suffix in _SUFFIXES:
             if word.endswith(suffix) and len(word) - len(suffix) >= 3:
                 word = word[:-len(suffix)]
+                if suffix in ("ed", "ing") and word[-1] == word[-2] and word[-1] in _DOUBLED:
+                    word = word[:-1]
                 break
     return word[:-1] if len(word) > 3 and word.endswith("e") else word
 
