@@ -86,6 +86,16 @@ def test_an_event_reported_as_it_happened_is_offered_and_read_after_perturb(book
     assert [(t.kind, t.name, t.guessed) for t in book.parse(line, perturb=True)] == [("event", event, False)]
 
 
+@pytest.mark.parametrize(("line", "event"), [("jemand hat den Ball weggenommen", "take_ball"),
+                                             ("der Eimer wurde verschoben", "move_bin"),
+                                             ("ich habe den Roboter geschubst", "push_robot")])
+def test_an_event_reported_in_german_is_offered_too(book, line, event):
+    with pytest.raises(UnknownPhrase) as unknown:
+        book.parse(line, "de")
+    assert unknown.value.suggestion is not None and unknown.value.suggestion.candidate.name == event
+    assert [(t.kind, t.name, t.guessed) for t in book.parse(line, "de", perturb=True)] == [("event", event, False)]
+
+
 @pytest.mark.parametrize(("line", "action"), [("the ball was grasped", "GraspBall"),
                                               ("I moved to the bin", "ApproachBin"),
                                               ("the ball was found again", "FindBall"),

@@ -226,7 +226,8 @@ def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):
 
 @pytest.mark.parametrize(("line", "event"), [("she walked away", "partner_leaves"),
                                              ("the person left", "partner_leaves"),
-                                             ("someone took a snack", "snack_taken")])
+                                             ("someone took a snack", "snack_taken"),
+                                             ("jemand hat sich gerade einen Snack genommen", "snack_taken")])
 def test_an_event_reported_in_the_past_is_offered_and_happens_once_confirmed(domain, tmp_path, line, event):
     """ "she walked away" was "Did you mean 'they walk away'?" only by chance of spelling, "he took a
     snack" unknown: a report of an event is offered as that event (never run on a guess: "hid

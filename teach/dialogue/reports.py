@@ -12,8 +12,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 _AROUND_A_REPORT = frozenset({"someone", "somebody", "i", "he", "she", "we", "you", "they", "was", "were", "is",
-                              "are", "has", "have", "had", "just", "been", "did"})
-"""The subject and auxiliaries a report adds ("someone has taken …", "the bin was moved")."""
+                              "are", "has", "have", "had", "just", "been", "did", "jemand", "ich", "er", "sie", "wir",
+                              "hat", "habe", "hast", "haben", "wurde", "wurden", "wird", "ist", "sind", "gerade",
+                              "eben"})
+"""The subject and auxiliaries a report adds ("someone has taken …", "the bin was moved", "jemand
+hat den Ball weggenommen"; German verbs are matched by the participles the phrases list)."""
 _IRREGULAR = {"took": "take", "taken": "take", "left": "leave", "went": "go", "gone": "go", "came": "come",
               "gave": "give", "given": "give", "brought": "bring", "threw": "throw", "thrown": "throw",
               "fell": "fall", "fallen": "fall", "got": "get", "gotten": "get", "ran": "run", "hit": "hit",

@@ -76,11 +76,15 @@ def push_robot(world: World, rng: np.random.Generator) -> None:
 
 PERTURBATIONS: dict[str, Perturbation] = {p.name: p for p in (
     Perturbation("knock_ball", ("knock the ball away", "knock the ball out of the hand"),
-                 ("den Ball wegstoßen", "den Ball aus der Hand schlagen"), knock_ball),
+                 ("den Ball wegstoßen", "den Ball aus der Hand schlagen", "den Ball weggestoßen",
+                  "den Ball aus der Hand geschlagen"), knock_ball),
     Perturbation("take_ball", ("take the ball away", "hide the ball"),
-                 ("den Ball wegnehmen", "den Ball verstecken"), take_ball),
+                 ("den Ball wegnehmen", "den Ball verstecken", "den Ball weggenommen", "den Ball versteckt"),
+                 take_ball),
     Perturbation("move_bin", ("move the bin", "move the bin away"),
-                 ("den Eimer verschieben", "den Eimer wegstellen"), move_bin),
+                 ("den Eimer verschieben", "den Eimer wegstellen", "den Eimer verschoben", "den Eimer weggestellt"),
+                 move_bin),
     Perturbation("push_robot", ("push the robot", "push the robot aside"),
-                 ("den Roboter schubsen", "den Roboter wegschieben"), push_robot),
+                 ("den Roboter schubsen", "den Roboter wegschieben", "den Roboter geschubst",
+                  "den Roboter weggeschoben"), push_robot),
 )}
