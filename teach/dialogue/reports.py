@@ -19,10 +19,10 @@ _AROUND_A_REPORT = frozenset({"someone", "somebody", "i", "he", "she", "we", "yo
 hat den Ball weggenommen"; German verbs are matched by the participles the phrases list)."""
 _IRREGULAR = {"took": "take", "taken": "take", "left": "leave", "went": "go", "gone": "go", "came": "come",
               "gave": "give", "given": "give", "brought": "bring", "threw": "throw", "thrown": "throw",
-              "fell": "fall", "fallen": "fall", "got": "get", "gotten": "get", "ran": "run", "hit": "hit",
-              "knocked": "knock", "dropped": "drop", "stole": "steal", "stolen": "steal", "lost": "lose",
-              "goes": "go", "going": "go", "found": "find", "held": "hold", "caught": "catch"}
-"""English past forms no suffix rule reaches (and a few a rule would cut wrongly)."""
+              "fell": "fall", "fallen": "fall", "got": "get", "gotten": "get", "ran": "run", "stole": "steal",
+              "stolen": "steal", "lost": "lose", "goes": "go", "going": "go", "found": "find", "held": "hold",
+              "caught": "catch"}
+"""English forms no suffix rule reaches ("took", "goes": a rule keeps three letters at least)."""
 _SUFFIXES = ("ing", "ed", "es", "s", "d")
 """Inflections cut off a word longer than three letters, the first that fits."""
 _DOUBLED = frozenset("bgmnpt")
