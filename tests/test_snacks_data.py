@@ -225,7 +225,7 @@ def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):
 
 
 @pytest.mark.parametrize(("line", "event"), [("she walked away", "partner_leaves"),
-                                             ("the person left", "partner_leaves"),
+                                             ("the person left", "partner_leaves"), ("he left", "partner_leaves"),
                                              ("someone took a snack", "snack_taken"),
                                              ("jemand hat sich gerade einen Snack genommen", "snack_taken")])
 def test_an_event_reported_in_the_past_is_offered_and_happens_once_confirmed(domain, tmp_path, line, event):

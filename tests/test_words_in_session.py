@@ -54,8 +54,9 @@ def test_undo_words_take_back_the_last_step(ball, tmp_path, lang, find, approach
 
 
 @pytest.mark.parametrize(("lang", "done"), [("en", "that's it"), ("en", "finished"), ("en", "I'm finished"),
-                                            ("en", "all done"), ("de", "das war's"), ("de", "erledigt"),
-                                            ("de", "ich bin fertig")])
+                                            ("en", "all done"), ("en", "that's all"), ("en", "task complete"),
+                                            ("de", "das war's"), ("de", "erledigt"), ("de", "ich bin fertig"),
+                                            ("de", "das war alles"), ("de", "das wars dann")])
 def test_done_words_finish_the_demonstration(ball, tmp_path, lang, done):
     manager = session(ball, tmp_path, lang)
     said(manager, WHOLE[lang])

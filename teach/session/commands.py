@@ -38,8 +38,11 @@ class Verb(Enum):
     DEMONSTRATE = _Declared(("demonstrate", "demo"), ("vorführen", "vormachen"),
                             Text("demonstrate [steps]", "vorführen [Schritte]"),
                             Text("start a demonstration", "eine Vorführung beginnen"), argued=True)
-    DONE = _Declared(("done", "finished", "that's it", "that is it", "all done", "i'm finished"),
-                     ("fertig", "das war's", "das war es", "das wärs", "erledigt", "ich bin fertig"),
+    DONE = _Declared(("done", "finished", "that's it", "that is it", "all done", "i'm finished", "that's all",
+                      "that is all", "task complete", "task completed", "task done", "job done", "complete",
+                      "completed"),
+                     ("fertig", "das war's", "das war es", "das wärs", "erledigt", "ich bin fertig", "das war alles",
+                      "das war's dann", "das wars dann", "aufgabe erledigt", "alles erledigt"),
                      Text("done", "fertig"),
                      Text("the task is finished: learn this demonstration; also 'that's it'",
                           "die Aufgabe ist erledigt: diese Vorführung lernen; auch 'das war's'"))
