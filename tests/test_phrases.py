@@ -385,23 +385,27 @@ def test_the_confirmation_protocol_a_session_follows(book):
     assert steps == ["FindBall", "ApproachBall", "ApproachBall"]
     assert said == ["Meintest du „fahr zum Ball“?", "hilfe", "fertig"]
 
-@pytest.mark.parametrize("reply", ["yes", "Yes!", "y", "ok", "OK.", "", "  ", "yes please", "sure"])
+@pytest.mark.parametrize("reply", ["yes", "Yes!", "y", "ok", "OK.", "", "  ", "yes please", "sure", "sure, go ahead",
+                                   "yes you may", "yes, do it", "absolutely", "of course"])
 def test_yes_in_english(reply):
     assert is_yes(reply, "en") and not is_no(reply, "en")
 
 
-@pytest.mark.parametrize("reply", ["ja", "Ja!", "j", "ok", "", "genau", "ja bitte", "yes"])
+@pytest.mark.parametrize("reply", ["ja", "Ja!", "j", "ok", "", "genau", "ja bitte", "yes", "ja, klar", "ja darfst du",
+                                   "nur zu", "mach das"])
 def test_yes_in_german(reply):
     assert is_yes(reply, "de") and not is_no(reply, "de")
 
 
 @pytest.mark.parametrize("reply,lang", [("no", "en"), ("No.", "en"), ("n", "en"), ("nope", "en"),
-                                        ("nein", "de"), ("Nein!", "de"), ("nö", "de"), ("no", "de")])
+                                        ("no you may not", "en"), ("no, don't", "en"), ("absolutely not", "en"),
+                                        ("nein", "de"), ("Nein!", "de"), ("nö", "de"), ("no", "de"),
+                                        ("nein, lieber nicht", "de"), ("das darfst du nicht", "de")])
 def test_no(reply, lang):
     assert is_no(reply, lang) and not is_yes(reply, lang)
 
 
-@pytest.mark.parametrize("reply", ["yes no", "go to the bin", "?", "maybe"])
+@pytest.mark.parametrize("reply", ["yes no", "go to the bin", "?", "maybe", "not sure", "never mind", "ok no"])
 def test_neither_yes_nor_no(reply):
     assert not is_yes(reply, "en") and not is_no(reply, "en")
 

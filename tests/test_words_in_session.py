@@ -497,3 +497,20 @@ def test_doubting_a_situation_is_asked_back_and_not_possible_rules_it_out(ball, 
         assert replies[0].text == m.CANNOT_HAPPEN(Lang.EN) and manager.pending is not asked
     else:
         assert [r.text for r in replies] == [m.CANNOT_HAPPEN_THEN(Lang.EN)] and manager.pending is asked
+
+
+@pytest.mark.parametrize(("line", "yes"), [("go ahead", True), ("sure, go ahead", True), ("yes you may", True),
+                                           ("no you may not", False), ("no, don't", False)])
+def test_everyday_yes_and_no_answer_may_i(ball, tmp_path, line, yes):
+    """ "go ahead" to "may I …?" was "Please answer my question first" (it is also 'run'), "sure, go
+    ahead" and "yes you may" "I don't know"; "no you may not" was "I take that as a no (I don't know
+    'you may not')"."""
+    manager = session(ball, tmp_path, "en", questions=3)
+    teach_two_demonstrations(manager)
+    asked = manager.pending
+    assert asked is not None and asked.kind.startswith("must-")
+    replies = manager.handle(line)
+    if yes:
+        assert replies[0].text.startswith("Thank you.") and manager.pending is not asked
+    else:
+        assert [r.text for r in replies] == [m.WHAT_INSTEAD(Lang.EN)] and manager.pending is asked

@@ -97,17 +97,22 @@ _CHAT_BEFORE = INTERJECTIONS | {"ok", "okay", "so", "well", "all", "i", "m", "im
 _CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
 _HELP_MARKS = re.compile(r"^[?¿]+$")
 
-_YES = {
-    "en": {"yes", "y", "yeah", "yep", "yup", "ok", "okay", "sure", "right", "correct", "exactly", "indeed",
-           "of course", "that s right", "thats right", "that s it", "thats it", "yes please", "do it"},
-    "de": {"ja", "j", "jawohl", "genau", "richtig", "stimmt", "klar", "na klar", "ok", "okay", "gern", "gerne",
-           "ja genau", "das stimmt", "mach das", "mach es"},
+_YES_SAID = {
+    "en": ("yes", "y", "yeah", "yep", "yup", "ok", "okay", "sure", "right", "correct", "exactly", "indeed",
+           "of course", "that's right", "thats right", "that's it", "thats it", "yes please", "do it", "go ahead",
+           "you may", "you can", "absolutely", "definitely", "certainly", "by all means", "please do", "fine"),
+    "de": ("ja", "j", "jawohl", "genau", "richtig", "stimmt", "klar", "na klar", "ok", "okay", "gern", "gerne",
+           "ja genau", "das stimmt", "mach das", "mach es", "natürlich", "sicher", "darfst du", "du darfst",
+           "nur zu", "mach ruhig", "auf jeden fall", "selbstverständlich"),
 }
-_NO = {
-    "en": {"no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you", "that s wrong", "thats wrong",
-           "that is wrong", "not right", "that s not right", "thats not right", "that is not right"},
-    "de": {"nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke", "das ist falsch", "stimmt nicht",
-           "das stimmt nicht", "nicht richtig"},  # "nö" reads "no"
+_NO_SAID = {
+    "en": ("no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you", "that's wrong", "thats wrong",
+           "that is wrong", "not right", "that's not right", "thats not right", "that is not right", "don't",
+           "do not", "please don't", "you may not", "you can't", "you cannot", "no way", "never", "absolutely not",
+           "certainly not", "better not"),
+    "de": ("nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke", "das ist falsch", "stimmt nicht",
+           "das stimmt nicht", "nicht richtig", "lieber nicht", "bitte nicht", "darfst du nicht", "du darfst nicht",
+           "auf keinen fall", "nie", "niemals"),  # "nö" reads "no"
 }
 
 
@@ -209,6 +214,11 @@ def normalize(text: str) -> str:
     return " ".join(w for w in _words(text) if w not in _FILLERS)
 
 
+_YES = {lang: {normalize(said) for said in sayings} for lang, sayings in _YES_SAID.items()}
+_NO = {lang: {normalize(said) for said in sayings} for lang, sayings in _NO_SAID.items()}
+"""Yes and no, normalized: a reply made only of them is one ("sure, go ahead", "nein, lieber nicht")."""
+
+
 def _ratio(a: str, b: str) -> float:
     return difflib.SequenceMatcher(None, a, b).ratio()
 
@@ -217,9 +227,20 @@ def _ratio(a: str, b: str) -> float:
 
 
 def _says(text: str, words: set[str]) -> bool:
-    """Whether a reply is one of ``words`` (or made only of them: "ok ok", "ja genau"), fillers aside."""
+    """Whether a reply is made only of ``words``, fillers aside: "ok ok", "ja genau", "sure, go ahead",
+    "no you may not" (each saying matched whole, the longest first)."""
     key = normalize(text)
-    return key in words or (key != "" and all(w in words for w in key.split()))
+    said = key.split()
+    known = sorted(words, key=lambda saying: -len(saying.split()))
+    while said:
+        for saying in known:
+            length = len(saying.split())
+            if " ".join(said[:length]) == saying:
+                del said[:length]
+                break
+        else:
+            return False
+    return key != ""
 
 
 def _answer_sets(table: dict[str, set[str]], lang: Lang) -> set[str]:

@@ -316,8 +316,9 @@ class SessionManager(CompatMembers):
         guided = self._guiding_first(line, command)
         if guided is not None:
             return guided
-        # "wrong"/"falsch" undo, but to an open question they are a "no", as before they named a command
-        answering = command is None or command in ANSWERING or is_no(line, self.lang)
+        # "wrong"/"falsch" undo, but to an open question they are a "no", as before they named a command;
+        # "go ahead" runs, but to "may I …?" it is a yes
+        answering = command is None or command in ANSWERING or is_no(line, self.lang) or is_yes(line, self.lang)
         if self.pending_model is not None and answering:
             return self.definitions.answer(line)
         if self.pending is not None and answering:
