@@ -118,6 +118,14 @@ def test_a_report_two_steps_share_is_no_reading():
         blocks.parse("b stacked a")
 
 
+@pytest.mark.parametrize(("line", "lang"), [("I'd go to the bin", "en"), ("go to the bin instead", "en"),
+                                            ("better go to the bin", "en"), ("lieber zum Eimer", "de"),
+                                            ("besser zum Eimer stattdessen", "de")])
+def test_an_answer_with_instead_or_better_is_its_step(book, line, lang):
+    """How people answer "may I …?" with what to do: "I'd go to the bin instead" was "Did you mean …?"."""
+    assert [(t.name, t.guessed) for t in book.parse(line, lang)] == [("ApproachBin", False)]
+
+
 def test_someone_else_is_someone():
     """"find someone else" (snacks: the partner walked away) was "Did you mean “find someone”?"."""
     snacks = PhraseBook(load_domain(ROOT / "demos" / "snacks" / "domain.toml"))

@@ -44,11 +44,13 @@ _IGNORED = (_FILLERS - {"to", "zu"}) | INTERJECTIONS | {"ok", "okay", "also", "j
                                                         "konntest", "du", "dir", "yourself", "again", "once", "more",
                                                         "nochmal", "noch", "einmal", "wieder", "erneut", "else", "so",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
-                                        "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst"}
+                                        "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst",
+                                        "d", "instead", "better", "stattdessen", "lieber", "besser"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball
-first"), and "again" (a step shown once more after a slip is the same step: "grab it again",
-"such den Ball nochmal"), "else" ("find someone else" is finding someone), and the sounds of a
-teacher catching up ("ach so, erst hinfahren" was "I don't know “ach so”")."""
+first", "I'd go to the bin instead", "besser zum Eimer"), and "again" (a step shown once more
+after a slip is the same step: "grab it again", "such den Ball nochmal"), "else" ("find someone
+else" is finding someone), and the sounds of a teacher catching up ("ach so, erst hinfahren" was
+"I don't know “ach so”")."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
 _PERSONS = frozenset({"person", "people", "someone", "somebody", "caregiver", "resident", "partner", "patient",
                       "nurse", "guest", "visitor", "man", "woman", "child", "friend"})
