@@ -121,7 +121,8 @@ def test_starting_over_is_a_new_start(ball, tmp_path, lang, line):
 @pytest.mark.parametrize(("lang", "line"), [("en", "now you try"), ("en", "Your turn!"), ("en", "try again"),
                                             ("en", "keep going"), ("de", "jetzt du"), ("de", "mach weiter"),
                                             ("en", "go"), ("en", "Go ahead!"), ("en", "off you go"),
-                                            ("de", "leg los"), ("de", "fang an")])
+                                            ("de", "leg los"), ("de", "fang an"), ("en", "try"),
+                                            ("en", "can you do it now?"), ("en", "show me what you can do")])
 def test_handing_over_lets_the_robot_run(ball, tmp_path, lang, line):
     """ "now you try" and "go" after a demonstration were "I don't know": they are 'run' ("go to the
     bin please" stays a step: ``test_phrases``)."""
@@ -307,7 +308,8 @@ def test_praise_before_a_step_or_command_is_set_aside(ball, tmp_path, lang, line
 
 @pytest.mark.parametrize(("lang", "line"), [("en", "where is the ball?"), ("en", "what do you see?"),
                                             ("en", "Where are you"), ("de", "wo ist der Ball?"),
-                                            ("de", "was siehst du")])
+                                            ("de", "was siehst du"), ("en", "what are you doing?"),
+                                            ("de", "was machst du?")])
 def test_asking_where_things_are_shows_the_situation(ball, tmp_path, lang, line):
     """ "where is the ball?" and "what do you see" were "I don't know"."""
     manager = session(ball, tmp_path, lang)

@@ -76,14 +76,14 @@ class Verb(Enum):
                         argued=True)
     RUN = _Declared(("run", "now you try", "you try", "your turn", "try it", "try it yourself", "try again",
                      "continue", "keep going", "go on", "carry on", "go ahead", "off you go", "go now", "you do it",
-                     "let's see"),
+                     "let's see", "can you do it", "can you do it now", "show me what you can do"),
                     ("los", "ausführen", "jetzt du", "du bist dran", "mach du", "versuch es", "versuch es nochmal",
                      "probier es", "probier", "mach weiter", "weitermachen", "leg los", "fang an", "mach mal",
                      "mach du mal", "lass sehen", "lass mal sehen"),
                     Text("run [N]", "los [N]"),
                     Text("let the robot do the task (N: stop after N actions); also 'now you try'",
                          "den Roboter die Aufgabe machen lassen (N: nach N Handlungen anhalten); auch 'jetzt du'"),
-                    argued=True, alone=("go",))
+                    argued=True, alone=("go", "try"))
     STOP = _Declared(("stop",), ("halt",), Text("stop / Ctrl-C", "halt / Strg-C"),
                      Text("interrupt the robot", "den Roboter anhalten"))
     SHOW = _Declared(("show", "tree", "what did you learn", "what have you learned", "what have you learnt"),
@@ -92,9 +92,10 @@ class Verb(Enum):
                      Text("show the learned tree; also 'what did you learn?'",
                           "den gelernten Baum zeigen; auch 'was hast du gelernt?'"))
     STATE = _Declared(("state", "status", "what do you see", "what can you see", "where are you", "where are we",
-                       "what's going on", "what is going on", "what's the situation", "what is the situation"),
+                       "what's going on", "what is going on", "what's the situation", "what is the situation",
+                       "what are you doing", "what's happening", "what is happening"),
                       ("zustand", "status", "was siehst du", "wo bist du", "wo sind wir", "wie ist die lage",
-                       "was ist los"),
+                       "was ist los", "was machst du", "was machst du gerade"),
                       Text("state [full]", "zustand [ganz]"),
                       Text("show the current situation; also 'what do you see?'",
                            "die aktuelle Lage zeigen; auch 'was siehst du?'"))
