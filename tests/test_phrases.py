@@ -702,9 +702,11 @@ def test_a_typo_never_reads_as_a_step_on_other_objects():
         assert unknown.value.suggestion is None  # "did you mean put down c?" named another block
     assert [(t.name, t.guessed) for t in blocks.parse("unstak a from c, pik up b")] == \
         [("unstack_a_c", True), ("pick_up_b", True)]
-    said = ["put a on c", "take a off b", "put c on the table", "lift c", "grab a", "drop b"]
+    said = ["put a on c", "take a off b", "put c on the table", "lift c", "grab a", "drop b", "place a on c",
+            "put a onto c", "take a from b", "set b down", "lay b down"]
     assert [[t.name for t in PhraseBook(domain).parse(line)] for line in said] == \
-        [["stack_a_c"], ["unstack_a_b"], ["put_down_c"], ["pick_up_c"], ["pick_up_a"], ["put_down_b"]]
+        [["stack_a_c"], ["unstack_a_b"], ["put_down_c"], ["pick_up_c"], ["pick_up_a"], ["put_down_b"], ["stack_a_c"],
+         ["stack_a_c"], ["unstack_a_b"], ["put_down_b"], ["put_down_b"]]
 
 
 def test_a_word_of_its_own_is_no_typo():

@@ -431,7 +431,8 @@ def test_a_typo_of_a_command_is_offered_and_done_on_yes(ball, tmp_path, lang, ty
 @pytest.mark.parametrize(("line", "offered"), [("take a off c", None), ("rset 3", "reset 3"),
                                                ("stat BallFound", "start BallFound"), ("sohw me", None),
                                                ("give her a cookie", None), ("bring the tray back", None),
-                                               ("udno 2", "undo 2"), ("giude forward 0.2", "guide forward 0.2")])
+                                               ("udno 2", "undo 2"), ("giude forward 0.2", "guide forward 0.2"),
+                                               ("move a onto b", None), ("modle other.toml", "model other.toml")])
 def test_a_misspelt_command_with_more_words_is_offered_only_if_it_reads_them(line, offered):
     """"take a off c" was "did you mean 'state a off c'?": 'state' reads no such words; "give her a
     cookie" was "'guide her a cookie'?" and "bring the tray back" "'wrong the tray back'?" (undo)."""

@@ -36,11 +36,13 @@ def action_phrase(form: tuple[str, ...]) -> str:
     return " ".join([form[0].replace("_", " "), *form[1:]])
 
 
-SAID_ALSO = {"stack": ("put {0} on {1}",), "unstack": ("take {0} off {1}",), "pick_up": ("lift {0}", "grab {0}"),
-             "put_down": ("put {0} on the table", "drop {0}")}
+SAID_ALSO = {"stack": ("put {0} on {1}", "place {0} on {1}", "put {0} onto {1}", "move {0} onto {1}"),
+             "unstack": ("take {0} off {1}", "take {0} from {1}", "remove {0} from {1}"),
+             "pick_up": ("lift {0}", "grab {0}"),
+             "put_down": ("put {0} on the table", "drop {0}", "set down {0}", "lay down {0}", "place {0} on the table")}
 """How people also say some IPC actions (blocksworld's), beside the form read out: "put a on c" was
 "I don't know" (and, before typos had to name the objects typed, done as "put down c"); "lift a" was
-"I don't know" too."""
+"I don't know" too, and so were "place a on b", "put a onto b", "take a from b", "set a down"."""
 
 
 def action_phrases(form: tuple[str, ...]) -> list[str]:

@@ -381,6 +381,8 @@ def _reads(command: Verb, rest: str, lang: Lang) -> bool:
         return says_full(rest)
     if not command.value.argued:
         return False
+    if command is Verb.MODEL:  # "move a onto b" was "Did you mean 'model a onto b'?"
+        return rest.strip().endswith(".toml")
     reads = NUMBERED.get(command)
     try:
         if reads is not None:
