@@ -188,7 +188,8 @@ def test_no_way_is_offered_that_the_refused_step_would_only_undo(tmp_path):
     manager.handle("start clear b, clear c, clear d, holding a, ontable b, ontable c, ontable d")
     assert [r.kind for r in manager.handle("take d off a")] == [ReplyKind.ERROR, ReplyKind.STATE]
     assert [r.kind for r in manager.handle("put d on the table")] == [ReplyKind.ERROR, ReplyKind.STATE]
-    assert manager.handle("put b on c")[1].text == "To get there: put down a, pick up b."
+    assert manager.handle("put b on c")[1].text == ("To get there: put down a, pick up b. Say 'yes' and I do that, "
+                                                   "then stack b c.")
 
 
 def test_blocksworld_conditions_said_in_a_persons_order(tmp_path):

@@ -516,3 +516,25 @@ def test_everyday_yes_and_no_answer_may_i(ball, tmp_path, line, yes):
         assert replies[0].text.startswith("Thank you.") and manager.pending is not asked
     else:
         assert [r.text for r in replies] == [m.WHAT_INSTEAD(Lang.EN)] and manager.pending is asked
+
+
+@pytest.mark.parametrize(("lang", "step", "yes"), [("en", "grab it", "yes"), ("en", "grab it", ""),
+                                                   ("de", "nimm ihn", "ja")])
+def test_the_way_to_a_refused_step_is_done_on_a_yes(ball, tmp_path, lang, step, yes):
+    """ "grab it" before the ball was within reach was refused with "To get there: go to the ball.",
+    and the teacher had to type both steps; now a yes (or Enter) does the way and then the step."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang].split(",")[0])
+    offered = said(manager, step)
+    assert ("Say 'yes' and I do that" in offered or "Sag 'ja', dann tue ich das" in offered)
+    assert open_actions(manager) == [1]
+    said(manager, yes)
+    assert open_actions(manager) == [1, 2, 3]
+
+
+def test_a_no_to_the_way_does_nothing(ball, tmp_path):
+    manager = session(ball, tmp_path, "en")
+    said(manager, "find the ball")
+    said(manager, "grab it")
+    assert said(manager, "no") == "All right." and open_actions(manager) == [1]
+    assert said(manager, "yes") == "No question is open."  # the offer was for the line after it only

@@ -78,8 +78,17 @@ WAY_STEPS = 3
 
 def way_there(domain: Domain, action: str, state: State, lang: Lang) -> list[Reply]:
     """After a step of the teacher's was refused, the steps that would make it possible ("To get
-    there: go to the ball, grasp the ball, go to the bin."), if the domain's model has a short way
-    that the step does not merely undo (putting d on a to take it off again)."""
+    there: go to the ball, grasp the ball, go to the bin."), if ``way_steps`` finds them."""
+    steps = way_steps(domain, action, state)
+    if not steps:
+        return []
+    labels = ", ".join(domain.action(name).label(lang) for name in steps)
+    return [Reply(ReplyKind.INFO, m.WAY_THERE(lang, steps=labels))]
+
+
+def way_steps(domain: Domain, action: str, state: State) -> list[str]:
+    """The actions that would make a refused ``action`` possible in ``state``, if the domain's model
+    has a short way that the step does not merely undo (putting d on a to take it off again)."""
     steps = steps_towards(domain, state, action, WAY_STEPS)
     if not steps:
         return []
@@ -87,5 +96,4 @@ def way_there(domain: Domain, action: str, state: State, lang: Lang) -> list[Rep
         state = apply_action(domain, state, step)
     if apply_action(domain, apply_action(domain, state, steps[-1]), action) == state:
         return []  # the step would only undo the way's last one ("take d off a" where d is on the table)
-    labels = ", ".join(domain.action(name).label(lang) for name in steps)
-    return [Reply(ReplyKind.INFO, m.WAY_THERE(lang, steps=labels))]
+    return steps

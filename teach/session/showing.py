@@ -19,7 +19,7 @@ from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import way_there, why_not
+from teach.session.run_report import way_steps, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -46,6 +46,9 @@ class Showing:
         self.record, self.turn, self.world, self.vocabulary = record, turn, world, vocabulary
         self.lang = lang
         self._taken_back: _StepsTakenBack | None = None
+        self.offered: str | None = None
+        """After a refused step, the line that does the way to it and the step ("go to the ball, grasp
+        the ball"): the session does it on the teacher's yes."""
 
     @property
     def open(self) -> OpenDemonstration | None:
@@ -131,7 +134,7 @@ class Showing:
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
                 if facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
-                replies += way_there(domain, token.name, result.before, self.lang)
+                replies += self._way_offered(token.name, label, result.before)
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
                 replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
@@ -143,6 +146,17 @@ class Showing:
             self.step(result.before, token.name, label)
             replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         return replies
+
+    def _way_offered(self, action: str, label: str, state: State) -> list[Reply]:
+        """The way to a refused step, offered: a yes does it and then the step ("grab it" before the
+        ball was within reach: "To get there: go to the ball. Say 'yes' and I do that, then grasp the
+        ball." — it took two more lines)."""
+        domain = self.vocabulary.domain
+        labels = [domain.action(step).label(self.lang) for step in way_steps(domain, action, state)]
+        if not labels:
+            return []
+        self.offered = ", ".join([*labels, label])
+        return [Reply(ReplyKind.INFO, m.WAY_THERE_OFFER(self.lang, steps=", ".join(labels), action=label))]
 
     def _not_done(self, tokens: list[Token]) -> list[Reply]:
         """The rest of a line the world stopped, said as not done."""
