@@ -125,7 +125,6 @@ class SessionManager(CompatMembers):
                                      settings.questions, self.lang)
         self.suggestion: Suggestion | None = None  # a "Did you mean …?" waiting for yes or no
         self.retype: str | None = None  # ... of a command or an answer word: the line a yes stands for
-        self.offer: str | None = None  # the way to a refused step and the step: the line a yes stands for
         self.topic: str | None = None  # the object named last: what "it" means in the next line
         self.facilitator = settings.facilitator  # identifiers and the symbolic tree too (--facilitator)
         self.finished = False
@@ -194,7 +193,7 @@ class SessionManager(CompatMembers):
         """One teacher line in, every reply to it out, in order. Never raises for bad input.
         ``interrupt`` is polled while the robot runs (the terminal's Ctrl-C)."""
         line = line.strip()
-        if not line and self.suggestion is None and self.retype is None and self.offer is None:
+        if not line and self.suggestion is None and self.retype is None and self.showing.offered is None:
             return []
         self.turn.begin()
         self._interrupt = interrupt
@@ -202,18 +201,19 @@ class SessionManager(CompatMembers):
         try:
             check_length(line, self.lang)
         except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
-            self.suggestion = self.retype = self.offer = None
+            self.suggestion = self.retype = self.showing.offered = None
             return self.turn.close([Reply(ReplyKind.ERROR, too_long.message)])
         self.observer.on_dialogue("teacher", line, self.budget.left)
         suggestion, self.suggestion = self.suggestion, None
         retype, self.retype = self.retype, None
-        offer, self.offer = self.offer, None
+        offer, self.showing.offered = self.showing.offered, None  # "To get there: … Say 'yes' …": this line only
         asking = self.mode is Mode.ASKING
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
-            if offer is not None and (is_yes(line, self.lang) or is_no(line, self.lang)):  # "Say 'yes' and I do that"
-                replies = self._dispatch(offer) if is_yes(line, self.lang) else [Reply(ReplyKind.INFO,
-                                                                                      m.ALL_RIGHT(self.lang))]
+            if offer is not None and is_yes(line, self.lang):
+                replies = self._dispatch(offer)
+            elif offer is not None and is_no(line, self.lang):
+                replies = [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
             elif retype is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
             else:
@@ -576,9 +576,7 @@ class SessionManager(CompatMembers):
         if self.open is None and tokens and tokens[0].kind == "action" and self.domain.goal_holds(self.world.state()):
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_DO(self.lang)), self._state_reply()]
         self.topic = self.phrases.topic(tokens) or self.topic
-        replies = self.showing.act(tokens, self.facilitator)
-        self.offer, self.showing.offered = self.showing.offered, None  # "To get there: … Say 'yes' …"
-        return replies + [self._state_reply()]
+        return self.showing.act(tokens, self.facilitator) + [self._state_reply()]
 
     def _finish_demo(self, goal: State) -> list[Reply]:
         """The open demonstration ends in ``goal`` (where the goal holds): learned and written."""

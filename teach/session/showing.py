@@ -48,7 +48,7 @@ class Showing:
         self._taken_back: _StepsTakenBack | None = None
         self.offered: str | None = None
         """After a refused step, the line that does the way to it and the step ("go to the ball, grasp
-        the ball"): the session does it on the teacher's yes."""
+        the ball"): the session does it on the teacher's yes to the next line, and forgets it then."""
 
     @property
     def open(self) -> OpenDemonstration | None:
