@@ -4,6 +4,7 @@ by name in any case."""
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Callable
 from fractions import Fraction
@@ -36,15 +37,19 @@ def stated_condition(domain: Domain, text: str) -> tuple[str, bool] | None:
         words.pop(0)
     while words and words[-1] in _NARRATING:
         words.pop()
-    said = " ".join(words)
-    if not said:
-        return None
+    return _condition_labels(domain).get(" ".join(words)) if words else None
+
+
+@functools.cache
+def _condition_labels(domain: Domain) -> dict[str, tuple[str, bool]]:
+    """Each condition label of ``domain`` in either language, normalized, with what it states (the
+    first condition a label names wins): built once per domain, not for every line."""
+    labels: dict[str, tuple[str, bool]] = {}
     for condition in domain.conditions:
         for value in (True, False):
-            labels = (condition.label("en", value), condition.label("de", value))
-            if any(said == normalize(label) for label in labels):
-                return condition.name, value
-    return None
+            for lang in ("en", "de"):
+                labels.setdefault(normalize(condition.label(lang, value)), (condition.name, value))
+    return labels
 
 
 def says_full(text: str) -> bool:
