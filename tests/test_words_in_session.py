@@ -538,3 +538,23 @@ def test_a_no_to_the_way_does_nothing(ball, tmp_path):
     said(manager, "grab it")
     assert said(manager, "no") == "All right." and open_actions(manager) == [1]
     assert said(manager, "yes") == "No question is open."  # the offer was for the line after it only
+
+
+@pytest.mark.parametrize("line", ["that's it", "thats it", "das war's"])
+def test_that_s_it_after_an_offered_way_is_the_task_finished_not_a_yes(ball, tmp_path, line):
+    """ "thats it" said to "To get there: go to the ball, grasp the ball. Say 'yes' and I do that,
+    then put the ball in the bin." was read as the yes: the robot went off doing three steps."""
+    manager = session(ball, tmp_path, "en")
+    said(manager, "find the ball")
+    assert "Say 'yes' and I do that" in said(manager, "drop it in")
+    reply = said(manager, line)
+    assert open_actions(manager) == [1] and "The task is not finished yet" in reply
+
+
+def test_a_decimal_point_does_not_split_a_line(ball, tmp_path):
+    """ "giude forward 0.2" was said back as "I don't know “giude forward 0”": the line was cut at
+    the decimal point as at a full stop."""
+    manager = session(ball, tmp_path, "en")
+    assert "“giude forward 0.2”" in said(manager, "giude forward 0.2")
+    said(manager, "find the ball. go to the ball")
+    assert open_actions(manager) == [1, 2]  # a full stop still ends a step

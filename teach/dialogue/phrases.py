@@ -80,8 +80,9 @@ other way."""
 # the word after one of these in a phrase names an object a pronoun may stand for
 _ARTICLES = {"the", "a", "an", "this", "that", "den", "die", "das", "dem", "der", "des", "ein", "eine",
              "einen", "einem", "einer", "zum", "zur", "im", "ins", "am", "vom", "beim"}
-_SPLIT = re.compile(r"\s*(?:[,;.!]|\band then\b|\bafter that\b|\bthen\b|(?<!\bgo )\band\b|\bund dann\b|\bdann\b"
-                    r"|\bdanach\b|(?<!\bgeh )(?<!\bgehe )\bund\b)\s*", re.IGNORECASE)
+# a decimal point or comma between digits ("guide forward 0.2", "vorwärts 0,2") is no break
+_SPLIT = re.compile(r"\s*(?:[;!]|[,.](?!\d)|(?<!\d)[,.]|\band then\b|\bafter that\b|\bthen\b|(?<!\bgo )\band\b"
+                    r"|\bund dann\b|\bdann\b|\bdanach\b|(?<!\bgeh )(?<!\bgehe )\bund\b)\s*", re.IGNORECASE)
 
 _TYPO_CUTOFF = 0.75  # similarity from which a typo is accepted without asking
 _TYPO_MARGIN = 0.1  # ... when nothing else (another action, or an event) comes this close

@@ -210,8 +210,8 @@ class SessionManager(CompatMembers):
         asking = self.mode is Mode.ASKING
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
-            if offer is not None and is_yes(line, self.lang):
-                replies = self._dispatch(offer)
+            if offer is not None and is_yes(line, self.lang) and parse_command(line)[0] is not Verb.DONE:
+                replies = self._dispatch(offer)  # "that's it" after an offer is the task finished, not a yes
             elif offer is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
             elif retype is not None and is_no(line, self.lang):
