@@ -274,6 +274,7 @@ TAKE_YOUR_TIME_ASKED = Text("Take your time: my question is still open ('skip' l
 ALL_RIGHT = Text("All right.", "In Ordnung.")
 GO_ON = Text("Tell me the next step, or say 'done' when the task is finished.",
              "Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
+AGAIN_WHAT = Text("Do what again? Name the step ('{example}').", "Was nochmal? Sag mir den Schritt ('{example}').")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")

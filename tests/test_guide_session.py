@@ -169,6 +169,19 @@ def test_a_bad_guide_line_is_one_error_and_moves_nothing(tmp_path: Path) -> None
     session.close()
 
 
+def test_again_after_a_guided_move_moves_once_more(tmp_path: Path) -> None:
+    """ "guide forward 0.1", "again" ended guiding and was "I don't know “again”"."""
+    session = _session(tmp_path)
+    start = session.world.world.base_pose()  # type: ignore[attr-defined]
+    session.handle("guide forward 0.1")
+    once = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert all(r.kind is not ReplyKind.ERROR for r in session.handle("again")) and session.guiding.active
+    twice = session.world.world.base_pose()  # type: ignore[attr-defined]
+    step = [b - a for a, b in zip(start, once, strict=True)]
+    assert [b - a for a, b in zip(once, twice, strict=True)] == pytest.approx(step, abs=0.01)
+    session.close()
+
+
 def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> None:
     from prompt_toolkit.input import create_pipe_input
     from prompt_toolkit.output import DummyOutput

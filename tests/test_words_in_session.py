@@ -558,3 +558,24 @@ def test_a_decimal_point_does_not_split_a_line(ball, tmp_path):
     assert "“giude forward 0.2”" in said(manager, "giude forward 0.2")
     said(manager, "find the ball. go to the ball")
     assert open_actions(manager) == [1, 2]  # a full stop still ends a step
+
+
+@pytest.mark.parametrize(("lang", "again"), [("en", "again"), ("en", "once more"), ("de", "nochmal")])
+def test_again_right_after_a_step_is_that_step(tmp_path, lang, again):
+    """ "again" alone was "I don't know “again”" (with "grab it again" understood)."""
+    snacks = load_domain(ROOT / "demos" / "snacks" / "domain.toml")
+    settings = Settings("words", lang=lang, questions=0, base=tmp_path, world="symbolic", record=False)
+    manager = SessionManager(settings, snacks, SymbolicWorld(snacks))
+    find = snacks.action("FindPartner").label(Lang(lang))
+    said(manager, find)
+    refused = m.COULD_NOT(Lang(lang), action=find, reason="")
+    assert said(manager, again).startswith(refused[:refused.index(find) + len(find)])  # that step (refused: done)
+    assert said(manager, again).startswith(m.AGAIN_WHAT(Lang(lang), example="")[:8])  # after a refusal: which?
+    assert [snacks.action(a).name for a in open_actions(manager)] == ["FindPartner"]
+
+
+def test_again_after_anything_but_a_step_asks_which(ball, tmp_path):
+    manager = session(ball, tmp_path, "en")
+    said(manager, "find the ball")
+    said(manager, "grab it")  # refused: the ball is out of reach
+    assert said(manager, "again").startswith("Do what again?") and open_actions(manager) == [1]

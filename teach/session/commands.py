@@ -329,6 +329,12 @@ def after_courtesy(line: str) -> str:
 
 WHERE_STARTS = ("where is ", "where s ", "where are ", "wo ist ", "wo sind ", "wo liegt ")
 """How a line asking where something is starts ("where is the ball?"): answered with the situation."""
+AGAIN_WORDS = {normalize(said) for said in ("again", "and again", "again please", "once more", "one more time",
+                                            "do it again", "do that again", "same again", "the same again",
+                                            "nochmal", "noch mal", "noch einmal", "nochmals", "und nochmal",
+                                            "wieder", "mach das nochmal", "mach es nochmal", "das gleiche nochmal")}
+"""Whole lines asking for the step just done once more ("offer a snack", "again", "again": "again"
+alone was "I don't know “again”")."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",

@@ -56,6 +56,7 @@ from teach.session.arguments import (
 )
 from teach.session.asking import Asking
 from teach.session.commands import (
+    AGAIN_WORDS,
     ANSWERING,
     ANSWERS_ONLY,
     BLOCKED_WHILE_ASKING,
@@ -132,6 +133,8 @@ class SessionManager(CompatMembers):
         """The step at which quitting with an open demonstration was warned about."""
         self.step = 0
         self._interrupt: Callable[[], bool] | None = None
+        self.again: str | None = None
+        """What "again" on the next line does: the step the line before did, or its guided move."""
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self.store.prepare(domain)
         self.observer.on_domain(domain)
@@ -207,6 +210,7 @@ class SessionManager(CompatMembers):
         suggestion, self.suggestion = self.suggestion, None
         retype, self.retype = self.retype, None
         offer, self.showing.offered = self.showing.offered, None  # "To get there: … Say 'yes' …": this line only
+        again, self.again, self.showing.just_done = self.again, None, None  # "again": what the line before did
         asking = self.mode is Mode.ASKING
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
@@ -216,6 +220,8 @@ class SessionManager(CompatMembers):
                 replies = [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
             elif retype is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
+            elif again is not None and normalize(line) in AGAIN_WORDS and self.pending is None:
+                replies = self._dispatch(again)
             else:
                 replies = self._dispatch(retype if confirmed and retype is not None else line, suggestion)
         except UnknownPhrase as unknown:
@@ -243,6 +249,8 @@ class SessionManager(CompatMembers):
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
             self._interrupt = None
+        if self.showing.just_done is not None:
+            self.again = self.domain.action(self.showing.just_done).label(self.lang)
         turn = self.turn.close(replies)
         self.observer.checkpoint()
         self.record.note_open()
@@ -340,6 +348,8 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if is_yes(line, self.lang) or without_hesitation(said) in ANSWERS_ONLY:  # "yes"/"maybe" to nothing asked
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+        if said in AGAIN_WORDS:  # after anything but a step or a guided move: which step is meant?
+            return [Reply(ReplyKind.INFO, m.AGAIN_WHAT(self.lang, example=self._example_action()))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
             return self._what_now()
         if said.startswith(WHERE_STARTS):  # "where is the ball?": the situation says it
@@ -369,6 +379,8 @@ class SessionManager(CompatMembers):
         if not self.guiding.can_guide():
             return self.guiding.refusal()
         replies = self.guiding.command(rest) + [self._state_reply()]
+        if rest.strip() and all(reply.kind is not ReplyKind.ERROR for reply in replies):
+            self.again = f"{Verb.GUIDE.words(self.lang)[0]} {rest}"  # "guide forward 0.2", "again"
         feedback = self.guiding.feedback()  # what a person steering by the keys needs to know
         return replies + ([feedback] if feedback is not None else [])
 

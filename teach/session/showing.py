@@ -49,6 +49,9 @@ class Showing:
         self.offered: str | None = None
         """After a refused step, the line that does the way to it and the step ("go to the ball, grasp
         the ball"): the session does it on the teacher's yes to the next line, and forgets it then."""
+        self.just_done: str | None = None
+        """The last step the line before did (an action's name): "again" on the next line does it once
+        more; the session forgets it after that line."""
 
     @property
     def open(self) -> OpenDemonstration | None:
@@ -130,6 +133,7 @@ class Showing:
             result = self.world.act(token.name)
             label = domain.action(token.name).label(self.lang)
             if not result.ok:
+                self.just_done = None  # "again" after a refusal: which step is meant?
                 reason = why_not(domain, token.name, result.before, self.lang)
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
                 if facilitator and result.message:  # the world's own words are for the facilitator
@@ -137,6 +141,7 @@ class Showing:
                 replies += self._way_offered(token.name, label, result.before)
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
+                self.just_done = None
                 replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
                 break
             if result.after == result.before:
@@ -144,6 +149,7 @@ class Showing:
                 replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
                 continue
             self.step(result.before, token.name, label)
+            self.just_done = token.name
             replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         return replies
 
