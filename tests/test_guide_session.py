@@ -182,6 +182,19 @@ def test_again_after_a_guided_move_moves_once_more(tmp_path: Path) -> None:
     session.close()
 
 
+def test_guiding_where_the_task_is_finished_is_refused_as_a_named_step_is(tmp_path: Path) -> None:
+    """ "guide forward 0.2" after the ball was put in the bin opened a demonstration that began
+    where the task was already finished; a named step there is refused with how to start anew."""
+    session = _session(tmp_path)
+    session.handle("find the ball, go to the ball, grasp the ball, go to the bin, put the ball in the bin")
+    session.handle("done")
+    before = session.world.world.base_pose()  # type: ignore[attr-defined]
+    replies = session.handle("guide forward 0.2")
+    assert replies[0].text == m.NOTHING_TO_DO("en") and session.open is None
+    assert session.world.world.base_pose() == before  # type: ignore[attr-defined]
+    session.close()
+
+
 def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> None:
     from prompt_toolkit.input import create_pipe_input
     from prompt_toolkit.output import DummyOutput
