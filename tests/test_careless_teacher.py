@@ -192,6 +192,19 @@ def test_no_way_is_offered_that_the_refused_step_would_only_undo(tmp_path):
                                                    "then stack b c.")
 
 
+def test_it_before_anything_was_named_is_offered_as_the_one_object_it_can_be(tmp_path):
+    """ "put it on b" while holding a, with no block named yet, was "Did you mean “put c on b”?"
+    (a typo of the words); the one block that makes the step possible is offered, and a yes does it."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = SessionManager(Settings("blocks", base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
+    manager.greet()  # nothing can be done where nothing holds: it begins where held-out/d01.csv does, holding a
+    assert manager.handle("put it on b")[0].text == "I don't know “put it on b”. Did you mean “put a on b”?"
+    manager.handle("yes")
+    assert manager.open is not None and [domain.action(s.action).name for s in manager.open.steps] == ["stack_a_b"]
+    assert manager.handle("pick it up")[0].text.startswith("I could not pick up a")  # "it" is a now
+
+
 def test_blocksworld_conditions_said_in_a_persons_order(tmp_path):
     """"start a on b, b on the table, hand empty, a clear" was "unknown condition 'a on b'": a condition
     with a form is read from its objects in order and its other words run together ("on the table":

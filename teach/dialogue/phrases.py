@@ -52,6 +52,8 @@ after a slip is the same step: "grab it again", "such den Ball nochmal"), "else"
 else" is finding someone), and the sounds of a teacher catching up ("ach so, erst hinfahren" was
 "I don't know “ach so”")."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
+PRONOUN = re.compile(r"\b(?:" + "|".join(sorted(_PRONOUNS)) + r")\b", re.IGNORECASE)
+"""The first pronoun of a line (what an object named before may stand for)."""
 _PERSONS = frozenset({"person", "people", "someone", "somebody", "caregiver", "resident", "partner", "patient",
                       "nurse", "guest", "visitor", "man", "woman", "child", "friend"})
 """English words for people: what "him", "her" and "them" may stand for ("go to her" was "go back
@@ -398,6 +400,11 @@ class PhraseBook:
     def phrases(self, lang: Lang = Lang.EN) -> list[str]:
         """Phrases shown for completion, in the given language."""
         return sorted(self._display[lang])
+
+    @property
+    def objects(self) -> list[str]:
+        """The objects the domain's forms name ("a", "b" in blocksworld), in a fixed order."""
+        return sorted(self._objects)
 
     def topic_in(self, text: str) -> str | None:
         """The object a line names last ("start ball found": the ball), or None."""

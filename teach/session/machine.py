@@ -28,6 +28,7 @@ from teach import messages as m
 from teach.bt.nodes import Node, size
 from teach.demos import Demonstration
 from teach.dialogue.phrases import (
+    PRONOUN,
     LineTooLong,
     Suggestion,
     Token,
@@ -233,6 +234,9 @@ class SessionManager(CompatMembers):
                 # nothing close, and the line's first word is what was not understood: perhaps a
                 # command or an answer word was meant ("hlep"; not "find the ball, xyzzy")
                 self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)
+            if self.retype is None and not asking and self.topic is None:
+                self.retype = self._meant_by_pronoun(line)
+                self.suggestion = None if self.retype is not None else self.suggestion
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
             if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
@@ -579,6 +583,26 @@ class SessionManager(CompatMembers):
             return not any(token.guessed for token in self.phrases.parse(line, self.lang, topic=self.topic))
         except TeachError:
             return False
+
+    def _meant_by_pronoun(self, line: str) -> str | None:
+        """A line whose "it" stands for nothing named yet, with the one object that makes its step
+        possible here ("put it on b" while holding a: "put a on b"; it was offered "put c on b").
+        Only offered: a yes does it."""
+        pronoun = PRONOUN.search(line)
+        if pronoun is None:
+            return None
+        state, meant = self.world.state(), []
+        for thing in self.phrases.objects:
+            said = line[:pronoun.start()] + thing + line[pronoun.end():]
+            try:
+                tokens = self.phrases.parse(said, self.lang)
+            except TeachError:
+                continue
+            first = tokens[0] if tokens else None
+            if first is not None and first.kind == "action" and not any(t.guessed for t in tokens) \
+                    and first.name in possible_actions(self.domain, state):
+                meant.append(said)
+        return meant[0] if len(meant) == 1 else None
 
     def _teach_actions(self, text: str) -> list[Reply]:
         return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
