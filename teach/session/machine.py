@@ -236,7 +236,8 @@ class SessionManager(CompatMembers):
                 self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)
             if self.retype is None and not asking and self.topic is None:
                 self.retype = self._meant_by_pronoun(line)
-                self.suggestion = None if self.retype is not None else self.suggestion
+                if self.retype is not None:
+                    self.suggestion = None  # the guess at its words ("put c on b") gives way
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
             if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
@@ -591,7 +592,7 @@ class SessionManager(CompatMembers):
         pronoun = PRONOUN.search(line)
         if pronoun is None:
             return None
-        state, meant = self.world.state(), []
+        possible, meant = possible_actions(self.domain, self.world.state()), []
         for thing in self.phrases.objects:
             said = line[:pronoun.start()] + thing + line[pronoun.end():]
             try:
@@ -600,7 +601,7 @@ class SessionManager(CompatMembers):
                 continue
             first = tokens[0] if tokens else None
             if first is not None and first.kind == "action" and not any(t.guessed for t in tokens) \
-                    and first.name in possible_actions(self.domain, state):
+                    and first.name in possible:
                 meant.append(said)
         return meant[0] if len(meant) == 1 else None
 
