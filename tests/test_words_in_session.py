@@ -579,3 +579,17 @@ def test_again_after_anything_but_a_step_asks_which(ball, tmp_path):
     said(manager, "find the ball")
     said(manager, "grab it")  # refused: the ball is out of reach
     assert said(manager, "again").startswith("Do what again?") and open_actions(manager) == [1]
+
+
+def test_a_hmm_keeps_what_waits_for_a_yes(ball, tmp_path):
+    """ "hlep" → "Did you mean “help”?", "hmm" → "Take your time.", "yes" was "No question is open":
+    the offer was for the line after it only; a "hmm" now keeps it, as it keeps an offered way."""
+    manager = session(ball, tmp_path, "en")
+    assert said(manager, "hlep").endswith("Did you mean “help”?")
+    assert said(manager, "hmm") == m.TAKE_YOUR_TIME(Lang.EN)
+    assert said(manager, "yes").startswith(m.HELP_INTRO(Lang.EN, examples="")[:10])
+    said(manager, "find the ball")
+    assert "Say 'yes' and I do that" in said(manager, "grab it")
+    said(manager, "hmm, wait")
+    said(manager, "yes")
+    assert open_actions(manager) == [1, 2, 3]

@@ -205,13 +205,15 @@ class SessionManager(CompatMembers):
         try:
             check_length(line, self.lang)
         except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
-            self.suggestion = self.retype = self.showing.offered = None
+            self.suggestion = self.retype = self.showing.offered = self.again = None
             return self.turn.close([Reply(ReplyKind.ERROR, too_long.message)])
         self.observer.on_dialogue("teacher", line, self.budget.left)
-        suggestion, self.suggestion = self.suggestion, None
-        retype, self.retype = self.retype, None
-        offer, self.showing.offered = self.showing.offered, None  # "To get there: … Say 'yes' …": this line only
-        again, self.again, self.showing.just_done = self.again, None, None  # "again": what the line before did
+        # what the line before left for a yes ("Did you mean …?", "To get there: … Say 'yes' …") or an
+        # "again" (its step) is for this line only, but a "hmm" keeps it for the next
+        suggestion, retype, offer, again = self.suggestion, self.retype, self.showing.offered, self.again
+        if not self._only_holding_on(line):
+            self.suggestion = self.retype = self.showing.offered = self.again = None
+        self.showing.just_done = None
         asking = self.mode is Mode.ASKING
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
@@ -313,8 +315,7 @@ class SessionManager(CompatMembers):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         waited = after_holding_on(line)
         if waited != line and not self._names_steps(line):  # "hmm", "wait, no" (not snacks' "wait until …")
-            if not waited:
-                self.suggestion = suggestion  # "Did you mean …?" still waits for its yes
+            if not waited:  # what waits for a yes still waits (``handle``)
                 return self._waiting()
             line = waited
         if self.pending is None and self.pending_model is None:
@@ -762,6 +763,10 @@ class SessionManager(CompatMembers):
         if self.domain.has_model and self.domain.goal_holds(self.world.state()):
             return [Reply(kind, f"{said} {m.WHAT_NOW_FINISHED(self.lang)}")]
         return [Reply(kind, f"{said} {m.GO_ON(self.lang)}")]
+
+    def _only_holding_on(self, line: str) -> bool:
+        """ "hmm", "wait", "einen Moment" and nothing else (snacks' "wait" names a step)."""
+        return bool(line) and not after_holding_on(line) and not self._names_steps(line)
 
     def _waiting(self) -> list[Reply]:
         """ "hmm", "wait", "einen Moment": nothing done; an open question stays open."""
