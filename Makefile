@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test lint bench screenshots clean
+.PHONY: run test lint xvfb bench screenshots clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -18,8 +18,15 @@ run: $(STAMP)
 	$(BIN)/teach replay dialogues/quickstart.dialogue
 
 # One worker per core (pytest-xdist); every test keeps its own temporary folder and ports.
-test: lint
+test: lint xvfb
 	$(BIN)/python -m pytest -n auto
+
+# The MuJoCo viewer's tests need an X server: Xvfb, installed with apt-get where we may (root);
+# elsewhere they are skipped, and this says so.
+xvfb:
+	@command -v Xvfb >/dev/null 2>&1 || { test "$$(id -u)" = 0 && command -v apt-get >/dev/null 2>&1 \
+	  && { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq xvfb; } >/dev/null 2>&1; } \
+	  || echo "Xvfb is not installed (apt-get install xvfb): the MuJoCo viewer's tests will be skipped"
 
 lint: $(STAMP)
 	$(BIN)/ruff check teach tests bench
