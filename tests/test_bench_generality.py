@@ -1,4 +1,5 @@
-"""The generality benches' smallest cases (bench/bench_ball_pairs.py, bench/bench_snacks_draws.py)
+"""The generality benches' smallest cases (bench/bench_ball_pairs.py, bench/bench_snacks_draws.py,
+bench/bench_may_i_ceiling.py)
 and the parts they are built from: task outcomes in the true model, and answers from a reference tree."""
 
 from __future__ import annotations
@@ -10,7 +11,11 @@ from conftest import ROOT
 sys.path.insert(0, str(ROOT / "bench"))
 
 import bench_ball_pairs  # noqa: E402
+import bench_may_i_ceiling  # noqa: E402
 import bench_snacks_draws  # noqa: E402
+from foreign import strips  # noqa: E402
+from foreign.judge import judge  # noqa: E402
+from foreign.teaching import demonstration  # noqa: E402
 from oracle_answers import DONE, ReferenceTeacher, answer  # noqa: E402
 from question_ceiling import idle_states, knowing_the_answers  # noqa: E402
 from task_outcomes import from_every_state, tally  # noqa: E402
@@ -21,6 +26,7 @@ from teach.demos import read_demo_set  # noqa: E402
 from teach.domain import load_domain  # noqa: E402
 from teach.learn.inquiry import SituationQuestion  # noqa: E402
 from teach.learn.learner import learn_online  # noqa: E402
+from teach.learn.situations import tree_does  # noqa: E402
 from teach.replay import count_reproduced  # noqa: E402
 
 BALL = ROOT / "demos" / "ball"
@@ -130,3 +136,18 @@ def test_questions_chosen_knowing_their_answers_reach_what_the_chooser_does_not(
     assert len(best.situations) <= len(learner.situations) + 5
     assert count_reproduced(best.tree, ball.domain, ball.delta5) == 43
     assert idle_states(best, list(ball.teacher.does)) == 0
+
+
+def test_may_i_questions_chosen_knowing_their_answers_in_a_random_strips_domain():
+    """The "may I" ceiling's candidates are where the robot does nothing, each testing unsure literals
+    only; five chosen knowing their answers take the robot to the goal from more starts."""
+    task = strips.random_task(6, 5, 1)
+    learner = learn_online(task.domain, [demonstration(task, start, f"d{i}")
+                                         for i, start in enumerate(task.starts()[:2])])
+    before = judge(task, learner.tree, task.starts()).share("reached")
+    candidates = list(bench_may_i_ceiling.may_i_questions(learner, task))
+    assert candidates and all(tree_does(learner, q.state) == "nothing" and q.settles for q in candidates)
+    kept: list[str] = []
+    best = bench_may_i_ceiling.knowing(learner, task, bench_may_i_ceiling.may_i_questions, kept)
+    assert judge(task, learner.tree, task.starts()).share("reached") == before  # the argument is left as it was
+    assert len(kept) == 5 and judge(task, best.tree, task.starts()).share("reached") > before
