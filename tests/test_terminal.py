@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import io
+import os
+import signal
 from pathlib import Path
 
 from conftest import journal_data
@@ -185,3 +187,31 @@ def test_the_running_notice_is_shown_only_once_the_robot_moves(ball, tmp_path):
     out, _ = drive(ball, tmp_path, keys, lang="en")
     assert "I try again from here" in out and out.count("I got stuck") == 2
     assert "robot running" not in out
+
+
+class _CtrlCAfterFirstStep(SymbolicWorld):
+    """The symbolic world, with the teacher pressing Ctrl-C (a real SIGINT) during its first step."""
+
+    pressed = False
+
+    def act(self, action: str):  # type: ignore[no-untyped-def]
+        if not self.pressed:
+            self.pressed = True
+            os.kill(os.getpid(), signal.SIGINT)
+        return super().act(action)
+
+
+def test_ctrl_c_during_a_line_of_steps_stops_after_the_step_under_way(ball, tmp_path):
+    """Ctrl-C while the robot did "find the ball, go to the ball, grasp the ball" ended the program
+    ("teach: interrupted"); now the step under way is finished and the rest said as not done."""
+    settings = Settings("intr", lang="en", world=WorldKind.SYMBOLIC, base=tmp_path, record=False)
+    manager = SessionManager(settings, ball, _CtrlCAfterFirstStep(ball))
+    buffer = io.StringIO()
+    with create_pipe_input() as pipe:
+        pipe.send_text("find the ball, go to the ball, grasp the ball\rsteps\rcancel\rquit\r")
+        pipe.close()
+        Terminal(manager, console=Console(file=buffer, width=100, color_system=None), input=pipe,
+                 output=DummyOutput()).run()
+    out = buffer.getvalue()
+    assert "I stopped there. Not done: go to the ball, grasp the ball." in out
+    assert "1. find the ball" in out and manager.finished  # 'steps', 'cancel' and 'quit' still read

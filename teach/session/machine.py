@@ -616,7 +616,7 @@ class SessionManager(CompatMembers):
         if self.open is None and tokens and tokens[0].kind == "action" and self.domain.goal_holds(self.world.state()):
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_DO(self.lang)), self._state_reply()]
         self.topic = self.phrases.topic(tokens) or self.topic
-        return self.showing.act(tokens, self.facilitator) + [self._state_reply()]
+        return self.showing.act(tokens, self.facilitator, self._interrupt) + [self._state_reply()]
 
     def _finish_demo(self, goal: State) -> list[Reply]:
         """The open demonstration ends in ``goal`` (where the goal holds): learned and written."""

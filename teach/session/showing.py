@@ -9,6 +9,7 @@ through one ``Showing``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from teach import messages as m
@@ -111,13 +112,18 @@ class Showing:
         self.record.save_open()  # on disk before the teacher sees the event
         return replies
 
-    def act(self, tokens: list[Token], facilitator: bool) -> list[Reply]:
+    def act(self, tokens: list[Token], facilitator: bool, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """Do the parsed steps in the world, each recorded in the open demonstration (opened by
         the first that happens) and said as it happens; one that cannot be done ends the line
-        (``facilitator``: with the world's own words why)."""
+        (``facilitator``: with the world's own words why), and so does Ctrl-C (``interrupted``,
+        polled between steps: the step under way is finished, the rest said as not done)."""
         domain = self.vocabulary.domain
         replies: list[Reply] = []
         for index, token in enumerate(tokens):
+            if index and interrupted is not None and interrupted():
+                self.just_done = None
+                replies += self.turn.say(self._not_done(tokens[index:]))
+                break
             if token.kind == "event":
                 result = self.world.perturb(token.name)
                 if not result.ok:  # it was said to have happened and written as a step of the demonstration

@@ -1,7 +1,7 @@
 """The terminal front-end: prompt_toolkit for input (completion, history, toolbar), rich for
 output. A thin driver of the session machine: the loop and Ctrl-C handling only.
 
-Ctrl-C interrupts a robot run (not the program) and clears the line at the prompt;
+Ctrl-C interrupts a robot run or a line of steps (not the program) and clears the line at the prompt;
 Ctrl-D saves and leaves. ``guide`` alone enters the guide mode: each key drives the robot by
 one ``guide …`` line (arrows, PgUp/PgDn, space); Esc leaves it, and typing a letter leaves it
 with that letter as the start of the next line ("done").
@@ -140,13 +140,17 @@ class Terminal:
             if self.view.guiding:
                 self._guide_mode()
             return
-        if command is not Verb.RUN or self.view.mode is Mode.ASKING \
-                or not self.view.can_run:  # the session explains why it will not run
-            self.manager.handle(line)
-            return
         self._interrupt.clear()
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
+        if command is not Verb.RUN or self.view.mode is Mode.ASKING \
+                or not self.view.can_run:  # the session explains why it will not run
+            try:  # a line of steps stops after the step under way (it quit the program)
+                self.manager.handle(line, interrupt=self._interrupt.is_set)
+            finally:
+                if in_main:
+                    signal.signal(signal.SIGINT, previous)
+            return
         keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
             if is_terminal(self.prompt.input) else None
 
