@@ -195,6 +195,22 @@ def test_guiding_where_the_task_is_finished_is_refused_as_a_named_step_is(tmp_pa
     session.close()
 
 
+def test_ctrl_c_stops_a_guided_move_where_it_is(tmp_path: Path) -> None:
+    """Ctrl-C during "guide forward 1.5" ended the program; now the robot stops where it is and
+    guiding goes on."""
+    session = _session(tmp_path)
+    x0, y0, _ = session.world.world.base_pose()  # type: ignore[attr-defined]
+    polls = iter([False] * 20)
+    replies = session.handle("guide forward 1.5", interrupt=lambda: next(polls, True))
+    x, y, _ = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert all(r.kind is not ReplyKind.ERROR for r in replies) and session.guiding.active
+    assert 0.01 < ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5 < 0.5
+    session.handle("guide forward 0.1")  # the next move is not stopped
+    x2, y2, _ = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert ((x2 - x) ** 2 + (y2 - y) ** 2) ** 0.5 > 0.05
+    session.close()
+
+
 def test_the_terminal_guide_mode_drives_the_robot_with_keys(tmp_path: Path) -> None:
     from prompt_toolkit.input import create_pipe_input
     from prompt_toolkit.output import DummyOutput

@@ -117,16 +117,16 @@ class Guiding:
             self.used = True
         return replies
 
-    def command(self, rest: str) -> list[Reply]:
+    def command(self, rest: str, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """``guide`` alone: guiding begins (the terminal's guide mode); ``guide stop``: it ends;
-        otherwise one primitive."""
+        otherwise one primitive (``interrupted``: Ctrl-C, which stops it where it is)."""
         if not rest.strip():
             return self.turn.say(self.begin()) + [Reply(ReplyKind.INFO, m.GUIDE_MODE_ON(self.lang))]
         if normalize(rest) in STOP_WORDS:
             return self.end() + [Reply(ReplyKind.INFO, m.GUIDE_MODE_OFF(self.lang))]
-        return self.line(rest)
+        return self.line(rest, interrupted)
 
-    def line(self, rest: str) -> list[Reply]:
+    def line(self, rest: str, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """One ``guide …`` line: begin guiding if need be, carry out the primitive, label what it finished."""
         from teach.sim.guide import parse_guide_line
 
@@ -138,7 +138,12 @@ class Guiding:
             return self.follow_hand(command.amount)
         replies = self.turn.say(self.begin())
         assert self.guide is not None
-        self.guide.run(command)
+        if interrupted is not None:
+            self.guide.stop_when = interrupted
+        try:
+            self.guide.run(command)
+        finally:
+            self.guide.stop_when = lambda: False
         self._settle()
         return replies + self.label(final=False)
 

@@ -386,7 +386,7 @@ class SessionManager(CompatMembers):
             return self.guiding.refusal()
         if self.open is None and not self.guiding.active and self.domain.goal_holds(self.world.state()):
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_DO(self.lang)), self._state_reply()]  # as a named step is
-        replies = self.guiding.command(rest) + [self._state_reply()]
+        replies = self.guiding.command(rest, self._interrupt) + [self._state_reply()]
         if rest.strip() and all(reply.kind is not ReplyKind.ERROR for reply in replies):
             self.again = f"{Verb.GUIDE.words(self.lang)[0]} {rest}"  # "guide forward 0.2", "again"
         feedback = self.guiding.feedback()  # what a person steering by the keys needs to know

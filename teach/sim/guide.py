@@ -190,6 +190,8 @@ class Guide:
         self.doing = "guide"  # what the recording shows as running: the command being carried out
         self._robot: tuple[int, ...] | None = None  # the robot's bodies, found on the first hand period
         self.last: GuideCommand | None = None  # the command run last, for ``feedback``
+        self.stop_when: Callable[[], bool] = _never
+        """Polled every control period of a command (the terminal's Ctrl-C): true stops it where it is."""
         self._started = self.sample((0.0, 0.0))  # the sample it started from
 
     # --- sampling --------------------------------------------------------------------------
@@ -209,6 +211,8 @@ class Guide:
 
     def _period(self, forward: float, turn: float) -> None:
         """One control period under the given base command, then a sample."""
+        if self.stop_when():
+            raise _Stopped
         self.world.drive(forward, turn)
         self.world.set_lift(self.lift_target)
         self.world.set_fingers(self.finger_target)
@@ -251,7 +255,10 @@ class Guide:
             "lift": lambda: self.lift(command.amount), "open": self.open, "close": self.close,
             "wait": lambda: self.wait(command.amount), "hand": lambda: self.by_hand(command.amount)}
         self.doing = str(command)
-        actions[command.verb]()
+        try:
+            actions[command.verb]()
+        except _Stopped:
+            self._stop()
 
     def forward(self, metres: float) -> None:
         """Move along the heading held at the start (negative: back up)."""
@@ -383,3 +390,11 @@ class Guide:
                     "pagedown": GuideCommand("lift", max(0.0, round(self.lift_target - KEY_LIFT, 3))),
                     "space": GuideCommand("open" if self._hand_closed() else "close")}
         return commands.get(name)
+
+
+class _Stopped(Exception):
+    """A command stopped where it was (``Guide.stop_when``)."""
+
+
+def _never() -> bool:
+    return False
