@@ -593,3 +593,26 @@ def test_a_hmm_keeps_what_waits_for_a_yes(ball, tmp_path):
     said(manager, "hmm, wait")
     said(manager, "yes")
     assert open_actions(manager) == [1, 2, 3]
+
+
+@pytest.mark.parametrize(("lang", "find", "slip", "meant"), [
+    ("en", "find the ball", "go to the bin", "oops, I meant go to the ball"),
+    ("en", "find the ball", "go to the bin", "sorry, I meant to say go to the ball"),
+    ("de", "Ball finden", "zum Eimer", "nein, ich meinte zum Ball")])
+def test_i_meant_takes_the_last_step_back_and_does_what_was_meant(ball, tmp_path, lang, find, slip, meant):
+    """ "oops, I meant go to the ball" was "expected a whole number, not 'i meant go ball'" ('oops'
+    is an undo)."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, find)
+    said(manager, slip)
+    reply = said(manager, meant)
+    assert open_actions(manager) == [1, 2] and reply.index("2") < reply.index("✓")  # undone, then done
+
+
+@pytest.mark.parametrize("undo", ["undo that", "undo the last one", "no wait, undo that", "nimm das zurück"])
+def test_undo_that_takes_the_last_step_back(ball, tmp_path, undo):
+    """ "undo that" was "expected a whole number, not 'that'"."""
+    manager = session(ball, tmp_path, "en")
+    said(manager, "find the ball, go to the ball")
+    said(manager, undo)
+    assert open_actions(manager) == [1]

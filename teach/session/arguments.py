@@ -21,7 +21,9 @@ _LINKING = {"is", "ist", "are", "sind", "i", "ich", "my", "mein", "meiner", "of"
 """Words nearly every condition's label has: sharing them says nothing about which one is meant."""
 MAX_LIKE = 4
 """The most conditions a phrase that names none is said to perhaps mean (beyond: all are listed)."""
-_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck"}
+_STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck",
+               # "undo that", "undo the last one", "nimm das zurück": the last step, as with no number
+               "that", "it", "this", "last", "one", "das", "es", "letzten", "letzte"}
 
 
 _NARRATING = {"now", "already", "still", "yet", "again", "jetzt", "nun", "schon", "noch", "wieder", "ok", "okay",

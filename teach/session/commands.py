@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import difflib
 import functools
+import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from enum import Enum
@@ -329,6 +330,18 @@ def after_courtesy(line: str) -> str:
 
 WHERE_STARTS = ("where is ", "where s ", "where are ", "wo ist ", "wo sind ", "wo liegt ")
 """How a line asking where something is starts ("where is the ball?"): answered with the situation."""
+_MEANT = re.compile(r"^(?:(?:oops|sorry|no|nein|hoppla|ups|entschuldigung)\W+)*"
+                    r"(?:i meant to say|i meant|i mean|i wanted|meant|ich meinte|ich meine|ich wollte|gemeint war)"
+                    r"\W+(?P<steps>.+)$", re.IGNORECASE)
+
+
+def meant_instead(line: str) -> str | None:
+    """The steps a line says were meant instead of the last one ("oops, I meant go to the ball",
+    "nein, ich meinte zum Ball"), or None: it was "expected a whole number" ('oops' is an undo)."""
+    said = _MEANT.match(line.strip())
+    return said.group("steps").strip() if said else None
+
+
 AGAIN_WORDS = {normalize(said) for said in ("again", "and again", "again please", "once more", "one more time",
                                             "do it again", "do that again", "same again", "the same again",
                                             "nochmal", "noch mal", "noch einmal", "nochmals", "und nochmal",

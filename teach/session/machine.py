@@ -76,6 +76,7 @@ from teach.session.commands import (
     after_holding_on,
     is_greeting,
     is_praise,
+    meant_instead,
     parse_command,
     typo_of_command,
     without_hesitation,
@@ -327,6 +328,9 @@ class SessionManager(CompatMembers):
                     hello = m.HELLO(self.lang, actions=some_actions(self.domain, self.lang))
                     return self._said_back(m.HELLO_AGAIN(self.lang), ReplyKind.SAY, alone=hello)
                 line = rest  # "great, now you try"
+        meant = meant_instead(line)
+        if meant is not None and self.pending is None and self.pending_model is None and self._names_steps(meant):
+            return self._instead(meant)
         line = command_hint(line, self.lang, COMMAND_NAMES) or line
         command, rest = parse_command(line)
         steps = self._steps_after_all(command, rest, line)
@@ -585,6 +589,11 @@ class SessionManager(CompatMembers):
             return not any(token.guessed for token in self.phrases.parse(line, self.lang, topic=self.topic))
         except TeachError:
             return False
+
+    def _instead(self, steps: str) -> list[Reply]:
+        """"oops, I meant go to the ball": the last step taken back (if one is open), then these."""
+        taken = self.turn.say([Reply(ReplyKind.INFO, self.showing.take_back(None))]) if self.showing.has_steps else []
+        return taken + self._teach_actions(steps)
 
     def _meant_by_pronoun(self, line: str) -> str | None:
         """A line whose "it" stands for nothing named yet, with the one object that makes its step
