@@ -508,6 +508,7 @@ FEEDBACK_BELOW = Text("{distance} below my hand", "{distance} unter meiner Hand"
 FEEDBACK_OPEN = Text("open", "offen")
 FEEDBACK_CLOSED = Text("closed", "zu")
 FEEDBACK_NOTHING_YET = Text("nothing yet", "noch nichts")
+FEEDBACK_STOPPED = Text("{did}, then Ctrl-C stopped me", "{did}, dann hat Strg-C mich angehalten")
 FEEDBACK_MOVED = Text("{key} moved me {distance}", "{key} hat mich {distance} bewegt")
 FEEDBACK_TURNED_LEFT = Text("{key} turned me {degrees}° left", "{key} hat mich {degrees}° nach links gedreht")
 FEEDBACK_TURNED_RIGHT = Text("{key} turned me {degrees}° right", "{key} hat mich {degrees}° nach rechts gedreht")

@@ -205,7 +205,8 @@ def test_ctrl_c_stops_a_guided_move_where_it_is(tmp_path: Path) -> None:
     x, y, _ = session.world.world.base_pose()  # type: ignore[attr-defined]
     assert all(r.kind is not ReplyKind.ERROR for r in replies) and session.guiding.active
     assert 0.01 < ((x - x0) ** 2 + (y - y0) ** 2) ** 0.5 < 0.5
-    session.handle("guide forward 0.1")  # the next move is not stopped
+    assert "then Ctrl-C stopped me" in replies[-1].text  # the feedback line says why it stopped short
+    assert "Ctrl-C" not in session.handle("guide forward 0.1")[-1].text  # the next move is not stopped
     x2, y2, _ = session.world.world.base_pose()  # type: ignore[attr-defined]
     assert ((x2 - x) ** 2 + (y2 - y) ** 2) ** 0.5 > 0.05
     session.close()

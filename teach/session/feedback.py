@@ -53,6 +53,11 @@ def _height(height: float, lang: Lang) -> str:
 
 
 def _last(feedback: Feedback, lang: Lang) -> str:
+    did = _last_did(feedback, lang)
+    return m.FEEDBACK_STOPPED(lang, did=did) if feedback.stopped else did
+
+
+def _last_did(feedback: Feedback, lang: Lang) -> str:
     command = feedback.last
     if command is None:
         return m.FEEDBACK_NOTHING_YET(lang)

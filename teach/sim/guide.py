@@ -110,6 +110,8 @@ class Feedback:
     ball_under_arm: bool = False
     """The ball is between the body and the hand (passed under the raised hand, pushed by the
     body): ahead of the robot, but behind the hand, so driving on only pushes it."""
+    stopped: bool = False
+    """The last command was stopped before its end (Ctrl-C: ``Guide.stop_when``)."""
 
 
 def is_guide_line(text: str) -> bool:
@@ -191,6 +193,7 @@ class Guide:
         self._robot: tuple[int, ...] | None = None  # the robot's bodies, found on the first hand period
         self.last: GuideCommand | None = None  # the command run last, for ``feedback``
         self.stop_when: Callable[[], bool] = _never
+        self.stopped = False  # the last command was stopped before its end
         """Polled every control period of a command (the terminal's Ctrl-C): true stops it where it is."""
         self._started = self.sample((0.0, 0.0))  # the sample it started from
 
@@ -240,7 +243,8 @@ class Guide:
                         math.hypot(x - start.base[0], y - start.base[1]),
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
                         w.finger_closure() - start.fingers,  # a ball in the bin or in the hand is not to be fetched
-                        _under_arm((x, y, yaw), hand, ball) and not w.ball_placed() and not w.ball_grasped())
+                        _under_arm((x, y, yaw), hand, ball) and not w.ball_placed() and not w.ball_grasped(),
+                        self.stopped)
 
     def _hand_closed(self) -> bool:
         """Whether the hand is closed as the teacher last made it (not as the fingers stand: round
@@ -254,10 +258,11 @@ class Guide:
             "forward": lambda: self.forward(command.amount), "turn": lambda: self.turn(command.amount),
             "lift": lambda: self.lift(command.amount), "open": self.open, "close": self.close,
             "wait": lambda: self.wait(command.amount), "hand": lambda: self.by_hand(command.amount)}
-        self.doing = str(command)
+        self.doing, self.stopped = str(command), False
         try:
             actions[command.verb]()
         except _Stopped:
+            self.stopped = True
             self._stop()
 
     def forward(self, metres: float) -> None:
