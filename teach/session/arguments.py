@@ -23,7 +23,7 @@ MAX_LIKE = 4
 """The most conditions a phrase that names none is said to perhaps mean (beyond: all are listed)."""
 _STEP_WORDS = {"step", "steps", "schritt", "schritte", "bis", "ab", "from", "back", "zuruck",
                # "undo that", "undo the last one", "nimm das zurück": the last step, as with no number
-               "that", "it", "this", "last", "one", "das", "es", "letzten", "letzte"}
+               "that", "it", "this", "last", "das", "es", "letzten", "letzte"}
 
 
 _NARRATING = {"now", "already", "still", "yet", "again", "jetzt", "nun", "schon", "noch", "wieder", "ok", "okay",
@@ -74,8 +74,8 @@ def whole_number(text: str, lang: Lang) -> int | None:
 
 def step_number(text: str, lang: Lang) -> int | None:
     """The step an undo goes back to: "3", "to step 3", "bis Schritt 3"; None when none is named."""
-    words = [w for w in normalize(text).split() if w not in _STEP_WORDS]
-    return whole_number(" ".join(words), lang)
+    said = normalize(text).replace("last one", "last")  # "the last one", not step one
+    return whole_number(" ".join(w for w in said.split() if w not in _STEP_WORDS), lang)
 
 
 def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:

@@ -138,12 +138,12 @@ class Guiding:
             return self.follow_hand(command.amount)
         replies = self.turn.say(self.begin())
         assert self.guide is not None
-        if interrupted is not None:
-            self.guide.stop_when = interrupted
+        before = self.guide.stop_when
+        self.guide.stop_when = interrupted or before
         try:
             self.guide.run(command)
         finally:
-            self.guide.stop_when = lambda: False
+            self.guide.stop_when = before
         self._settle()
         return replies + self.label(final=False)
 

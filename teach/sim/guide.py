@@ -193,8 +193,8 @@ class Guide:
         self._robot: tuple[int, ...] | None = None  # the robot's bodies, found on the first hand period
         self.last: GuideCommand | None = None  # the command run last, for ``feedback``
         self.stop_when: Callable[[], bool] = _never
-        self.stopped = False  # the last command was stopped before its end
         """Polled every control period of a command (the terminal's Ctrl-C): true stops it where it is."""
+        self.stopped = False  # the last command was stopped before its end
         self._started = self.sample((0.0, 0.0))  # the sample it started from
 
     # --- sampling --------------------------------------------------------------------------
