@@ -618,9 +618,10 @@ def test_undo_that_takes_the_last_step_back(ball, tmp_path, undo):
     assert open_actions(manager) == [1]
 
 
-@pytest.mark.parametrize("line", ["can you find the ball for me?", "find the ball for us please"])
-def test_a_step_asked_for_someone_is_that_step(ball, tmp_path, line):
+@pytest.mark.parametrize(("lang", "line"), [("en", "can you find the ball for me?"),
+                                            ("en", "find the ball for us please"), ("de", "such den Ball für mich")])
+def test_a_step_asked_for_someone_is_that_step(ball, tmp_path, lang, line):
     """ "can you find the ball for me?" was "Did you mean “find the ball”?"."""
-    manager = session(ball, tmp_path, "en")
+    manager = session(ball, tmp_path, lang)
     said(manager, line)
     assert open_actions(manager) == [1]

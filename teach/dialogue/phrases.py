@@ -45,12 +45,13 @@ _IGNORED = (_FILLERS - {"to", "zu"}) | INTERJECTIONS | {"ok", "okay", "also", "j
                                                         "nochmal", "noch", "einmal", "wieder", "erneut", "else", "so",
                                         "i", "think", "should", "must", "maybe", "perhaps", "first", "ich",
                                         "glaube", "denke", "solltest", "musst", "vielleicht", "erst", "zuerst",
-                                        "d", "instead", "better", "stattdessen", "lieber", "besser", "for", "me", "us"}
+                                        "d", "instead", "better", "stattdessen", "lieber", "besser", "for", "me", "us",
+                                        "fur", "mich", "uns"}
 """Phrase matching drops these too: politeness and hedging ("I think you should go to the ball
-first", "I'd go to the bin instead", "besser zum Eimer", "can you find the ball for me?"), and
-"again" (a step shown once more after a slip is the same step: "grab it again", "such den Ball
-nochmal"), "else" ("find someone else" is finding someone), and the sounds of a teacher catching
-up ("ach so, erst hinfahren" was "I don't know “ach so”")."""
+first", "I'd go to the bin instead", "besser zum Eimer", "can you find the ball for me?", "such
+ihn für mich"), and "again" (a step shown once more after a slip is the same step: "grab it
+again", "such den Ball nochmal"), "else" ("find someone else" is finding someone), and the sounds
+of a teacher catching up ("ach so, erst hinfahren" was "I don't know “ach so”")."""
 _PRONOUNS = {"it", "him", "her", "them", "this", "that", "ihn", "sie", "es", "ihm", "ihr", "ihnen"}
 PRONOUN = re.compile(r"\b(?:" + "|".join(sorted(_PRONOUNS)) + r")\b", re.IGNORECASE)
 """The first pronoun of a line (what an object named before may stand for)."""
