@@ -560,7 +560,8 @@ def test_a_decimal_point_does_not_split_a_line(ball, tmp_path):
     assert open_actions(manager) == [1, 2]  # a full stop still ends a step
 
 
-@pytest.mark.parametrize(("lang", "again"), [("en", "again"), ("en", "once more"), ("de", "nochmal")])
+@pytest.mark.parametrize(("lang", "again"), [("en", "again"), ("en", "once more"), ("en", "can you do it again?"),
+                                             ("de", "nochmal"), ("de", "kannst du das nochmal machen?")])
 def test_again_right_after_a_step_is_that_step(tmp_path, lang, again):
     """ "again" alone was "I don't know “again”" (with "grab it again" understood)."""
     snacks = load_domain(ROOT / "demos" / "snacks" / "domain.toml")

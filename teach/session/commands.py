@@ -344,10 +344,12 @@ def meant_instead(line: str) -> str | None:
 
 AGAIN_WORDS = {normalize(said) for said in ("again", "and again", "again please", "once more", "one more time",
                                             "do it again", "do that again", "same again", "the same again",
+                                            "can you do it again", "could you do that again",
                                             "nochmal", "noch mal", "noch einmal", "nochmals", "und nochmal",
-                                            "wieder", "mach das nochmal", "mach es nochmal", "das gleiche nochmal")}
+                                            "wieder", "mach das nochmal", "mach es nochmal", "das gleiche nochmal",
+                                            "kannst du das nochmal machen", "nochmal machen")}
 """Whole lines asking for the step just done once more ("offer a snack", "again", "again": "again"
-alone was "I don't know “again”")."""
+alone was "I don't know “again”"; "can you do it again?")."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",
