@@ -131,8 +131,8 @@ class Terminal:
         self._interrupt.set()
 
     def _handle(self, line: str) -> None:
-        """Every line goes through the session; while the robot may run, Ctrl-C sets the
-        interrupt flag instead of ending the program."""
+        """Every line goes through the session; while it is handled, Ctrl-C sets the interrupt flag
+        (a run or a line of steps stops) instead of ending the program."""
         command, rest = self.manager.command(line)
         if command is Verb.GUIDE and not rest.strip() \
                 and self.view.mode is not Mode.ASKING:
@@ -143,17 +143,20 @@ class Terminal:
         self._interrupt.clear()
         in_main = threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGINT, lambda *_: self._on_interrupt()) if in_main else None
-        if command is not Verb.RUN or self.view.mode is Mode.ASKING \
-                or not self.view.can_run:  # the session explains why it will not run
-            try:  # a line of steps stops after the step under way (it quit the program)
+        try:
+            if command is Verb.RUN and self.view.mode is not Mode.ASKING and self.view.can_run:
+                self._run(line)
+            else:  # the session explains why it will not run; a line of steps stops after the step under way
                 self.manager.handle(line, interrupt=self._interrupt.is_set)
-            finally:
-                if in_main:
-                    signal.signal(signal.SIGINT, previous)
-            return
+        finally:
+            if in_main:
+                signal.signal(signal.SIGINT, previous)
+
+    def _run(self, line: str) -> None:
+        """A run: announced as the robot is about to move; what is typed meanwhile is read (and
+        answered "wait, or press Ctrl-C")."""
         keys = RunKeys(self.prompt.input, self._on_interrupt, self._typed_while_running) \
             if is_terminal(self.prompt.input) else None
-
         announced = False
 
         def interrupted() -> bool:
@@ -167,12 +170,8 @@ class Terminal:
                 keys.poll()
             return self._interrupt.is_set()
 
-        try:
-            with keys.reading() if keys is not None else contextlib.nullcontext():
-                self.manager.handle(line, interrupt=interrupted)
-        finally:
-            if in_main:
-                signal.signal(signal.SIGINT, previous)
+        with keys.reading() if keys is not None else contextlib.nullcontext():
+            self.manager.handle(line, interrupt=interrupted)
 
     def _typed_while_running(self, line: str) -> None:
         self.console.print(f"[bold red]{m.WAIT_OR_CTRL_C(self.view.lang, line=line)}[/bold red]")
