@@ -275,6 +275,13 @@ ALL_RIGHT = Text("All right.", "In Ordnung.")
 GO_ON = Text("Tell me the next step, or say 'done' when the task is finished.",
              "Sag mir den nächsten Schritt, oder 'fertig', wenn die Aufgabe erledigt ist.")
 AGAIN_WHAT = Text("Do what again? Name the step ('{example}').", "Was nochmal? Sag mir den Schritt ('{example}').")
+DID_AS_ASKED = Text("I did “{action}” because you asked me to. Not what you meant? Say 'undo'.",
+                   "Ich habe „{action}“ gemacht, weil du mich darum gebeten hast. Nicht gemeint? Sag 'zurück'.")
+DID_AS_LEARNED = Text("I did “{action}” because of what I have learned:",
+                     "Ich habe „{action}“ gemacht, weil ich gelernt habe:")
+NO_STEP_JUST_NOW = Text("I did no step just now.", "Ich habe gerade keinen Schritt gemacht.")
+WHY_A_STEP = Text(" 'why {example}' says why I would do a step.",
+                  " 'warum {example}' sagt, warum ich einen Schritt tun würde.")
 NO_QUESTION_OPEN = Text("No question is open.", "Es ist keine Frage offen.")
 ALL_QUESTIONS_USED = Text("I have used all my questions.", "Ich habe alle meine Fragen gestellt.")
 NO_QUESTION_NOW = Text("I have no question right now.", "Ich habe gerade keine Frage.")

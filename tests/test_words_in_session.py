@@ -626,3 +626,28 @@ def test_a_step_asked_for_someone_is_that_step(ball, tmp_path, lang, line):
     manager = session(ball, tmp_path, lang)
     said(manager, line)
     assert open_actions(manager) == [1]
+
+
+@pytest.mark.parametrize(("lang", "doubt", "step"), [("en", "are you sure?", "find the ball"),
+                                                     ("en", "why did you do that?", "find the ball"),
+                                                     ("de", "bist du sicher?", "Ball finden"),
+                                                     ("de", "warum hast du das gemacht?", "Ball finden")])
+def test_a_doubt_right_after_a_step_is_told_why_it_was_done(ball, tmp_path, lang, doubt, step):
+    """ "are you sure?" was "I don't know “are you sure?”", "why did you do that?" "No tree yet."."""
+    manager = session(ball, tmp_path, lang)
+    assert said(manager, doubt) == m.NO_STEP_JUST_NOW(Lang(lang))  # nothing done yet: no tree to name either
+    said(manager, step)
+    label = ball.action("FindBall").label(Lang(lang))
+    assert said(manager, doubt) == m.DID_AS_ASKED(Lang(lang), action=label)
+    assert said(manager, "why") == m.DID_AS_ASKED(Lang(lang), action=label)  # a doubt keeps what it is about
+    assert open_actions(manager) == [1]
+
+
+def test_a_doubt_after_a_run_gives_the_trees_reasons(ball, tmp_path):
+    manager = session(ball, tmp_path, "en")
+    teach_two_demonstrations(manager)
+    said(manager, "reset")
+    assert "I did: find the ball" in said(manager, "run 1")
+    reply = said(manager, "why did you do that?")
+    assert reply.startswith(m.DID_AS_LEARNED(Lang.EN, action="find the ball")) and "\n- " in reply
+    assert said(manager, "are you sure?") == reply

@@ -220,6 +220,8 @@ LIKELY_WORDS = {normalize(said) for said in ("i think so", "i guess so", "i supp
 WHY_ASKING = {normalize(said) for said in ("", "do you ask", "are you asking", "you ask", "ask", "that", "this",
                                            "is that", "fragst du", "fragst du das", "das", "diese frage")}
 """What follows 'why' while a question is open when it asks about the question itself ("why do you ask?")."""
+WHY_ASKING_LINES = {normalize(f"{why} {said}") for why in ("why", "warum", "wieso") for said in WHY_ASKING}
+"""Whole lines asking why a question is asked ("why?", "warum das?") while one is open."""
 WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what next", "what should i do",
                                                "what do i do", "what shall i do", "what can you do",
                                                "was jetzt", "was nun", "und jetzt", "was soll ich tun",
@@ -350,6 +352,15 @@ AGAIN_WORDS = {normalize(said) for said in ("again", "and again", "again please"
                                             "kannst du das nochmal machen", "nochmal machen")}
 """Whole lines asking for the step just done once more ("offer a snack", "again", "again": "again"
 alone was "I don't know “again”"; "can you do it again?")."""
+DOUBT_WORDS = {normalize(said) for said in ("why", "why that", "why did you do that", "why did you do it",
+                                            "why did you do this", "why that one", "are you sure",
+                                            "are you sure about that", "you sure", "is that right", "is that correct",
+                                            "warum", "warum das", "warum hast du das gemacht",
+                                            "warum hast du das getan",
+                                            "wieso", "wieso das", "weshalb", "bist du sicher", "bist du dir sicher",
+                                            "stimmt das", "ist das richtig")}
+"""Whole lines doubting the step just done ("are you sure?" was "I don't know", "why did you do
+that?" "No tree yet."): they are told why it was done."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",

@@ -63,6 +63,7 @@ from teach.session.commands import (
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
     COMMANDS,
+    DOUBT_WORDS,
     LOOKING,
     NO_MATTER_WORDS,
     NUMBERED,
@@ -70,6 +71,7 @@ from teach.session.commands import (
     WHAT_NOW_WORDS,
     WHERE_STARTS,
     WHY_ASKING,
+    WHY_ASKING_LINES,
     Command,
     Verb,
     after_courtesy,
@@ -137,6 +139,9 @@ class SessionManager(CompatMembers):
         self._interrupt: Callable[[], bool] | None = None
         self.again: str | None = None
         """What "again" on the next line does: the step the line before did, or its guided move."""
+        self.last_step: tuple[str, bool] | None = None
+        """The step the line before did and whether the learned tree chose it (not the teacher):
+        what "why did you do that?", "are you sure?" on the next line ask about."""
         self.restored: list[Reply] = []  # what a resume set up again, said in greet
         self.store.prepare(domain)
         self.observer.on_domain(domain)
@@ -206,14 +211,15 @@ class SessionManager(CompatMembers):
         try:
             check_length(line, self.lang)
         except LineTooLong as too_long:  # neither logged nor echoed: nobody meant that much as one line
-            self.suggestion = self.retype = self.showing.offered = self.again = None
+            self.suggestion = self.retype = self.showing.offered = self.again = self.last_step = None
             return self.turn.close([Reply(ReplyKind.ERROR, too_long.message)])
         self.observer.on_dialogue("teacher", line, self.budget.left)
         # what the line before left for a yes ("Did you mean …?", "To get there: … Say 'yes' …") or an
         # "again" (its step) is for this line only, but a "hmm" keeps it for the next
         suggestion, retype, offer, again = self.suggestion, self.retype, self.showing.offered, self.again
+        doubted = self.last_step
         if not self._only_holding_on(line):
-            self.suggestion = self.retype = self.showing.offered = self.again = None
+            self.suggestion = self.retype = self.showing.offered = self.again = self.last_step = None
         self.showing.just_done = None
         asking = self.mode is Mode.ASKING
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
@@ -226,6 +232,10 @@ class SessionManager(CompatMembers):
                 replies = [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
             elif again is not None and normalize(line) in AGAIN_WORDS and self.pending is None:
                 replies = self._dispatch(again)
+            elif doubted is not None and normalize(line) in DOUBT_WORDS and self.pending_model is None \
+                    and (self.pending is None or normalize(line) not in WHY_ASKING_LINES):
+                replies = self._why_that(doubted)
+                self.again, self.last_step = again, doubted  # "are you sure?", then "why?" or "again"
             else:
                 replies = self._dispatch(retype if confirmed and retype is not None else line, suggestion)
         except UnknownPhrase as unknown:
@@ -259,6 +269,7 @@ class SessionManager(CompatMembers):
             self._interrupt = None
         if self.showing.just_done is not None:
             self.again = self.domain.action(self.showing.just_done).label(self.lang)
+            self.last_step = (self.showing.just_done, False)
         turn = self.turn.close(replies)
         self.observer.checkpoint()
         self.record.note_open()
@@ -358,6 +369,8 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, m.NO_TO_WHAT(self.lang))]
         if is_yes(line, self.lang) or without_hesitation(said) in ANSWERS_ONLY:  # "yes"/"maybe" to nothing asked
             return [Reply(ReplyKind.INFO, m.NO_QUESTION_OPEN(self.lang))]
+        if said in DOUBT_WORDS:  # "are you sure?" after anything but a step
+            return self._why_that(None)
         if said in AGAIN_WORDS:  # after anything but a step or a guided move: which step is meant?
             return [Reply(ReplyKind.INFO, m.AGAIN_WHAT(self.lang, example=self._example_action()))]
         if said in WHAT_NOW_WORDS or said in SKIP_WORDS:  # "what now?", "I don't know"
@@ -494,6 +507,7 @@ class SessionManager(CompatMembers):
         if tree is None:
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         told = running.run(tree, self.showing, self.observer, whole_number(rest, self.lang), self._interrupt)
+        self.last_step = None if told.last is None else (told.last, True)
         replies = told.replies + ([self._state_reply()] if told.state_line else [])
         return replies + (self.asking.ask_after_run() if told.ask else [])
 
@@ -541,6 +555,8 @@ class SessionManager(CompatMembers):
     def cmd_why(self, rest: str) -> list[Reply]:
         if self.pending is not None and normalize(rest) in WHY_ASKING:  # "why do you ask?"
             return [Reply(ReplyKind.INFO, m.WHY_I_ASK(self.lang))]
+        if rest.strip() and any(normalize(f"{why} {rest}") in DOUBT_WORDS for why in Verb.WHY.words(self.lang)):
+            return self._why_that(None)  # "why did you do that?" after no step
         if self.pruned is None:
             return [Reply(ReplyKind.INFO, m.NO_TREE(self.lang))]
         if not rest.strip():  # 'why' alone said "No action or condition named '' in the tree."
@@ -553,6 +569,22 @@ class SessionManager(CompatMembers):
             untrue = self.domain.condition(name).label(self.lang, False)
             lines.sort(key=lambda line: untrue not in line)
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
+
+    def _why_that(self, step: tuple[str, bool] | None) -> list[Reply]:
+        """"Why did you do that?", "are you sure?": the step just done and why — the teacher asked for
+        it, or the learned tree's reasons for it."""
+        if step is None:
+            said = m.NO_STEP_JUST_NOW(self.lang)
+            if self.pruned is not None:
+                said += m.WHY_A_STEP(self.lang, example=self._example_action())
+            return [Reply(ReplyKind.INFO, said)]
+        name, chosen = step
+        label = self.domain.action(name).label(self.lang)
+        lines = self.learning.why(name, self.lang) if chosen else None
+        if lines is None:
+            return [Reply(ReplyKind.INFO, m.DID_AS_ASKED(self.lang, action=label))]
+        said = "\n".join([m.DID_AS_LEARNED(self.lang, action=label), *(f"- {line}" for line in lines)])
+        return [Reply(ReplyKind.INFO, said)]
 
     def cmd_save(self, rest: str) -> list[Reply]:
         self.record.save()

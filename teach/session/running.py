@@ -31,6 +31,8 @@ class RunTold:
     """The situation follows (not after a run that had nothing to do)."""
     ask: bool
     """It ended "done" with the goal unmet, or with nothing that fits: where a question pays most."""
+    last: str | None = None
+    """The last action the tree ran (what "why did you do that?" asks about)."""
 
 
 def run(tree: Node, showing: Showing, observer: Observer, stop_after: int | None,
@@ -76,7 +78,8 @@ def run(tree: Node, showing: Showing, observer: Observer, stop_after: int | None
     tried = tried_lines(failed_tries(watch, started, result), domain, lang)
     replies += [Reply(ReplyKind.INFO, line) for line in tried]
     if finished:
-        return RunTold(replies + [Reply(ReplyKind.SAY, m.TASK_FINISHED(lang))], state_line=True, ask=False)
+        return RunTold(replies + [Reply(ReplyKind.SAY, m.TASK_FINISHED(lang))], state_line=True, ask=False,
+                       last=result.steps[-1][1])
     if result.outcome is Outcome.INTERRUPTED and stop_after is None and started:  # Ctrl-C: say where
         message = m.STOPPED_DURING(lang, action=domain.action(started[-1][1]).label(lang))
     elif result.outcome is Outcome.INTERRUPTED:
@@ -88,4 +91,5 @@ def run(tree: Node, showing: Showing, observer: Observer, stop_after: int | None
     else:
         message = m.STUCK(lang, outcome=_OUTCOME_WORDS[result.outcome](lang))
     return RunTold(replies + [Reply(ReplyKind.SAY, message)], state_line=True,
-                   ask=result.outcome in (Outcome.SUCCESS, Outcome.FAILURE))
+                   ask=result.outcome in (Outcome.SUCCESS, Outcome.FAILURE),
+                   last=result.steps[-1][1] if result.steps else None)
