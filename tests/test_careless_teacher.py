@@ -205,6 +205,22 @@ def test_it_before_anything_was_named_is_offered_as_the_one_object_it_can_be(tmp
     assert manager.handle("pick it up")[0].text.startswith("I could not pick up a")  # "it" is a now
 
 
+def test_a_start_naming_several_blocks_leaves_it_to_the_one_that_fits(tmp_path, ball):
+    """After "start …, holding a, …, ontable d", "put it on b" was "stack d b" (the last block the
+    start line named); "it" there is the block the step can be about, as before anything was named.
+    A start naming one object still makes it the topic ("start ball found", "go to it")."""
+    domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = SessionManager(Settings("blocks", base=tmp_path, world="symbolic", record=False), domain,
+                             SymbolicWorld(domain))
+    manager.handle("start clear b, clear c, clear d, holding a, ontable b, ontable c, ontable d")
+    assert manager.handle("put it on b")[0].text == "I don't know “put it on b”. Did you mean “put a on b”?"
+    manager = SessionManager(Settings("ball", base=tmp_path, world="symbolic", record=False), ball,
+                             SymbolicWorld(ball))
+    manager.handle("start ball found")
+    manager.handle("go to it")
+    assert manager.open is not None and [ball.action(s.action).name for s in manager.open.steps] == ["ApproachBall"]
+
+
 def test_blocksworld_conditions_said_in_a_persons_order(tmp_path):
     """"start a on b, b on the table, hand empty, a clear" was "unknown condition 'a on b'": a condition
     with a form is read from its objects in order and its other words run together ("on the table":

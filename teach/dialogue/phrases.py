@@ -408,8 +408,11 @@ class PhraseBook:
         return sorted(self._objects)
 
     def topic_in(self, text: str) -> str | None:
-        """The object a line names last ("start ball found": the ball), or None."""
-        return self._last_noun(self.key(text))
+        """The one object a line names ("start ball found": the ball), or None: where it names
+        several ("start clear b, holding a, ontable d"), which one "it" then means cannot be told
+        (it was the last: "put it on b" was "stack d b")."""
+        named = {word for word in self.key(text) if word in self._nouns}
+        return named.pop() if len(named) == 1 else None
 
     def topic(self, tokens: Iterable[Token]) -> str | None:
         """What "it" means in the next line: the object the last of ``tokens`` handles, its form's
