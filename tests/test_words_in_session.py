@@ -651,3 +651,18 @@ def test_a_doubt_after_a_run_gives_the_trees_reasons(ball, tmp_path):
     reply = said(manager, "why did you do that?")
     assert reply.startswith(m.DID_AS_LEARNED(Lang.EN, action="find the ball")) and "\n- " in reply
     assert said(manager, "are you sure?") == reply
+
+
+@pytest.mark.parametrize(("lang", "undo"), [("en", "undo to step two"), ("en", "undo two"),
+                                            ("de", "zurück bis Schritt zwei")])
+def test_a_step_number_said_in_words_is_that_number(ball, tmp_path, lang, undo):
+    """ "undo to step two" was "expected a whole number, not 'step two'" (steps 2 to the end go)."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, undo)
+    assert open_actions(manager) == [1]
+    said(manager, WHOLE[lang][WHOLE[lang].index(",") + 1:])
+    said(manager, "done")
+    said(manager, "reset")
+    said(manager, "run two" if lang == "en" else "los zwei")
+    assert manager.world.state() == ball.state(["BallFound", "BallClose"])  # two steps of the learned tree

@@ -59,12 +59,20 @@ def says_full(text: str) -> bool:
     return normalize(text) in _FULL_WORDS
 
 
+_NUMBER_WORDS = {word: value for words in (
+    ("zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "eleven", "twelve"),
+    ("null", "eins", "zwei", "drei", "vier", "funf", "sechs", "sieben", "acht", "neun", "zehn", "elf", "zwolf"))
+    for value, word in enumerate(words)} | {"ein": 1, "einen": 1, "eine": 1, "einem": 1}
+"""Numbers said in words ("undo to step one", "bis Schritt zwei": "expected a whole number")."""
+
+
 def whole_number(text: str, lang: Lang) -> int | None:
-    """An optional whole number argument ("run 3", "reset 7")."""
+    """An optional whole number argument ("run 3", "reset 7", "run three")."""
     if not text.strip():
         return None
+    said = _NUMBER_WORDS.get(normalize(text))
     try:
-        value = int(text.strip())
+        value = int(text.strip()) if said is None else said
     except ValueError:
         raise TeachError(m.WHOLE_NUMBER(lang, text=text.strip())) from None
     if value < 0:
