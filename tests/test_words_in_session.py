@@ -666,3 +666,13 @@ def test_a_step_number_said_in_words_is_that_number(ball, tmp_path, lang, undo):
     said(manager, "reset")
     said(manager, "run two" if lang == "en" else "los zwei")
     assert manager.world.state() == ball.state(["BallFound", "BallClose"])  # two steps of the learned tree
+
+
+def test_again_right_after_a_run_runs_again(ball, tmp_path):
+    """ "again" after `run 1` asked "Do what again?"."""
+    manager = session(ball, tmp_path, "en")
+    teach_two_demonstrations(manager)
+    said(manager, "reset")
+    said(manager, "run 1")
+    assert "I did: go to the ball" in said(manager, "again")
+    assert manager.world.state() == ball.state(["BallFound", "BallClose"])

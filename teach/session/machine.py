@@ -508,6 +508,7 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.ERROR, m.NOTHING_LEARNED(self.lang))]
         told = running.run(tree, self.showing, self.observer, whole_number(rest, self.lang), self._interrupt)
         self.last_step = None if told.last is None else (told.last, True)
+        self.again = f"{Verb.RUN.words(self.lang)[0]} {rest}".strip()  # "again" after a run runs again
         replies = told.replies + ([self._state_reply()] if told.state_line else [])
         return replies + (self.asking.ask_after_run() if told.ask else [])
 
