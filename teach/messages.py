@@ -101,6 +101,8 @@ WHAT_NOW_FINISHED = Text("The task is finished here: say 'done' if this is how i
 WAY_THERE = Text("To get there: {steps}.", "Der Weg dahin: {steps}.")
 WAY_THERE_OFFER = Text("To get there: {steps}. Say 'yes' and I do that, then {action}.",
                        "Der Weg dahin: {steps}. Sag 'ja', dann tue ich das und danach „{action}“.")
+WAY_AGAIN = Text("Now {untrue}: first {steps}, then {action}.",
+                 "Jetzt gilt: {untrue}. Also erst {steps}, dann „{action}“.")
 DID_STEP = Text("✓ {action}", "✓ {action}")
 NOTHING_CHANGED = Text("✓ {action} (nothing changed: not recorded)",
                        "✓ {action} (nichts hat sich geändert: nicht aufgezeichnet)")

@@ -56,3 +56,21 @@ def test_in_mujoco_a_skill_that_fails_is_named_too(ball, tmp_path):
     assert "I tried to grasp the ball, but it did not work: first this must be true: I can see the ball, the ball " \
            "is within reach." in said
     manager.close()
+
+
+def test_in_mujoco_a_yes_to_an_offered_way_keeps_its_promise_where_the_way_changes(ball, tmp_path):
+    """With the bin near, "put the ball in the bin" offered "find the ball, go to the ball, grasp the
+    ball"; going to the ball takes the bin out of reach (the domain's model does not say so), and
+    after the yes the step was refused one step short, with a second offer. The way is planned
+    again from there."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    settings = Settings("runs", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, ball, MujocoWorld(ball, seed=0))
+    manager.handle("start bin close")
+    assert "Say 'yes' and I do that" in "\n".join(r.text for r in manager.handle("put the ball in the bin"))
+    said = [r.text for r in manager.handle("yes")]
+    assert "Now the bin is out of reach: first go to the bin, then put the ball in the bin." in said
+    assert manager.open is not None and [s.action for s in manager.open.steps] == [1, 2, 3, 4, 5]
+    assert ball.goal_holds(manager.world.state())
+    manager.close()

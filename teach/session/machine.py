@@ -137,6 +137,8 @@ class SessionManager(CompatMembers):
         """The step at which quitting with an open demonstration was warned about."""
         self.step = 0
         self._interrupt: Callable[[], bool] | None = None
+        self._reaching = False
+        """The line is a yes to an offered way: its steps are planned again where one turns out impossible."""
         self.again: str | None = None
         """What "again" on the next line does: the step the line before did, or its guided move."""
         self.last_step: tuple[str, bool] | None = None
@@ -225,7 +227,8 @@ class SessionManager(CompatMembers):
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
             if offer is not None and is_yes(line, self.lang) and parse_command(line)[0] is not Verb.DONE:
-                replies = self._dispatch(offer)  # "that's it" after an offer is the task finished, not a yes
+                self._reaching = True  # "that's it" after an offer is the task finished, not a yes
+                replies = self._dispatch(offer)
             elif offer is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
             elif retype is not None and is_no(line, self.lang):
@@ -266,7 +269,7 @@ class SessionManager(CompatMembers):
         except TeachError as error:
             replies = [Reply(ReplyKind.ERROR, str(error))]
         finally:
-            self._interrupt = None
+            self._interrupt, self._reaching = None, False
         if self.showing.just_done is not None:
             self.again = self.domain.action(self.showing.just_done).label(self.lang)
             self.last_step = (self.showing.just_done, False)
@@ -658,7 +661,7 @@ class SessionManager(CompatMembers):
         if self.open is None and tokens and tokens[0].kind == "action" and self.domain.goal_holds(self.world.state()):
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_DO(self.lang)), self._state_reply()]
         self.topic = self.phrases.topic(tokens) or self.topic
-        return self.showing.act(tokens, self.facilitator, self._interrupt) + [self._state_reply()]
+        return self.showing.act(tokens, self.facilitator, self._interrupt, self._reaching) + [self._state_reply()]
 
     def _finish_demo(self, goal: State) -> list[Reply]:
         """The open demonstration ends in ``goal`` (where the goal holds): learned and written."""

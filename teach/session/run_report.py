@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from teach import messages as m
 from teach.bt.nodes import Action, Node, Status, walk
 from teach.bt.tick import TickResult
-from teach.domain import Domain, State
+from teach.domain import Domain, Literal, State
 from teach.messages import Lang
 from teach.session.replies import Reply, ReplyKind
 from teach.symbolic import apply_action, steps_towards
@@ -66,10 +66,18 @@ def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: Lang) -> 
 
 def why_not(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """Why an action failed, in words: the preconditions it lacked, if it has any."""
-    values = dict(zip(domain.condition_names, state, strict=True))
-    missing = [domain.condition(p.name).label(lang, p.value)
-               for p in domain.action(action).pre if values[p.name] != p.value]
+    missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state)]
     return m.IT_NEEDS(lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(lang)
+
+
+def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:
+    """The preconditions an action lacks, said as they are ("the bin is out of reach")."""
+    return ", ".join(domain.condition(p.name).label(lang, not p.value) for p in _lacked(domain, action, state))
+
+
+def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
+    values = dict(zip(domain.condition_names, state, strict=True))
+    return [p for p in domain.action(action).pre if values[p.name] != p.value]
 
 
 WAY_STEPS = 3

@@ -20,7 +20,7 @@ from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import way_steps, why_not
+from teach.session.run_report import untrue_now, way_steps, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -37,6 +37,11 @@ class _StepsTakenBack:
     """The world when the undo was said (after the steps): a redo puts it back there."""
     arranged: State
     """The world the undo left (before the steps)."""
+
+
+MAX_REPLANS = 2
+"""How often a way the teacher said yes to is planned again where one of its steps turned out
+impossible (each way is at most ``WAY_STEPS`` long)."""
 
 
 class Showing:
@@ -112,17 +117,24 @@ class Showing:
         self.record.save_open()  # on disk before the teacher sees the event
         return replies
 
-    def act(self, tokens: list[Token], facilitator: bool, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
+    def act(self, tokens: list[Token], facilitator: bool, interrupted: Callable[[], bool] | None = None,
+            reaching: bool = False) -> list[Reply]:
         """Do the parsed steps in the world, each recorded in the open demonstration (opened by
         the first that happens) and said as it happens; one that cannot be done ends the line
         (``facilitator``: with the world's own words why), and so does Ctrl-C (``interrupted``,
-        polled between steps: the step under way is finished, the rest said as not done)."""
+        polled between steps: the step under way is finished, the rest said as not done).
+        ``reaching``: the line is an offered way and its step, which the teacher said yes to: where
+        a step of it cannot be done (in MuJoCo going to the ball takes a near bin out of reach, which
+        the domain's model does not say), the way to the last step is planned again from there
+        (``MAX_REPLANS`` times) instead of stopping one step short of what was promised."""
         domain = self.vocabulary.domain
         replies: list[Reply] = []
-        for index, token in enumerate(tokens):
+        queue, index, replanned = list(tokens), 0, 0
+        while index < len(queue):
+            token = queue[index]
             if index and interrupted is not None and interrupted():
                 self.just_done = None
-                replies += self.turn.say(self._not_done(tokens[index:]))
+                replies += self.turn.say(self._not_done(queue[index:]))
                 break
             if token.kind == "event":
                 result = self.world.perturb(token.name)
@@ -135,12 +147,23 @@ class Showing:
                 self.record.observer.on_external(token.name)
                 self.record.save_open()
                 replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
+                index += 1
                 continue
             result = self.world.act(token.name)
             label = domain.action(token.name).label(self.lang)
             if not result.ok:
-                self.just_done = None  # "again" after a refusal: which step is meant?
                 reason = why_not(domain, token.name, result.before, self.lang)
+                way = way_steps(domain, queue[-1].name, result.before) \
+                    if reaching and replanned < MAX_REPLANS and queue[-1].kind == "action" else []
+                if way:  # the promised step, by a way planned again from where the robot is now
+                    replanned += 1
+                    queue[index:] = [*(self._token(step) for step in way), queue[-1]]
+                    untrue = untrue_now(domain, token.name, result.before, self.lang) or reason
+                    labels = [domain.action(step.name).label(self.lang) for step in queue[index:]]
+                    said = m.WAY_AGAIN(self.lang, untrue=untrue, steps=", ".join(labels[:-1]), action=labels[-1])
+                    replies += self.turn.say([Reply(ReplyKind.INFO, said)])
+                    continue
+                self.just_done = None  # "again" after a refusal: which step is meant?
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
                 if facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
@@ -148,8 +171,9 @@ class Showing:
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
                 self.just_done = None
-                replies += self.turn.say(self.halted(token.name, result) + self._not_done(tokens[index + 1:]))
+                replies += self.turn.say(self.halted(token.name, result) + self._not_done(queue[index + 1:]))
                 break
+            index += 1
             if result.after == result.before:
                 # a step that changes nothing would teach two different actions in one state
                 replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
@@ -158,6 +182,10 @@ class Showing:
             self.just_done = token.name
             replies += self.turn.say([Reply(ReplyKind.INFO, m.DID_STEP(self.lang, action=label))])
         return replies
+
+    def _token(self, action: str) -> Token:
+        """A step the robot planned itself, as if the teacher had named it."""
+        return Token("action", action, self.vocabulary.domain.action(action).label(self.lang))
 
     def _way_offered(self, action: str, label: str, state: State) -> list[Reply]:
         """The way to a refused step, offered: a yes does it and then the step ("grab it" before the
