@@ -125,6 +125,9 @@ NOTHING_LEARNED = Text("I have not learned anything yet: show me first.",
 FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first.",
                          "Beende ('fertig') oder verwirf zuerst die laufende Vorführung.")
 RUNNING_ACTION = Text("→ {action}", "→ {action}")
+NOT_DONE_YET = Text("Not yet: {unmet}.", "Noch nicht: {unmet}.")
+ONLY_YOU_TELL_DONE = Text("You tell me: say 'done' when the task is finished.",
+                          "Das sagst du mir: sag 'fertig', wenn die Aufgabe erledigt ist.")
 NOTHING_TO_DO = Text("There is nothing to do: the task is already finished. Say 'reset' for a new start.",
                      "Es gibt nichts zu tun: die Aufgabe ist schon erledigt. Sag 'neu' für einen neuen Start.")
 STARTED_AS_SHOWN = Text("Where nothing holds, nothing can be done in this world, so I begin where {demo} begins "
@@ -164,7 +167,8 @@ WHOLE_NUMBER = Text("expected a whole number, not {text!r}", "erwartet eine ganz
 NOT_NEGATIVE = Text("the number cannot be negative", "die Zahl darf nicht negativ sein")
 
 # --- trees and learning ------------------------------------------------------------------------
-NO_TREE = Text("No tree yet.", "Noch kein Baum.")
+NO_TREE = Text("I have not learned anything yet: show me the task step by step, then say 'done'.",
+               "Ich habe noch nichts gelernt: zeig mir die Aufgabe Schritt für Schritt, dann sag 'fertig'.")
 WHY_WHAT = Text("Why what? Name a step or a condition of the tree, e.g. 'why {example}'.",
                "Warum was? Nenn einen Schritt oder eine Bedingung des Baums, z. B. 'warum {example}'.")
 NO_SUCH_NODE = Text("No action or condition named {name!r} in the tree.",

@@ -676,3 +676,38 @@ def test_again_right_after_a_run_runs_again(ball, tmp_path):
     said(manager, "run 1")
     assert "I did: go to the ball" in said(manager, "again")
     assert manager.world.state() == ball.state(["BallFound", "BallClose"])
+
+
+@pytest.mark.parametrize(("lang", "asked"), [("en", "is it done?"), ("en", "are we done?"), ("de", "ist es fertig?"),
+                                             ("de", "bist du fertig?")])
+def test_asking_whether_it_is_done_is_answered_from_the_goal(ball, tmp_path, lang, asked):
+    """ "is it done?" was "I don't know", "are we done?" ended the demonstration (as "we are done")."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, "find the ball" if lang == "en" else "Ball finden")
+    unmet = ball.condition("BallPlaced").label(Lang(lang), False)
+    assert said(manager, asked) == m.NOT_DONE_YET(Lang(lang), unmet=unmet) and open_actions(manager) == [1]
+    said(manager, WHOLE[lang][WHOLE[lang].index(",") + 1:])
+    assert said(manager, asked) == m.WHAT_NOW_FINISHED(Lang(lang)) and len(open_actions(manager)) == 5
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "who are you?"), ("de", "wer bist du?")])
+def test_who_are_you_is_greeted(ball, tmp_path, lang, line):
+    """ "who are you" was "Did you mean “why are you”?"."""
+    manager = session(ball, tmp_path, lang)
+    assert said(manager, line).startswith(m.HELLO_AGAIN(Lang(lang)))
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "let's start over"), ("de", "lass uns von vorn anfangen")])
+def test_lets_start_over_is_a_new_start(ball, tmp_path, lang, line):
+    """ "let's start over" was "I don't know", "lass uns von vorn anfangen" "Meintest du „lass den Ball fallen“?"."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, WHOLE[lang])
+    said(manager, "fertig" if lang == "de" else "done")
+    said(manager, line)
+    assert manager.world.state() == (False,) * len(ball.conditions)
+
+
+def test_what_can_you_do_before_anything_was_learned_says_so_in_words(ball, tmp_path):
+    """ "was kannst du?" is 'show' ("was kannst du jetzt"), and with nothing learned it said "Noch kein Baum."."""
+    manager = session(ball, tmp_path, "de")
+    assert said(manager, "was kannst du?") == m.NO_TREE(Lang.DE) and "Baum" not in m.NO_TREE(Lang.DE)

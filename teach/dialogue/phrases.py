@@ -99,7 +99,7 @@ _WORD_CUTOFF = 0.75  # a misspelt word is corrected to a known word this similar
 _CHAT_BEFORE = INTERJECTIONS | {"ok", "okay", "so", "well", "all", "i", "m", "im", "am", "we", "re", "are", "now",
                                 "please", "just", "then", "and", "ich", "bin", "wir", "sind", "also", "na", "gut",
                                 "jetzt", "bitte", "mal", "dann", "und", "no", "oops", "wait", "nein", "ups", "hoppla",
-                                "warte", "moment", "entschuldigung"}
+                                "warte", "moment", "entschuldigung", "let", "lets", "s", "lass", "lasst", "uns"}
 _CHAT_AFTER = {"me", "us", "please", "now", "ok", "okay", "mir", "uns", "bitte", "jetzt", "mal"}
 _HELP_MARKS = re.compile(r"^[?¿]+$")
 

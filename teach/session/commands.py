@@ -361,6 +361,15 @@ DOUBT_WORDS = {normalize(said) for said in ("why", "why that", "why did you do t
                                             "stimmt das", "ist das richtig")}
 """Whole lines doubting the step just done ("are you sure?" was "I don't know", "why did you do
 that?" "No tree yet."): they are told why it was done."""
+DONE_YET_WORDS = {normalize(said) for said in ("is it done", "are you done", "are we done", "is the task done",
+                                               "is the task finished", "is it finished", "are you finished",
+                                               "have you finished", "is that it", "ist es fertig", "bist du fertig",
+                                               "sind wir fertig", "ist die aufgabe erledigt", "ist die aufgabe fertig",
+                                               "ist es erledigt", "war es das")}
+"""Whole lines asking whether the task is finished ("is it done?" was "I don't know", "are we
+done?" ended the demonstration): answered from the domain's goal, nothing ended."""
+WHO_WORDS = {normalize(said) for said in ("who are you", "what are you", "wer bist du", "was bist du")}
+"""Whole lines asking who the robot is ("who are you" was "Did you mean 'why are you'?"): greeted."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",

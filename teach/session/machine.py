@@ -63,6 +63,7 @@ from teach.session.commands import (
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
     COMMANDS,
+    DONE_YET_WORDS,
     DOUBT_WORDS,
     LOOKING,
     NO_MATTER_WORDS,
@@ -70,6 +71,7 @@ from teach.session.commands import (
     SKIP_WORDS,
     WHAT_NOW_WORDS,
     WHERE_STARTS,
+    WHO_WORDS,
     WHY_ASKING,
     WHY_ASKING_LINES,
     Command,
@@ -342,6 +344,11 @@ class SessionManager(CompatMembers):
                     hello = m.HELLO(self.lang, actions=some_actions(self.domain, self.lang))
                     return self._said_back(m.HELLO_AGAIN(self.lang), ReplyKind.SAY, alone=hello)
                 line = rest  # "great, now you try"
+        if self.pending is None and self.pending_model is None and not self._names_steps(line):
+            if normalize(line) in DONE_YET_WORDS:  # "is it done?"
+                return self._done_yet()
+            if normalize(line) in WHO_WORDS:  # "who are you?"
+                return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         meant = meant_instead(line)
         if meant is not None and self.pending is None and self.pending_model is None and self._names_steps(meant):
             return self._instead(meant)
@@ -818,6 +825,15 @@ class SessionManager(CompatMembers):
         if self.pending is not None or self.pending_model is not None:
             return [Reply(ReplyKind.QUESTION, m.TAKE_YOUR_TIME_ASKED(self.lang))]
         return self._said_back(m.TAKE_YOUR_TIME(self.lang))
+
+    def _done_yet(self) -> list[Reply]:
+        """ "Is it done?": the domain's goal, as it holds here (nothing is ended: 'done' does that)."""
+        if not self.domain.goal:
+            return [Reply(ReplyKind.INFO, m.ONLY_YOU_TELL_DONE(self.lang))]
+        unmet = unmet_goal(self.domain, self.world.state(), self.lang)
+        if unmet:
+            return [Reply(ReplyKind.INFO, m.NOT_DONE_YET(self.lang, unmet=unmet))]
+        return [Reply(ReplyKind.INFO, (m.WHAT_NOW_FINISHED if self.open is not None else m.NOTHING_TO_DO)(self.lang))]
 
     def _what_now(self) -> list[Reply]:
         """ "what now?": the situation and the steps the domain's model allows from it (every step
