@@ -12,12 +12,14 @@ import pytest
 from btcpp import assert_matches_btcpp
 from conftest import ROOT
 
+from teach import messages as m
 from teach.bt.nodes import Node
 from teach.bt.xml import read_tree
 from teach.demos import Demonstration, read_demo_set
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase
 from teach.dialogue.script import read_script
 from teach.domain import EXTERNAL_ACTION, Domain, load_domain
+from teach.messages import Lang
 from teach.replay import replay
 from teach.session.machine import SessionManager
 from teach.session.settings import Settings
@@ -210,6 +212,18 @@ def test_every_possible_action_changes_something_the_session_can_see(domain):
 def test_everyday_sayings_name_their_step(domain, lang, line, action):
     tokens = PhraseBook(domain).parse(line, lang)
     assert [(t.kind, t.name) for t in tokens] == [("action", action)]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "ask if they want something"), ("de", "frag ob sie etwas möchten")])
+def test_a_step_beginning_with_a_command_word_is_the_step(domain, tmp_path, lang, line):
+    """ "ask if they want something" was 'ask' ("I have no question right now"): a line that is one
+    of the domain's phrases is that step though its first word is a command that takes no words."""
+    manager = session("asking", domain, world(domain), tmp_path, lang=lang)
+    manager.handle("wait for a request, take the tray, find someone" if lang == "en"
+                   else "warte, Tablett nehmen, such jemanden")
+    manager.handle(line)
+    assert manager.open is not None and domain.action(manager.open.steps[-1].action).name == "OfferSnack"
+    assert manager.handle("ask" if lang == "en" else "frag")[0].text == m.NO_QUESTION_NOW(Lang(lang))
 
 
 def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):

@@ -284,7 +284,10 @@ class SessionManager(CompatMembers):
     def _steps_after_all(self, command: Command | None, rest: str, line: str) -> str | None:
         """A command that takes a number ('zurück': undo, 'los': run) followed by words that are none,
         where the whole line, or the words after the command, read as steps, is those steps:
-        "zurück ins Büro" (the whole line), "los zum Ball" (go: "zum Ball") were "expected a whole number"."""
+        "zurück ins Büro" (the whole line), "los zum Ball" (go: "zum Ball") were "expected a whole number";
+        and a phrase that begins with a command taking no words (``_phrase_not_command``)."""
+        if self._phrase_not_command(command, rest, line):
+            return line
         reads = NUMBERED.get(command) if command is not None else None
         if reads is None or not rest.strip():
             return None
@@ -310,9 +313,15 @@ class SessionManager(CompatMembers):
     def command(self, line: str) -> tuple[Command | None, str]:
         """The command ``handle`` would read in a line ("ok run" is 'run'), and its argument."""
         try:
-            return parse_command(command_hint(line, self.lang, COMMAND_NAMES) or line)
+            command, rest = parse_command(command_hint(line, self.lang, COMMAND_NAMES) or line)
         except LineTooLong:
             return None, line
+        return (None, line) if self._phrase_not_command(command, rest, line) else (command, rest)
+
+    def _phrase_not_command(self, command: Command | None, rest: str, line: str) -> bool:
+        """A line that is one of the domain's phrases and begins with a command that takes no words is
+        that step ("ask if they want something", snacks' offering, was 'ask')."""
+        return command is not None and bool(rest.strip()) and not command.value.argued and self._names_steps(line)
 
     def close(self) -> None:
         self.record.save()
