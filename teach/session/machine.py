@@ -55,6 +55,7 @@ from teach.session.arguments import (
     untrue_asked,
     whole_number,
 )
+from teach.session.asked_back import done_yet, why_that
 from teach.session.asking import Asking
 from teach.session.commands import (
     AGAIN_WORDS,
@@ -229,7 +230,7 @@ class SessionManager(CompatMembers):
         confirmed = retype is not None and is_yes(line, self.lang)  # the line is the guess, not read as one again
         try:
             if offer is not None and is_yes(line, self.lang) and parse_command(line)[0] is not Verb.DONE:
-                self._reaching = True  # "that's it" after an offer is the task finished, not a yes
+                self._reaching = True  # (above: "that's it" after an offer is the task finished, not a yes)
                 replies = self._dispatch(offer)
             elif offer is not None and is_no(line, self.lang):
                 replies = [Reply(ReplyKind.INFO, m.ALL_RIGHT(self.lang))]
@@ -355,7 +356,7 @@ class SessionManager(CompatMembers):
                 line = rest  # "great, now you try"
         if self.pending is None and self.pending_model is None and not self._names_steps(line):
             if normalize(line) in DONE_YET_WORDS:  # "is it done?"
-                return self._done_yet()
+                return done_yet(self.domain, self.world.state(), self.open is not None, self.lang)
             if normalize(line) in WHO_WORDS:  # "who are you?"
                 return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         meant = meant_instead(line)
@@ -591,20 +592,8 @@ class SessionManager(CompatMembers):
         return [Reply(ReplyKind.INFO, "\n".join(f"- {line}" for line in lines))]
 
     def _why_that(self, step: tuple[str, bool] | None) -> list[Reply]:
-        """"Why did you do that?", "are you sure?": the step just done and why — the teacher asked for
-        it, or the learned tree's reasons for it."""
-        if step is None:
-            said = m.NO_STEP_JUST_NOW(self.lang)
-            if self.pruned is not None:
-                said += m.WHY_A_STEP(self.lang, example=self._example_action())
-            return [Reply(ReplyKind.INFO, said)]
-        name, chosen = step
-        label = self.domain.action(name).label(self.lang)
-        lines = self.learning.why(name, self.lang) if chosen else None
-        if lines is None:
-            return [Reply(ReplyKind.INFO, m.DID_AS_ASKED(self.lang, action=label))]
-        said = "\n".join([m.DID_AS_LEARNED(self.lang, action=label), *(f"- {line}" for line in lines)])
-        return [Reply(ReplyKind.INFO, said)]
+        example = self._example_action() if self.pruned is not None else None
+        return why_that(self.domain, self.learning, step, example, self.lang)
 
     def cmd_save(self, rest: str) -> list[Reply]:
         self.record.save()
@@ -834,15 +823,6 @@ class SessionManager(CompatMembers):
         if self.pending is not None or self.pending_model is not None:
             return [Reply(ReplyKind.QUESTION, m.TAKE_YOUR_TIME_ASKED(self.lang))]
         return self._said_back(m.TAKE_YOUR_TIME(self.lang))
-
-    def _done_yet(self) -> list[Reply]:
-        """ "Is it done?": the domain's goal, as it holds here (nothing is ended: 'done' does that)."""
-        if not self.domain.goal:
-            return [Reply(ReplyKind.INFO, m.ONLY_YOU_TELL_DONE(self.lang))]
-        unmet = unmet_goal(self.domain, self.world.state(), self.lang)
-        if unmet:
-            return [Reply(ReplyKind.INFO, m.NOT_DONE_YET(self.lang, unmet=unmet))]
-        return [Reply(ReplyKind.INFO, (m.WHAT_NOW_FINISHED if self.open is not None else m.NOTHING_TO_DO)(self.lang))]
 
     def _what_now(self) -> list[Reply]:
         """ "what now?": the situation and the steps the domain's model allows from it (every step

@@ -153,7 +153,7 @@ class Showing:
             label = domain.action(token.name).label(self.lang)
             if not result.ok:
                 reason = why_not(domain, token.name, result.before, self.lang)
-                way = way_steps(domain, queue[-1].name, result.before) \
+                way = way_steps(domain, queue[-1].name, self.world.state()) \
                     if reaching and replanned < MAX_REPLANS and queue[-1].kind == "action" else []
                 if way:  # the promised step, by a way planned again from where the robot is now
                     replanned += 1
