@@ -182,6 +182,21 @@ def test_again_after_a_guided_move_moves_once_more(tmp_path: Path) -> None:
     session.close()
 
 
+def test_a_move_without_the_word_guide_is_a_move_while_guiding(tmp_path: Path) -> None:
+    """After 'guide', "forward 0.1" was "I don't know “forward 0.1”" and ended guiding; before
+    it, such a line is no move ("open" alone is not read as the hand)."""
+    session = _session(tmp_path)
+    start = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert "I don't know" in session.handle("forward 0.1")[0].text
+    session.handle("guide")
+    assert all(r.kind is not ReplyKind.ERROR for r in session.handle("forward 0.1")) and session.guiding.active
+    moved = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert moved != start
+    assert "takes -5 to 5 metres" in session.handle("forward 99")[0].text and session.guiding.active
+    assert session.handle("wait")[0].text.startswith(m.TAKE_YOUR_TIME("en"))  # holding on, as before
+    session.close()
+
+
 def test_guiding_where_the_task_is_finished_is_refused_as_a_named_step_is(tmp_path: Path) -> None:
     """ "guide forward 0.2" after the ball was put in the bin opened a demonstration that began
     where the task was already finished; a named step there is refused with how to start anew."""

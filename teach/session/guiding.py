@@ -126,6 +126,23 @@ class Guiding:
             return self.end() + [Reply(ReplyKind.INFO, m.GUIDE_MODE_OFF(self.lang))]
         return self.line(rest, interrupted)
 
+    def reads_as_move(self, line: str) -> bool:
+        """While guiding, a line that begins with a move's word, without 'guide' ("forward 0.3",
+        "turn -30" were "I don't know “forward 0.3”" and ended guiding); a wrong number is then
+        said as the move's ("takes -5 to 5 metres")."""
+        from teach.sim.guide import VERBS, parse_guide_line
+
+        words = line.split()
+        if not self.active or not words or words[0].lower() not in VERBS:
+            return False
+        if len(words) > 1:
+            return True
+        try:  # a word alone only where it is a whole move ("open"; "wait" alone is holding on)
+            parse_guide_line(f"guide {line}")
+        except FormatError:
+            return False
+        return True
+
     def line(self, rest: str, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """One ``guide …`` line: begin guiding if need be, carry out the primitive, label what it finished."""
         from teach.sim.guide import parse_guide_line

@@ -438,6 +438,8 @@ class SessionManager(CompatMembers):
                 deferred = self.guiding.take_deferred()
                 return replies + (self._dispatch(deferred) if deferred else [])
             return None if command in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
+        if command is None and self.guiding.reads_as_move(line) and not self._names_steps(line):
+            return self.cmd_guide(line)
         if self.guiding.active and (command is None or command is not Verb.GUIDE):
             self.guiding.end()
             if self.guiding.pending is not None:
