@@ -24,6 +24,9 @@ from teach.sim.world import FINGER_CLOSED, World, _wrap
     ("guide wait 1.5", GuideCommand("wait", 1.5)),
     ("führen vor 0,3", GuideCommand("forward", 0.3)),
     ("führen schließen", GuideCommand("close")),
+    ("guide turn right 150", GuideCommand("turn", -150.0)),  # the feedback's "150° to my right"
+    ("guide turn left 30", GuideCommand("turn", 30.0)),
+    ("führen drehen rechts 45", GuideCommand("turn", -45.0)),
 ])
 def test_lines_parse(line: str, command: GuideCommand) -> None:
     assert is_guide_line(line) and parse_guide_line(line) == command

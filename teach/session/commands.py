@@ -66,8 +66,8 @@ class Verb(Enum):
     STEPS = _Declared(("steps",), ("schritte",), Text("steps", "schritte"),
                       Text("list the steps of the open demonstration", "die Schritte der offenen Vorführung zeigen"))
     GUIDE = _Declared(("guide",), ("führen",),
-                      Text("guide [forward M|turn DEG|lift M|open|close|wait S]",
-                           "führen [vor M|drehen GRAD|heben M|öffnen|schließen|warten S]"),
+                      Text("guide [forward M|turn [left|right] DEG|lift M|open|close|wait S]",
+                           "führen [vor M|drehen [links|rechts] GRAD|heben M|öffnen|schließen|warten S]"),
                       Text("move the robot yourself (MuJoCo world); alone: steer it with the keys "
                            "(↑/↓ move, ←/→ turn, PgUp/PgDn lift, space hand, Esc ends)",
                            "den Roboter selbst bewegen (MuJoCo-Welt); allein: mit den Tasten lenken "

@@ -84,6 +84,8 @@ VERBS: dict[str, str] = {"forward": "forward", "back": "back", "turn": "turn", "
                          "heben": "lift", "öffnen": "open", "schließen": "close", "warten": "wait",
                          "vorwarts": "forward", "zuruck": "back", "offnen": "open", "schliessen": "close"}
 KEYWORDS = ("guide", "führen", "fuhren")
+SIDES = {"left": 1, "links": 1, "right": -1, "rechts": -1}
+"""``turn left N`` / ``turn right N`` (degrees either way; a turn to the left is positive)."""
 _LIMITS = {"forward": (-MAX_DISTANCE, MAX_DISTANCE, "metres"), "back": (-MAX_DISTANCE, MAX_DISTANCE, "metres"),
            "turn": (-MAX_TURN, MAX_TURN, "degrees"), "lift": (0.0, LIFT_TOP, "metres (absolute height)"),
            "wait": (0.0, MAX_WAIT, "seconds"), "hand": (0.0, MAX_WAIT, "seconds")}
@@ -132,6 +134,9 @@ def parse_guide_line(text: str, path: str | Path | None = None, line: int | None
         raise fail(f"guide what? say one of {', '.join(sorted(set(VERBS.values())))} (got {' '.join(words[1:])!r})")
     verb = VERBS[words[1].lower()]
     arguments = words[2:]
+    side = SIDES.get(arguments[0].lower()) if verb == "turn" and arguments else None
+    if side is not None:  # "turn right 150": the feedback says "150° to my right"
+        arguments = arguments[1:]
     if verb == "hand" and not arguments:
         return GuideCommand("hand", 0.0)  # follow the hand until it lets go
     if verb in ("open", "close"):
@@ -149,6 +154,8 @@ def parse_guide_line(text: str, path: str | Path | None = None, line: int | None
         raise fail(f"'guide {words[1]}' takes {low:g} to {high:g} {unit}, got {arguments[0]}")
     if verb == "back":
         return GuideCommand("forward", -amount)
+    if side is not None:
+        return GuideCommand(verb, side * abs(amount))
     return GuideCommand(verb, amount)
 
 
