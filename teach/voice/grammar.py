@@ -2,8 +2,9 @@
 can produce is one the session understands.
 
 It holds every English action phrase, the pronoun forms of each action's label ("grasp it"), several actions joined
-by "and"/"then", each command word, "start" and "why" with a condition's label, and the answer
-words (yes, no, done, skip, undo, before, after, ...). Written as JSGF for pocketsphinx.
+by "and"/"then", each command word, "start" and "why" with a condition's label, the answer
+words (yes, no, done, skip, undo, before, after, ...) and a few sayings ("again", "are you sure").
+Written as JSGF for pocketsphinx.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ PRONOUN = "it"
 JOINS = ("and", "then", "and then")
 ANSWERS = ("yes", "no", "okay", "done", "skip", "undo", "i don't know")
 """Answers beside the question words (before, after, both, ...) of ``messages.ANSWER_WORDS``."""
+SAYINGS = ("again", "once more", "are you sure", "why did you do that", "is it done", "are we done", "what now")
+"""Whole lines the session answers that name no step or command ("again" was heard as a step)."""
 _ARTICLES = ("the", "a", "an")
 
 
@@ -69,7 +72,7 @@ def domain_grammar(domain: Domain, known: Callable[[str], bool] = lambda word: T
     labels = [action.label("en") for action in domain.actions]
     conditions = [text for c in domain.conditions for text in (c.label("en"), c.label("en", False))]
     commands = [command.usage("en").split()[0] for command in COMMANDS]
-    answers = [*(word("en") for word in m.ANSWER_WORDS), *ANSWERS]
+    answers = [*(word("en") for word in m.ANSWER_WORDS), *ANSWERS, *SAYINGS]
     return Grammar(usable([*phrases, *pronoun_forms(labels)]), usable(conditions), usable(commands),
                    usable(answers))
 
