@@ -104,6 +104,8 @@ WAY_THERE_OFFER = Text("To get there: {steps}. Say 'yes' and I do that, then {ac
 WAY_AGAIN = Text("Now {untrue}: first {steps}, then {action}.",
                  "Jetzt gilt: {untrue}. Also erst {steps}, dann „{action}“.")
 DID_STEP = Text("✓ {action}", "✓ {action}")
+ALREADY_SO = Text("– {action}: {so} already (nothing to do, not recorded)",
+                  "– {action}: schon so – {so} (nichts zu tun, nicht aufgezeichnet)")
 NOTHING_CHANGED = Text("✓ {action} (nothing changed: not recorded)",
                        "✓ {action} (nichts hat sich geändert: nicht aufgezeichnet)")
 CANNOT_LEARN = Text("I cannot learn this demonstration: {why} Say 'undo' to take back steps, or 'cancel'.",

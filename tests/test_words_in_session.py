@@ -569,9 +569,8 @@ def test_again_right_after_a_step_is_that_step(tmp_path, lang, again):
     manager = SessionManager(settings, snacks, SymbolicWorld(snacks))
     find = snacks.action("FindPartner").label(Lang(lang))
     said(manager, find)
-    refused = m.COULD_NOT(Lang(lang), action=find, reason="")
-    assert said(manager, again).startswith(refused[:refused.index(find) + len(find)])  # that step (refused: done)
-    assert said(manager, again).startswith(m.AGAIN_WHAT(Lang(lang), example="")[:8])  # after a refusal: which?
+    assert said(manager, again).startswith(f"– {find}:")  # that step (so already: passed over)
+    assert said(manager, again).startswith(m.AGAIN_WHAT(Lang(lang), example="")[:8])  # after nothing done: which?
     assert [snacks.action(a).name for a in open_actions(manager)] == ["FindPartner"]
 
 
@@ -711,3 +710,15 @@ def test_what_can_you_do_before_anything_was_learned_says_so_in_words(ball, tmp_
     """ "was kannst du?" is 'show' ("was kannst du jetzt"), and with nothing learned it said "Noch kein Baum."."""
     manager = session(ball, tmp_path, "de")
     assert said(manager, "was kannst du?") == m.NO_TREE(Lang.DE) and "Baum" not in m.NO_TREE(Lang.DE)
+
+
+@pytest.mark.parametrize("lang", ["en", "de"])
+def test_a_step_whose_effect_holds_already_is_passed_over_and_the_line_goes_on(ball, tmp_path, lang):
+    """A second "find the ball" was "I could not find the ball: first this must be true: I cannot
+    see the ball", and the rest of its line was dropped."""
+    manager = session(ball, tmp_path, lang)
+    find, approach = (ball.action(name).label(Lang(lang)) for name in ("FindBall", "ApproachBall"))
+    said(manager, find)
+    seen = ball.condition("BallFound").label(Lang(lang), True)
+    reply = said(manager, f"{find}, {approach}")
+    assert reply.startswith(m.ALREADY_SO(Lang(lang), action=find, so=seen)) and open_actions(manager) == [1, 2]

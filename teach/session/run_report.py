@@ -75,6 +75,16 @@ def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:
     return ", ".join(domain.condition(p.name).label(lang, not p.value) for p in _lacked(domain, action, state))
 
 
+def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
+    """What an action would make so, in words, where all of it is so already ("I can see the ball"
+    for a second "find the ball"); "" where something is left to do, or the domain declares no effects."""
+    effects = domain.action(action).ram
+    values = dict(zip(domain.condition_names, state, strict=True))
+    if not effects or any(values[p.name] != p.value for p in effects):
+        return ""
+    return m.AND(lang).join(domain.condition(p.name).label(lang, p.value) for p in effects)
+
+
 def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
     values = dict(zip(domain.condition_names, state, strict=True))
     return [p for p in domain.action(action).pre if values[p.name] != p.value]

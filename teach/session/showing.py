@@ -20,7 +20,7 @@ from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import untrue_now, way_steps, why_not
+from teach.session.run_report import already_so, untrue_now, way_steps, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -151,6 +151,12 @@ class Showing:
                 continue
             result = self.world.act(token.name)
             label = domain.action(token.name).label(self.lang)
+            so = "" if result.ok else already_so(domain, token.name, result.before, self.lang)
+            if so:  # "find the ball" where it is seen was "I could not find the ball: first this must be
+                # true: I cannot see the ball"; like a step that changed nothing, it is passed over
+                replies += self.turn.say([Reply(ReplyKind.INFO, m.ALREADY_SO(self.lang, action=label, so=so))])
+                index += 1
+                continue
             if not result.ok:
                 reason = why_not(domain, token.name, result.before, self.lang)
                 way = way_steps(domain, queue[-1].name, self.world.state()) \
