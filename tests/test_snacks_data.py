@@ -208,6 +208,8 @@ def test_every_possible_action_changes_something_the_session_can_see(domain):
     ("de", "warte auf eine Bitte", "WaitForRequest"),  # was offered as the bare "warte"
     ("en", "head back to the office", "ReturnToOffice"),
     ("de", "geh zurück ins Büro", "ReturnToOffice"),  # was unknown
+    ("de", "biete einen Keks an", "OfferSnack"),  # was "Meintest du „biete etwas an“?"
+    ("en", "offer them a cookie", "OfferSnack"),  # was "Did you mean “offer a snack”?"
 ])
 def test_everyday_sayings_name_their_step(domain, lang, line, action):
     tokens = PhraseBook(domain).parse(line, lang)
