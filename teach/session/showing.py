@@ -120,7 +120,8 @@ class Showing:
     def act(self, tokens: list[Token], facilitator: bool, interrupted: Callable[[], bool] | None = None,
             reaching: bool = False) -> list[Reply]:
         """Do the parsed steps in the world, each recorded in the open demonstration (opened by
-        the first that happens) and said as it happens; one that cannot be done ends the line
+        the first that happens) and said as it happens; one whose effects hold already is passed
+        over, one that cannot be done ends the line
         (``facilitator``: with the world's own words why), and so does Ctrl-C (``interrupted``,
         polled between steps: the step under way is finished, the rest said as not done).
         ``reaching``: the line is an offered way and its step, which the teacher said yes to: where
