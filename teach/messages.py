@@ -59,6 +59,10 @@ WHAT_CAN_HAPPEN = Text(" What can happen meanwhile (say it when it does): {event
                        " Was dabei passieren kann (sag es, wenn es passiert): {events}.")
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
+HELP_ASK = Text("You can also ask me: 'what now?', 'why did you do that?', 'are you sure?', 'is it done?', "
+                "and say 'again' for the last step once more.",
+                "Du kannst mich auch fragen: 'was jetzt?', 'warum hast du das gemacht?', 'bist du sicher?', "
+                "'ist es fertig?', und 'nochmal' sagen für den letzten Schritt noch einmal.")
 MORE_ACTIONS = Text("{count} more like them (Tab)", "{count} weitere solche (Tab)")
 AND_MORE = Text(" and {count} more like them", " und {count} weitere solche")
 AND = Text(" and ", " und ")

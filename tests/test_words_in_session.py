@@ -722,3 +722,13 @@ def test_a_step_whose_effect_holds_already_is_passed_over_and_the_line_goes_on(b
     seen = ball.condition("BallFound").label(Lang(lang), True)
     reply = said(manager, f"{find}, {approach}")
     assert reply.startswith(m.ALREADY_SO(Lang(lang), action=find, so=seen)) and open_actions(manager) == [1, 2]
+
+
+@pytest.mark.parametrize("lang", ["en", "de"])
+def test_help_names_what_one_may_ask_the_robot(ball, tmp_path, lang):
+    """The sayings the session answers ("is it done?", "are you sure?") were in no help text."""
+    manager = session(ball, tmp_path, lang)
+    told = said(manager, "help" if lang == "en" else "hilfe")
+    assert told.endswith(m.HELP_ASK(Lang(lang)))
+    for asked in ("is it done?", "are you sure?", "what now?") if lang == "en" else ("ist es fertig?",):
+        assert asked in told and said(manager, asked) != said(manager, "xyzzy")  # each one is answered

@@ -412,7 +412,8 @@ class SessionManager(CompatMembers):
         lines = [f"  {c.usage(self.lang):<28} {c.help(self.lang, example=example)}" if len(c.usage(self.lang)) <= 28
                  else f"  {c.usage(self.lang)}\n  {'':<28} {c.help(self.lang, example=example)}" for c in shown]
         examples = some_actions(self.domain, self.lang, say_more=False)  # one demonstration's words
-        return [Reply(ReplyKind.INFO, m.HELP_INTRO(self.lang, examples=examples) + "\n" + "\n".join(lines))]
+        said = [m.HELP_INTRO(self.lang, examples=examples), *lines, m.HELP_ASK(self.lang)]
+        return [Reply(ReplyKind.INFO, "\n".join(said))]
 
     def _example_action(self) -> str:
         """One of this domain's actions in the teacher's words, for examples ("why find the ball")."""
