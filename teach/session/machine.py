@@ -354,11 +354,12 @@ class SessionManager(CompatMembers):
                     hello = m.HELLO(self.lang, actions=some_actions(self.domain, self.lang))
                     return self._said_back(m.HELLO_AGAIN(self.lang), ReplyKind.SAY, alone=hello)
                 line = rest  # "great, now you try"
-        if self.pending is None and self.pending_model is None and not self._names_steps(line):
-            if normalize(line) in DONE_YET_WORDS:  # "is it done?"
+        asked = normalize(line)  # the phrase book is read only for a line that is one of these sayings
+        if (asked in DONE_YET_WORDS or asked in WHO_WORDS) and self.pending is None and self.pending_model is None \
+                and not self._names_steps(line):
+            if asked in DONE_YET_WORDS:  # "is it done?"
                 return done_yet(self.domain, self.world.state(), self.open is not None, self.lang)
-            if normalize(line) in WHO_WORDS:  # "who are you?"
-                return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
+            return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         meant = meant_instead(line)
         if meant is not None and self.pending is None and self.pending_model is None and self._names_steps(meant):
             return self._instead(meant)

@@ -79,15 +79,13 @@ def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """What an action would make so, in words, where all of it is so already ("I can see the ball"
     for a second "find the ball"); "" where something is left to do, or the domain declares no effects."""
     effects = domain.action(action).ram
-    values = dict(zip(domain.condition_names, state, strict=True))
-    if not effects or any(values[p.name] != p.value for p in effects):
+    if not effects or not all(domain.holds(p, state) for p in effects):
         return ""
     return m.AND(lang).join(domain.condition(p.name).label(lang, p.value) for p in effects)
 
 
 def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
-    values = dict(zip(domain.condition_names, state, strict=True))
-    return [p for p in domain.action(action).pre if values[p.name] != p.value]
+    return [p for p in domain.action(action).pre if not domain.holds(p, state)]
 
 
 WAY_STEPS = 3
