@@ -53,7 +53,7 @@ def test_in_mujoco_a_skill_that_fails_is_named_too(ball, tmp_path):
     manager = SessionManager(settings, ball, MujocoWorld(ball, seed=0))
     manager.definitions.planned = Action("GraspBall")  # a tree that grasps where nothing can be grasped
     said = [r.text for r in manager.handle("run")]
-    assert "I tried to grasp the ball, but it did not work: first this must be true: I can see the ball, the ball " \
+    assert "I tried to grasp the ball, but it did not work: first this must be true: I can see the ball and the ball " \
            "is within reach." in said
     manager.close()
 

@@ -641,8 +641,10 @@ def test_a_refused_step_says_the_way_there(ball, tmp_path, lang, find, place, wa
 
 
 @pytest.mark.parametrize(("lang", "lines", "steps"), [
-    ("en", ("what now?", "I don't know", "what should I do?"), "From here I can: find the ball, go to the bin."),
-    ("de", ("was jetzt?", "keine Ahnung", "und jetzt?"), "Von hier aus kann ich: Ball finden, zum Eimer gehen.")])
+    ("en", ("what now?", "I don't know", "what should I do?", "whats next", "what's next?"),
+     "From here I can: find the ball, go to the bin."),
+    ("de", ("was jetzt?", "keine Ahnung", "und jetzt?", "wie geht es weiter?", "was als Nächstes?"),
+     "Von hier aus kann ich: Ball finden, zum Eimer gehen.")])
 def test_what_now_names_the_steps_possible_from_here(ball, tmp_path, lang, lines, steps):
     """ "what now?" and "I don't know" (nothing asked) were "I don't know “what now?”": they name
     the steps the domain's model allows here, and once the task is finished, say so."""

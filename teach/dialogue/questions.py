@@ -154,7 +154,9 @@ def only_these(true: list[str], false: int, lang: Lang) -> str:
 
 
 def join_words(items: list[str], lang: Lang) -> str:
-    """``a``, ``a and b``, ``a, b and c`` in the session's language."""
+    """``a``, ``a and b``, ``a, b and c`` in the session's language ("" for none)."""
+    if not items:
+        return ""
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
 
 

@@ -224,6 +224,9 @@ WHY_ASKING_LINES = {normalize(f"{why} {said}") for why in ("why", "warum", "wies
 """Whole lines asking why a question is asked ("why?", "warum das?") while one is open."""
 WHAT_NOW_WORDS = {normalize(said) for said in ("what now", "now what", "what next", "what should i do",
                                                "what do i do", "what shall i do", "what can you do",
+                                               "what's next", "whats next", "what comes next", "what is next",
+                                               "what do we do", "what should we do", "wie geht es weiter",
+                                               "wie weiter", "was als nächstes", "was kommt jetzt",
                                                "was jetzt", "was nun", "und jetzt", "was soll ich tun",
                                                "was soll ich machen", "was mache ich jetzt", "was kannst du")}
 """Whole lines asking what to do next (also, with no question open, the "I don't know"s of

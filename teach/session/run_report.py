@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from teach import messages as m
 from teach.bt.nodes import Action, Node, Status, walk
 from teach.bt.tick import TickResult
+from teach.dialogue.questions import join_words
 from teach.domain import Domain, Literal, State
 from teach.messages import Lang
 from teach.session.replies import Reply, ReplyKind
@@ -67,12 +68,12 @@ def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: Lang) -> 
 def why_not(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """Why an action failed, in words: the preconditions it lacked, if it has any."""
     missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state)]
-    return m.IT_NEEDS(lang, conditions=", ".join(missing)) if missing else m.IT_DID_NOT_WORK(lang)
+    return m.IT_NEEDS(lang, conditions=join_words(missing, lang)) if missing else m.IT_DID_NOT_WORK(lang)
 
 
 def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """The preconditions an action lacks, said as they are ("the bin is out of reach")."""
-    return ", ".join(domain.condition(p.name).label(lang, not p.value) for p in _lacked(domain, action, state))
+    return join_words([domain.condition(p.name).label(lang, not p.value) for p in _lacked(domain, action, state)], lang)
 
 
 def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
