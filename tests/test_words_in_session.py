@@ -98,12 +98,32 @@ def test_an_errand_is_the_step_it_sends_the_robot_on(ball, tmp_path, line):
     assert manager.suggestion is None and open_actions(manager) == [1, 2, 3]
 
 
-@pytest.mark.parametrize("line", ["go back", "go there", "go to it"])
+@pytest.mark.parametrize("line", ["go there", "go to it"])
 def test_go_before_a_place_is_no_errand(ball, tmp_path, line):
     manager = session(ball, tmp_path, "en")
     said(manager, "look for the ball")
     said(manager, line)
-    assert open_actions(manager) == ([1] if line == "go back" else [1, 2])
+    assert open_actions(manager) == [1, 2]
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "go back"), ("en", "step back"), ("en", "back"),
+                                            ("de", "geh zurück"), ("de", "einen Schritt zurück")])
+def test_going_back_in_a_world_without_such_a_step_is_undo(ball, tmp_path, lang, line):
+    """ "go back" in the ball world was "I don't know “go back”"; where the domain has no step of
+    those words, a careless teacher means the last step taken back."""
+    manager = session(ball, tmp_path, lang)
+    said(manager, "look for the ball, go to the ball" if lang == "en" else "Ball finden, zum Ball gehen")
+    assert said(manager, line).startswith(("Undone: step 2", "Rückgängig: Schritt 2"))
+    assert open_actions(manager) == [1]
+
+
+def test_going_back_is_the_step_where_the_domain_has_it(tmp_path):
+    """Snacks' "go back" (to the office) stays a step, not 'undo'."""
+    snacks = load_domain(ROOT / "demos" / "snacks" / "domain.toml")
+    manager = session(snacks, tmp_path, "en")
+    said(manager, "wait for a request, take the tray, find someone")
+    said(manager, "go back")
+    assert snacks.action(open_actions(manager)[-1]).name == "ReturnToOffice"
 
 
 @pytest.mark.parametrize(("lang", "line"), [("en", "start over"), ("en", "Start again!"), ("en", "from the beginning"),

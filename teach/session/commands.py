@@ -51,10 +51,11 @@ class Verb(Enum):
                        Text("discard the open demonstration", "die Vorführung verwerfen"))
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
                       "take it back", "oops take that back", "oops", "that's wrong", "that is wrong",
-                      "that's not right", "that is not right", "that was not right", "my mistake"),
+                      "that's not right", "that is not right", "that was not right", "my mistake", "go back",
+                      "step back", "back", "one step back", "go back one step"),
                      ("rückgängig", "zurück", "falsch", "das war falsch", "nein das war falsch", "nein falsch",
                       "nimm das zurück", "hoppla", "das ist falsch", "das stimmt nicht", "das war nicht richtig",
-                      "mein fehler"),
+                      "mein fehler", "geh zurück", "einen schritt zurück", "schritt zurück"),
                      Text("undo [N] / undo to step N", "zurück [N] / zurück bis Schritt N"),
                      Text("take back the last step (N: steps N to the end), demonstration or answer; "
                           "also 'that was wrong'",

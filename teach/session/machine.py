@@ -320,9 +320,15 @@ class SessionManager(CompatMembers):
         return (None, line) if self._phrase_not_command(command, rest, line) else (command, rest)
 
     def _phrase_not_command(self, command: Command | None, rest: str, line: str) -> bool:
-        """A line that is one of the domain's phrases and begins with a command that takes no words is
-        that step ("ask if they want something", snacks' offering, was 'ask')."""
-        return command is not None and bool(rest.strip()) and not command.value.argued and self._names_steps(line)
+        """A line that is one of the domain's phrases is that step where it begins with a command that
+        takes no words ("ask if they want something", snacks' offering, was 'ask') or is, as a whole,
+        one of a command's everyday sayings but its first word in either language (snacks' "go back"
+        is a step; in the ball world, which has none such, it is 'undo')."""
+        if command is None or (bool(rest.strip()) and command.value.argued):
+            return False
+        if not rest.strip() and normalize(line) in {normalize(command.value.en[0]), normalize(command.value.de[0])}:
+            return False
+        return self._names_steps(line)
 
     def close(self) -> None:
         self.record.save()
