@@ -277,7 +277,7 @@ def test_the_first_words_of_several_conditions_name_none_of_them() -> None:
     domain = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
     assert condition_named(domain, "clear") is None
     assert condition_named(domain, "clear a") == "clear_a"
-    with pytest.raises(TeachError, match=r"^which condition is 'clear': clear a, clear b, clear c, clear d\?$"):
+    with pytest.raises(TeachError, match=r"^which condition is 'clear': “clear a”, “clear b”, “clear c”, “clear d”\?$"):
         condition_names(domain, "handempty, clear", Lang.EN)
     with pytest.raises(TeachError, match=r"^unknown condition 'cleer'"):
         condition_names(domain, "cleer", Lang.EN)

@@ -107,17 +107,23 @@ def test_a_condition_said_in_other_words_is_answered_with_the_likely_ones(ball, 
     session = new_session(ball, tmp_path)
     replies = session.handle("start the bin is near")
     assert kinds(replies) == ["error"]
-    assert replies[0].text == ("I know no condition 'the bin is near'; did you mean the bin is within reach or "
-                               "the ball is in the bin?")
+    assert replies[0].text == ("I know no condition 'the bin is near'; did you mean “the bin is within reach” or "
+                               "“the ball is in the bin”?")
+    # the condition's name said in words; the suggestions quoted, as a list ("did you mean I can see the ball or
+    # the ball is within reach or the ball is in my hand or …" read as one run-on sentence)
+    assert session.handle("start the ball is found")[0].text.endswith("did you mean “I can see the ball”?")
+    assert session.handle("start ball visible")[0].text.endswith(
+        "did you mean “I can see the ball”, “the ball is within reach”, “the ball is in my hand” or “the ball is in "
+        "the bin”?")
     assert kinds(session.handle("start BallFound binclose")) != ["error"]  # names side by side are still read
 
 
 @pytest.mark.parametrize("reply", ["yes", "", "no"])
 def test_a_condition_guessed_alone_is_taken_on_yes(ball, tmp_path, reply):
-    """"did you mean the ball is in my hand?" was followed by "No question is open." on yes."""
+    """"did you mean “the ball is in my hand”?" was followed by "No question is open." on yes."""
     session = new_session(ball, tmp_path)
     replies = session.handle("start I can see the ball, ball in hand")
-    assert kinds(replies) == ["error"] and replies[0].text.endswith("did you mean the ball is in my hand?")
+    assert kinds(replies) == ["error"] and replies[0].text.endswith("did you mean “the ball is in my hand”?")
     session.handle(reply)
     held = ball.state(["BallFound", "BallGrasped"])
     assert (session.world.state() == held) == (reply != "no")
@@ -130,9 +136,9 @@ def test_a_condition_in_other_words_is_matched_by_its_telling_words():
     from teach.session.arguments import condition_names
 
     blocks = load_domain(Path(__file__).resolve().parent.parent / "demos" / "blocksworld" / "domain.toml")
-    with pytest.raises(TeachError, match="did you mean ontable a or ontable b or ontable c or ontable d[?]$"):
+    with pytest.raises(TeachError, match="did you mean “ontable a”, “ontable b”, “ontable c” or “ontable d”[?]$"):
         condition_names(blocks, "all blocks on the table", "en")
-    with pytest.raises(TeachError, match="did you mean handempty[?]$"):
+    with pytest.raises(TeachError, match="did you mean “handempty”[?]$"):
         condition_names(blocks, "the hand has nothing", "en")
     with pytest.raises(TeachError, match=r"^unknown condition 'a over b' \(known: clear a, "):
         condition_names(blocks, "a over b", "en")  # too many alike: all of them are listed

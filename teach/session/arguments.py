@@ -111,7 +111,7 @@ def condition_names(domain: Domain, text: str, lang: Lang) -> list[str]:
                 family = _begun_by(domain, word)
                 if len(family) > 1:
                     raise TeachError(m.WHICH_CONDITION(lang, name=word.strip(), some=", ".join(
-                        domain.condition(name).label(lang) for name in family)))
+                        m.QUOTED(lang, text=domain.condition(name).label(lang)) for name in family)))
                 known = ", ".join(c.label(lang) for c in domain.conditions)
                 raise TeachError(m.UNKNOWN_CONDITION(lang, name=word.strip(), known=known))
             names.append(found)
@@ -174,7 +174,7 @@ def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> TeachError:
     20; a word of 4 letters or more also counts inside a longer one: "table" in "ontable a");
     one alone is a ``ConditionGuess``."""
     said = set(normalize(text).split()) - _LINKING
-    labels = {c.name: normalize(c.label(lang)).split() for c in domain.conditions}
+    labels = {c.name: normalize(c.label(lang)).split() + _name_words(c.name) for c in domain.conditions}
     score: dict[str, Fraction] = {}
     for word in sorted(said):
         having = [name for name, words in labels.items()
@@ -182,12 +182,19 @@ def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> TeachError:
         for name in having:
             score[name] = score.get(name, Fraction(0)) + Fraction(1, len(having))
     best = max(score.values(), default=Fraction(0))
-    like = [domain.condition(name).label(lang) for name, value in score.items() if value == best]
+    like = [m.QUOTED(lang, text=domain.condition(name).label(lang)) for name, value in score.items() if value == best]
     if best and len(like) == 1:
-        return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, like[0])
+        meant = domain.condition(next(name for name, value in score.items() if value == best)).label(lang)
+        return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, meant)
     if best and len(like) <= MAX_LIKE:
-        return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=m.OR(lang).join(like)))
+        return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=", ".join(like[:-1]) + m.OR(lang) + like[-1]))
     return TeachError(m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions)))
+
+
+def _name_words(name: str) -> list[str]:
+    """A condition's name as words ("BallFound": ball, found; "on_a_b": on, a, b): a teacher may say
+    it so ("the ball is found")."""
+    return [word.lower() for word in re.findall(r"[A-Z]?[a-z]+|[A-Z]+(?![a-z])|[0-9]+", name)]
 
 
 def condition_named(domain: Domain, text: str) -> str | None:
