@@ -52,7 +52,7 @@ class Verb(Enum):
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
                       "take it back", "oops take that back", "oops", "that's wrong", "that is wrong",
                       "that's not right", "that is not right", "that was not right", "my mistake", "go back",
-                      "step back", "back", "one step back", "go back one step"),
+                      "step back", "one step back", "go back one step"),
                      ("rückgängig", "zurück", "falsch", "das war falsch", "nein das war falsch", "nein falsch",
                       "nimm das zurück", "hoppla", "das ist falsch", "das stimmt nicht", "das war nicht richtig",
                       "mein fehler", "geh zurück", "einen schritt zurück", "schritt zurück"),
@@ -60,7 +60,7 @@ class Verb(Enum):
                      Text("take back the last step (N: steps N to the end), demonstration or answer; "
                           "also 'that was wrong'",
                           "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen; "
-                          "auch 'das war falsch'"), argued=True)
+                          "auch 'das war falsch'"), argued=True, alone=("back",))
     REDO = _Declared(("redo",), ("wiederholen", "wiederherstellen"), Text("redo", "wiederherstellen"),
                      Text("take back the last undo (steps, a demonstration or an answer)",
                           "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)"))
