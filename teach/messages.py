@@ -524,6 +524,10 @@ FEEDBACK_UNDER_ARM = Text("{distance} behind my hand, under my arm (↓ backs me
 FEEDBACK_AT_HAND_HEIGHT = Text("at hand height", "auf Handhöhe")
 FEEDBACK_ABOVE = Text("{distance} above my hand", "{distance} über meiner Hand")
 FEEDBACK_BELOW = Text("{distance} below my hand", "{distance} unter meiner Hand")
+FEEDBACK_HELD_BY_TOP = Text("{distance} below my hand, held by its top only: it will slip out (space opens my hand, "
+                            "PgDn lowers it round the ball)",
+                            "{distance} unter meiner Hand, nur oben gehalten: er rutscht mir heraus (Leertaste öffnet "
+                            "meine Hand, Bild↓ senkt sie um den Ball)")
 FEEDBACK_OPEN = Text("open", "offen")
 FEEDBACK_CLOSED = Text("closed", "zu")
 FEEDBACK_NOTHING_YET = Text("nothing yet", "noch nichts")
@@ -532,6 +536,9 @@ FEEDBACK_MOVED = Text("{key} moved me {distance}", "{key} hat mich {distance} be
 FEEDBACK_TURNED_LEFT = Text("{key} turned me {degrees}° left", "{key} hat mich {degrees}° nach links gedreht")
 FEEDBACK_TURNED_RIGHT = Text("{key} turned me {degrees}° right", "{key} hat mich {degrees}° nach rechts gedreht")
 FEEDBACK_LIFTED = Text("{key} moved the lift {distance} up", "{key} hat den Hub {distance} gehoben")
+FEEDBACK_ON_THE_BALL = Text("{key} stopped with my hand on the ball: move me until the ball is between my fingers",
+                            "{key} hat angehalten, meine Hand sitzt auf dem Ball: fahr mich, bis der Ball zwischen "
+                            "meinen Fingern ist")
 FEEDBACK_LOWERED = Text("{key} moved the lift {distance} down", "{key} hat den Hub {distance} gesenkt")
 FEEDBACK_OPENED = Text("{key} opened my hand", "{key} hat meine Hand geöffnet")
 FEEDBACK_CLOSED_HAND = Text("{key} closed my hand", "{key} hat meine Hand geschlossen")

@@ -167,3 +167,38 @@ def test_a_ball_caught_from_under_the_arm_is_not_said_to_be_under_it(tmp_path: P
     assert "that was “grasp the ball”" in " ".join(r.text for r in said)
     assert "under my arm" not in said[-1].text, said[-1].text
     manager.close()
+
+
+def test_a_ball_held_by_its_top_and_a_hand_resting_on_the_ball_are_said():
+    held = feedback(last=GuideCommand("close"), hand_open=False, ball_held=True, ball_height=-0.06, ball_distance=0.03)
+    assert "6 cm below my hand, held by its top only: it will slip out" in feedback_line(held, "en")
+    assert "nur oben gehalten" in feedback_line(held, "de")
+    assert "held by its top" not in feedback_line(feedback(ball_held=True, ball_height=-0.04), "en")
+    assert "held by its top" not in feedback_line(feedback(ball_held=False, ball_height=-0.06), "en")
+    resting = feedback(last=GuideCommand("lift", 0.04), lift=0.05, lifted=-0.01, ball_distance=0.08, ball_height=-0.06)
+    assert feedback_line(resting, "en").endswith("last: PgDn stopped with my hand on the ball: move me until the ball "
+                                                 "is between my fingers")
+    reached = feedback(last=GuideCommand("lift", 0.04), lift=0.04, lifted=-0.02, ball_distance=0.08, ball_height=-0.04)
+    assert feedback_line(reached, "en").endswith("last: PgDn moved the lift 2 cm down")
+
+
+def test_a_careless_grasp_on_top_of_the_ball_is_said_before_it_slips(tmp_path: Path) -> None:
+    """Under tmux a teacher lowered the open hand onto a ball 8 cm ahead and closed it: "✓ grasp the
+    ball", then "take it to the bin" dropped it ("the ball fell out of the gripper") with nothing
+    said why. The lowering that stopped on the ball and the hold by its top are said as they
+    happen; the same hold taken round the ball (lift 0) carries it to the bin."""
+    from teach.world.mujoco_world import MujocoWorld
+
+    domain = load_domain(BALL_DOMAIN)
+    settings = Settings("pilot", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
+    manager = SessionManager(settings, domain, MujocoWorld(domain, seed=0))
+    moves = (["guide turn -15"] * 11 + ["guide forward 0.1"] * 12 + ["guide turn 15"] + ["guide forward 0.1"] * 3
+             + ["guide turn 15"] * 4 + ["guide back 0.1"] * 2 + ["guide turn 15"]
+             + [f"guide lift {height}" for height in (0.21, 0.16, 0.11, 0.06)])
+    for line in moves:
+        manager.handle(line)
+    assert "stopped with my hand on the ball" in manager.handle("guide lift 0.04")[-1].text
+    assert "held by its top only" in manager.handle("guide close")[-1].text
+    said = [r.text for r in manager.handle("take it to the bin")]
+    assert "Event: the ball fell out of the gripper." in said, said
+    manager.close()

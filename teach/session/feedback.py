@@ -15,6 +15,9 @@ AHEAD_DEGREES = 8.0     # this close to straight ahead is "ahead"
 BEHIND_DEGREES = 150.0  # this far round is "behind me"
 LEVEL = 0.03            # m: the ball this close to the hand's height is "at hand height"
 STILL = 0.005           # m (or 0.5 degree, 5 mm of lift or finger): the command moved nothing
+HELD_BY_TOP = 0.045     # m: a ball held with its centre this far below the hand is held by its top only
+# (closed round a centred ball with the lift 4 cm up it stayed in the hand on the way to the bin; 5 cm up it
+# fell out at the first move, and the teacher who guided that grasp saw "✓ grasp the ball")
 
 
 def feedback_line(feedback: Feedback, lang: Lang) -> str:
@@ -24,7 +27,7 @@ def feedback_line(feedback: Feedback, lang: Lang) -> str:
     ball = m.FEEDBACK_UNDER_ARM(lang, distance=_length(feedback.ball_distance, lang)) if feedback.ball_under_arm \
         else _where(feedback.ball_distance, feedback.ball_bearing, lang)
     return m.GUIDE_FEEDBACK(lang, ball=ball,
-                            ball_height=_height(feedback.ball_height, lang),
+                            ball_height=_height(feedback.ball_height, feedback.ball_held, lang),
                             bin=_where(feedback.bin_distance, feedback.bin_bearing, lang),
                             lift=_length(feedback.lift, lang), hand=hand(lang), last=_last(feedback, lang))
 
@@ -46,7 +49,9 @@ def _where(distance: float, bearing: float, lang: Lang) -> str:
     return side(lang, distance=length, degrees=round(abs(bearing)))
 
 
-def _height(height: float, lang: Lang) -> str:
+def _height(height: float, held: bool, lang: Lang) -> str:
+    if held and height < -HELD_BY_TOP:
+        return m.FEEDBACK_HELD_BY_TOP(lang, distance=_length(height, lang))
     if abs(height) <= LEVEL:
         return m.FEEDBACK_AT_HAND_HEIGHT(lang)
     return (m.FEEDBACK_ABOVE if height > 0 else m.FEEDBACK_BELOW)(lang, distance=_length(height, lang))
@@ -74,6 +79,8 @@ def _last_did(feedback: Feedback, lang: Lang) -> str:
         return turned(lang, key=key, degrees=round(abs(feedback.turned)))
     if command.verb == "lift":
         key = (m.KEY_PAGE_UP if command.amount >= feedback.lift - feedback.lifted else m.KEY_PAGE_DOWN)(lang)
+        if _rests_on_ball(feedback, command.amount):
+            return m.FEEDBACK_ON_THE_BALL(lang, key=key)
         if abs(feedback.lifted) < STILL:
             return m.FEEDBACK_BLOCKED(lang, key=key)
         lifted = m.FEEDBACK_LIFTED if feedback.lifted > 0 else m.FEEDBACK_LOWERED
@@ -84,3 +91,13 @@ def _last_did(feedback: Feedback, lang: Lang) -> str:
             return m.FEEDBACK_BLOCKED(lang, key=key)
         return (m.FEEDBACK_CLOSED_HAND if feedback.gripped > 0 else m.FEEDBACK_OPENED)(lang, key=key)
     return m.FEEDBACK_WAITED(lang, key=m.KEY_WAIT(lang))
+
+
+ON_THE_BALL = 0.12      # m: an open hand stopped this near the ball on its way down rests on it
+
+
+def _rests_on_ball(feedback: Feedback, target: float) -> bool:
+    """Lowering an open hand stopped short of ``target`` just above the ball: its fingers sit on
+    the ball instead of round it, and closing them would hold it by its top."""
+    return (feedback.hand_open and feedback.lifted < 0 and feedback.lift - target > STILL
+            and feedback.ball_distance < ON_THE_BALL and feedback.ball_height < 0)

@@ -114,6 +114,8 @@ class Feedback:
     body): ahead of the robot, but behind the hand, so driving on only pushes it."""
     stopped: bool = False
     """The last command was stopped before its end (Ctrl-C: ``Guide.stop_when``)."""
+    ball_held: bool = False
+    """Both fingers touch the ball (``World.ball_grasped``): held, however well."""
 
 
 def is_guide_line(text: str) -> bool:
@@ -251,7 +253,7 @@ class Guide:
                         math.degrees(_wrap(yaw - start.base[2])), w.lift_height() - start.lift,
                         w.finger_closure() - start.fingers,  # a ball in the bin or in the hand is not to be fetched
                         _under_arm((x, y, yaw), hand, ball) and not w.ball_placed() and not w.ball_grasped(),
-                        self.stopped)
+                        self.stopped, w.ball_grasped())
 
     def _hand_closed(self) -> bool:
         """Whether the hand is closed as the teacher last made it (not as the fingers stand: round
