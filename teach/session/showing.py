@@ -182,8 +182,13 @@ class Showing:
                 break
             index += 1
             if result.after == result.before:
-                # a step that changes nothing would teach two different actions in one state
-                replies += self.turn.say([Reply(ReplyKind.INFO, m.NOTHING_CHANGED(self.lang, action=label))])
+                # a step that changes nothing would teach two different actions in one state; where all it
+                # makes so was so already (MuJoCo runs "find the ball" on a seen ball), it is said as in
+                # the symbolic world, not ticked ("✓ find the ball (nothing changed)" read as done)
+                so = already_so(domain, token.name, result.before, self.lang)
+                said = m.ALREADY_SO(self.lang, action=label, so=so) if so \
+                    else m.NOTHING_CHANGED(self.lang, action=label)
+                replies += self.turn.say([Reply(ReplyKind.INFO, said)])
                 continue
             self.step(result.before, token.name, label)
             self.just_done = token.name
