@@ -243,6 +243,7 @@ def test_an_event_that_cannot_happen_now_is_not_recorded(domain, tmp_path):
 @pytest.mark.parametrize(("line", "event"), [("she walked away", "partner_leaves"),
                                              ("the person left", "partner_leaves"), ("he left", "partner_leaves"),
                                              ("someone took a snack", "snack_taken"),
+                                             ("she took one", "snack_taken"),
                                              ("jemand hat sich gerade einen Snack genommen", "snack_taken")])
 def test_an_event_reported_in_the_past_is_offered_and_happens_once_confirmed(domain, tmp_path, line, event):
     """ "she walked away" was "Did you mean 'they walk away'?" only by chance of spelling, "he took a
@@ -264,3 +265,15 @@ def test_a_report_two_phrases_share_is_no_reading(domain, tmp_path):
     manager = session("shared", domain, world(domain), tmp_path)
     with pytest.raises(UnknownPhrase):
         manager.phrases.parse("someone took the tray", "en")
+
+
+def test_what_is_not_done_yet_is_said_as_a_list(domain, tmp_path):
+    """ "is it done?" was "Not yet: I am not carrying the tray and the tray is not empty yet and I am
+    away from the office."; "sie hat sich einen genommen" was not known."""
+    manager = session("done-yet", domain, world(domain), tmp_path)
+    manager.handle("find someone")
+    assert manager.handle("is it done?")[0].text == ("Not yet: I am not carrying the tray, the tray is not empty yet "
+                                                     "and I am away from the office.")
+    german = session("events-de", domain, world(domain), tmp_path, "de")
+    german.handle("warte, Tablett nehmen, such jemanden")
+    assert german.handle("sie hat sich einen genommen")[0].text == "Ereignis: sie hat sich einen genommen."

@@ -104,7 +104,7 @@ def literals_label(text: str, domain: Domain, lang: Lang) -> str:
         literal = Literal.parse(part)
         labels.append(domain.condition(literal.name).label(lang, literal.value) if domain.has_condition(literal.name)
                       else part.strip())
-    return m.AND(lang).join(labels)
+    return join_words(labels, lang)
 
 
 def unmet_goal(domain: Domain, state: State, lang: Lang) -> str:
@@ -121,7 +121,7 @@ def unmet_effects(domain: Domain, action: str, state: State, lang: Lang) -> str:
 def _unmet(domain: Domain, literals: Iterable[Literal], state: State, lang: Lang) -> str:
     """``literals`` that do not hold in ``state``, said as what holds instead."""
     missing = [lit for lit in literals if not domain.holds(lit, state)]
-    return m.AND(lang).join(domain.condition(lit.name).label(lang, not lit.value) for lit in missing)
+    return join_words([domain.condition(lit.name).label(lang, not lit.value) for lit in missing], lang)
 
 
 MAX_ACTIONS_NAMED = 12

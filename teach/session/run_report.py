@@ -82,7 +82,7 @@ def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     effects = domain.action(action).ram
     if not effects or not all(domain.holds(p, state) for p in effects):
         return ""
-    return m.AND(lang).join(domain.condition(p.name).label(lang, p.value) for p in effects)
+    return join_words([domain.condition(p.name).label(lang, p.value) for p in effects], lang)
 
 
 def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
