@@ -60,9 +60,9 @@ WHAT_CAN_HAPPEN = Text(" What can happen meanwhile (say it when it does): {event
 HELP_INTRO = Text("Type what the robot should do, e.g. “{examples}”.",
                   "Schreib, was der Roboter tun soll, z. B. „{examples}“.")
 HELP_ASK = Text("You can also ask me: 'what now?', 'why did you do that?', 'are you sure?', 'is it done?', "
-                "and say 'again' for the last step once more.",
+                "'what is the task?', and say 'again' for the last step once more.",
                 "Du kannst mich auch fragen: 'was jetzt?', 'warum hast du das gemacht?', 'bist du sicher?', "
-                "'ist es fertig?', und 'nochmal' sagen für den letzten Schritt noch einmal.")
+                "'ist es fertig?', 'was ist die Aufgabe?', und 'nochmal' sagen für den letzten Schritt noch einmal.")
 MORE_ACTIONS = Text("{count} more like them (Tab)", "{count} weitere solche (Tab)")
 AND_MORE = Text(" and {count} more like them", " und {count} weitere solche")
 AND = Text(" and ", " und ")
@@ -132,6 +132,13 @@ FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first
                          "Beende ('fertig') oder verwirf zuerst die laufende Vorführung.")
 RUNNING_ACTION = Text("→ {action}", "→ {action}")
 NOT_DONE_YET = Text("Not yet: {unmet}.", "Noch nicht: {unmet}.")
+TASK_LEARNED = Text("From what you showed me: {done}", "Nach dem, was du mir gezeigt hast: {done}")
+TASK_DECLARED = Text("The task is finished when {goal} (my domain file says so). Show me how to get there.",
+                     "Die Aufgabe ist erledigt, sobald gilt: {goal} (so steht es in meiner Domänendatei). Zeig mir, "
+                     "wie ich dahin komme.")
+TASK_SHOWN = Text("You show me: I learn from your steps what the task is. Say 'done' when it is finished.",
+                  "Du zeigst es mir: an deinen Schritten lerne ich, was die Aufgabe ist. Sag 'fertig', wenn sie "
+                  "erledigt ist.")
 ONLY_YOU_TELL_DONE = Text("You tell me: say 'done' when the task is finished.",
                           "Das sagst du mir: sag 'fertig', wenn die Aufgabe erledigt ist.")
 NOTHING_TO_DO = Text("There is nothing to do: the task is already finished. Say 'reset' for a new start.",

@@ -865,3 +865,32 @@ def test_a_state_line_pasted_after_start_is_that_state(tmp_path, name, lang):
     first = domain.conditions[0]
     both = f"start {first.label(lang)}, {first.label(lang, False)}"
     assert session.handle(both)[0].kind is ReplyKind.ERROR
+
+
+@pytest.mark.parametrize(("lang", "line"), [("en", "what is the goal?"), ("en", "whats the task"),
+                                            ("de", "was ist die Aufgabe?")])
+def test_what_the_task_is_is_told_from_the_domain_then_from_what_was_learned(ball, tmp_path, lang, line):
+    """ "what is the goal?" was "I don't know": before anything is learned the domain file's goal is
+    told, after a demonstration when the learned tree says done; nothing is ended or changed."""
+    session = new_session(ball, tmp_path, lang=lang)
+    said = [r.text for r in session.handle(line)]
+    declared = {"en": "The task is finished when the ball is in the bin (my domain file says so). Show me how to get "
+                      "there.",
+                "de": "Die Aufgabe ist erledigt, sobald gilt: der Ball ist im Eimer (so steht es in meiner "
+                      "Domänendatei). Zeig mir, wie ich dahin komme."}
+    assert said == [declared[lang]]
+    session.handle(SEQUENCE if lang == "en" else "Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, "
+                   "Ball in den Eimer legen")
+    session.handle("done" if lang == "en" else "fertig")
+    assert [r.text for r in session.handle(line)] == [
+        "From what you showed me: When the ball is in the bin, I am done." if lang == "en"
+        else "Nach dem, was du mir gezeigt hast: Ich bin fertig, sobald gilt: der Ball ist im Eimer."]
+
+
+def test_what_the_task_is_in_a_domain_without_a_goal_is_what_the_teacher_shows(tmp_path):
+    from teach.domain import load_domain
+
+    blocks = load_domain(Path(__file__).resolve().parent.parent / "demos" / "blocksworld" / "domain.toml")
+    session = new_session(blocks, tmp_path)
+    assert [r.text for r in session.handle("what is the goal?")] == [
+        "You show me: I learn from your steps what the task is. Say 'done' when it is finished."]

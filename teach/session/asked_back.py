@@ -1,14 +1,18 @@
 """Answers to what the teacher asks the robot about itself: "is it done?", "why did you do that?",
-"are you sure?". Each is said from what the session knows; nothing is ended or changed."""
+"are you sure?", "what is the task?". Each is said from what the session knows; nothing is ended or
+changed."""
 
 from __future__ import annotations
 
 from teach import messages as m
+from teach.bt.nodes import Node
+from teach.dialogue.questions import join_words
 from teach.domain import Domain, State
 from teach.messages import Lang
 from teach.session.describe import unmet_goal
 from teach.session.learning import Learning
 from teach.session.replies import Reply, ReplyKind
+from teach.session.tree_words import done_words
 
 
 def done_yet(domain: Domain, state: State, demonstrating: bool, lang: Lang) -> list[Reply]:
@@ -20,6 +24,18 @@ def done_yet(domain: Domain, state: State, demonstrating: bool, lang: Lang) -> l
     if unmet:
         return [Reply(ReplyKind.INFO, m.NOT_DONE_YET(lang, unmet=unmet))]
     return [Reply(ReplyKind.INFO, (m.WHAT_NOW_FINISHED if demonstrating else m.NOTHING_TO_DO)(lang))]
+
+
+def what_task(domain: Domain, tree: Node | None, lang: Lang) -> list[Reply]:
+    """ "What is the task?": when the learned tree says it is done (``tree``: None before any
+    demonstration ended), else the goal the domain file declares, else that the teacher shows it."""
+    done = done_words(tree, domain, lang) if tree is not None else None
+    if done is not None:
+        return [Reply(ReplyKind.INFO, m.TASK_LEARNED(lang, done=done))]
+    if domain.goal:
+        goal = join_words([domain.condition(lit.name).label(lang, lit.value) for lit in domain.goal], lang)
+        return [Reply(ReplyKind.INFO, m.TASK_DECLARED(lang, goal=goal))]
+    return [Reply(ReplyKind.INFO, m.TASK_SHOWN(lang))]
 
 
 def why_that(domain: Domain, learning: Learning, step: tuple[str, bool] | None, example: str | None,

@@ -372,6 +372,14 @@ DONE_YET_WORDS = {normalize(said) for said in ("is it done", "are you done", "ar
                                                "ist es erledigt", "war es das")}
 """Whole lines asking whether the task is finished ("is it done?" was "I don't know", "are we
 done?" ended the demonstration): answered from the domain's goal, nothing ended."""
+TASK_WORDS = {normalize(said) for said in (
+    "what is the task", "what's the task", "whats the task", "what is the goal", "what's the goal", "whats the goal",
+    "what is your task", "what's your task", "what is your goal", "what's your goal", "what is your job",
+    "what are you supposed to do", "what do you have to do", "what are we trying to do", "what is the task again",
+    "was ist die aufgabe", "was ist das ziel", "was ist deine aufgabe", "was ist dein ziel", "was sollst du tun",
+    "was sollst du machen", "was musst du tun", "was ist nochmal die aufgabe")}
+"""Whole lines asking what the task is ("what is the goal?" was "I don't know"): what the robot has
+learned of when it is done, or the domain's declared goal."""
 WHO_WORDS = {normalize(said) for said in ("who are you", "what are you", "wer bist du", "was bist du")}
 """Whole lines asking who the robot is ("who are you" was "Did you mean 'why are you'?"): greeted."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",

@@ -55,7 +55,7 @@ from teach.session.arguments import (
     untrue_asked,
     whole_number,
 )
-from teach.session.asked_back import done_yet, why_that
+from teach.session.asked_back import done_yet, what_task, why_that
 from teach.session.asking import Asking
 from teach.session.commands import (
     AGAIN_WORDS,
@@ -70,6 +70,7 @@ from teach.session.commands import (
     NO_MATTER_WORDS,
     NUMBERED,
     SKIP_WORDS,
+    TASK_WORDS,
     WHAT_NOW_WORDS,
     WHERE_STARTS,
     WHO_WORDS,
@@ -361,10 +362,13 @@ class SessionManager(CompatMembers):
                     return self._said_back(m.HELLO_AGAIN(self.lang), ReplyKind.SAY, alone=hello)
                 line = rest  # "great, now you try"
         asked = normalize(line)  # the phrase book is read only for a line that is one of these sayings
-        if (asked in DONE_YET_WORDS or asked in WHO_WORDS) and self.pending is None and self.pending_model is None \
-                and not self._names_steps(line):
+        if (asked in DONE_YET_WORDS or asked in WHO_WORDS or asked in TASK_WORDS) and self.pending is None \
+                and self.pending_model is None and not self._names_steps(line):
             if asked in DONE_YET_WORDS:  # "is it done?"
                 return done_yet(self.domain, self.world.state(), self.open is not None, self.lang)
+            if asked in TASK_WORDS:  # "what is the task?"
+                learned = self.learning.learner.goal.known
+                return what_task(self.domain, self.learning.tree if learned else None, self.lang)
             return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         meant = meant_instead(line)
         if meant is not None and self.pending is None and self.pending_model is None and self._names_steps(meant):

@@ -71,16 +71,35 @@ class _Rule:
         return self.guard + ((self.done_when,) if self.done_when is not None else ())
 
 
+def done_words(tree: Node, domain: Domain, lang: Lang) -> str | None:
+    """When the tree says it is done, as the first line of ``tree_lines`` says it ("When the ball
+    is in the bin, I am done."); None if its root does not check that first."""
+    rules = _said(tree)
+    return _done_line(_goal_rules(rules), domain, lang)
+
+
+def _goal_rules(rules: list[_Rule]) -> list[_Rule]:
+    """The rules saying "done" that the root's Fallback tries first, taken off ``rules``."""
+    goal = []
+    while rules and rules[0].kind == "done" and not rules[0].guard:
+        goal.append(rules.pop(0))
+    return goal
+
+
+def _done_line(goal: list[_Rule], domain: Domain, lang: Lang) -> str | None:
+    if not goal:
+        return None
+    return m.WORDS_DONE_WHEN(lang, condition=m.OR(lang).join(_all_words(rule.condition, domain, lang) for rule in goal))
+
+
 def tree_lines(tree: Node, domain: Domain, lang: Lang) -> list[str]:
     """What the tree does, in sentences of ``lang``, one rule a line."""
     rules = _said(tree)
     lines: list[str] = []
-    goal = []
-    while rules and rules[0].kind == "done" and not rules[0].guard:
-        goal.append(rules.pop(0))
-    if goal:  # the checks the root's Fallback tries first
-        lines.append(m.WORDS_DONE_WHEN(lang, condition=m.OR(lang).join(
-            _all_words(rule.condition, domain, lang) for rule in goal)))
+    goal = _goal_rules(rules)
+    done = _done_line(goal, domain, lang)
+    if done is not None:  # the checks the root's Fallback tries first
+        lines.append(done)
     if not rules:
         lines.append((m.WORDS_OTHERWISE_NOTHING if goal else m.WORDS_NOTHING)(lang))
         return lines
