@@ -132,6 +132,7 @@ FINISH_BEFORE_RUN = Text("Finish ('done') or cancel the open demonstration first
                          "Beende ('fertig') oder verwirf zuerst die laufende Vorführung.")
 RUNNING_ACTION = Text("→ {action}", "→ {action}")
 NOT_DONE_YET = Text("Not yet: {unmet}.", "Noch nicht: {unmet}.")
+WHICH_STEP = Text("Which one: {steps}?", "Welchen davon: {steps}?")
 TASK_LEARNED = Text("From what you showed me: {done}", "Nach dem, was du mir gezeigt hast: {done}")
 TASK_DECLARED = Text("The task is finished when {goal} (my domain file says so). Show me how to get there.",
                      "Die Aufgabe ist erledigt, sobald gilt: {goal} (so steht es in meiner Domänendatei). Zeig mir, "

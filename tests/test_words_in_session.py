@@ -752,3 +752,22 @@ def test_help_names_what_one_may_ask_the_robot(ball, tmp_path, lang):
     assert told.endswith(m.HELP_ASK(Lang(lang)))
     for asked in ("is it done?", "are you sure?", "what now?") if lang == "en" else ("ist es fertig?",):
         assert asked in told and said(manager, asked) != said(manager, "xyzzy")  # each one is answered
+
+
+def test_a_step_said_without_its_last_object_is_offered_as_the_steps_possible_here(tmp_path):
+    """ "take c off", "put c on", "pick up" in blocksworld were "I don't know" with the first actions
+    of the domain: the one step possible here that the words say with an object more is offered
+    (a yes does it), several are named."""
+    blocks = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = session(blocks, tmp_path, "en")
+    manager.handle("start holding a, clear b, clear c, clear d, ontable b, ontable c, ontable d")
+    said(manager, "put a on b")
+    said(manager, "pick up c")
+    assert said(manager, "put c on") == "I don't know “put c on”.\nWhich one: “put c on a” or “put c on d”?"
+    said(manager, "put c on a")
+    assert said(manager, "take c off") == "I don't know “take c off”. Did you mean “take c off a”?"
+    said(manager, "yes")
+    assert [blocks.action(a).name for a in open_actions(manager)][-1] == "unstack_c_a"
+    assert said(manager, "stack c").endswith("Which one: “stack c a” or “stack c d”?")  # holding c again
+    said(manager, "put c down")
+    assert "Which one" not in said(manager, "stack c")  # c held by nobody: nothing possible to offer

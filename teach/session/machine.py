@@ -108,6 +108,9 @@ from teach.session.vocabulary import Vocabulary
 from teach.symbolic import possible_actions
 from teach.world.protocol import TeachingWorld
 
+MAX_WHICH = 4
+"""The most steps offered for a line that names all but their last object ("put c on")."""
+
 
 class SessionManager(CompatMembers):
     """One teaching session. Not thread-safe: one driver feeds it lines."""
@@ -258,9 +261,16 @@ class SessionManager(CompatMembers):
                 self.retype = self._meant_by_pronoun(line)
                 if self.retype is not None:
                     self.suggestion = None  # the guess at its words ("put c on b") gives way
+            which = self._meant_with_object(line) if self.retype is None and not unknown.suggestions \
+                and not asking else []
+            if len(which) == 1:  # "take c off" where c is on a only: "Did you mean “take c off a”?"
+                self.retype, which = which[0], []
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
-            if not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
+            if which:  # "put c on": "Which one: “put c on a” or “put c on d”?"
+                replies.append(Reply(ReplyKind.INFO, m.WHICH_STEP(self.lang, steps=m.OR(self.lang).join(
+                    m.QUOTED(self.lang, text=step) for step in which))))
+            elif not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
                 can = m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain, self.lang))
                 if self.world.events:  # "jemand nimmt den Ball weg" was met with the actions alone
                     can += m.WHAT_CAN_HAPPEN(self.lang, events=self._event_names())
@@ -669,6 +679,24 @@ class SessionManager(CompatMembers):
                     and first.name in possible:
                 meant.append(said)
         return meant[0] if len(meant) == 1 else None
+
+    def _meant_with_object(self, line: str) -> list[str]:
+        """The steps possible here that ``line`` says but for its last object, in the teacher's words
+        with it ("take c off" where c is on a: "take c off a"; "put c on" holding c: "put c on a", "put
+        c on d"); at most ``MAX_WHICH`` (more: none, the line says too little). Only in a domain with
+        objects (forms)."""
+        possible = possible_actions(self.domain, self.world.state())
+        meant: dict[str, str] = {}
+        for thing in self.phrases.objects:
+            said = f"{line.strip().rstrip('?.!').strip()} {thing}"
+            try:
+                tokens = self.phrases.parse(said, self.lang)
+            except TeachError:
+                continue
+            if len(tokens) == 1 and tokens[0].kind == "action" and not tokens[0].guessed \
+                    and tokens[0].name in possible:
+                meant.setdefault(tokens[0].name, said)
+        return list(meant.values()) if len(meant) <= MAX_WHICH else []
 
     def _teach_actions(self, text: str) -> list[Reply]:
         return self._act(self.phrases.parse(text, self.lang, topic=self.topic))
