@@ -184,10 +184,14 @@ def test_again_after_a_guided_move_moves_once_more(tmp_path: Path) -> None:
 
 def test_a_move_without_the_word_guide_is_a_move_while_guiding(tmp_path: Path) -> None:
     """After 'guide', "forward 0.1" was "I don't know “forward 0.1”" and ended guiding; before
-    it, such a line is no move ("open" alone is not read as the hand)."""
+    it, such a line is only offered as the guide line ("lift 0.1" was offered as "lift the ball", a
+    grasp), and done on a yes."""
     session = _session(tmp_path)
     start = session.world.world.base_pose()  # type: ignore[attr-defined]
-    assert "I don't know" in session.handle("forward 0.1")[0].text
+    assert session.handle("lift 0.1")[0].text == "I don't know “lift 0.1”. Did you mean “guide lift 0.1”?"
+    assert session.handle("forward 0.1")[0].text.endswith("Did you mean “guide forward 0.1”?")
+    assert session.world.world.base_pose() == start and not session.guiding.active  # nothing done before the yes
+    session.handle("no")
     session.handle("guide")
     assert all(r.kind is not ReplyKind.ERROR for r in session.handle("forward 0.1")) and session.guiding.active
     moved = session.world.world.base_pose()  # type: ignore[attr-defined]

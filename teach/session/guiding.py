@@ -143,6 +143,22 @@ class Guiding:
             return False
         return True
 
+    def offered_move(self, line: str) -> str | None:
+        """Not guiding, in a world that can be guided: a line that is a whole move without 'guide'
+        ("forward 0.3", "lift 0.1", "turn right 40"), as the guide line a yes would do; None
+        otherwise. ("lift 0.1" was offered as "lift the ball", a grasp.)"""
+        from teach.sim.guide import KEYWORDS, VERBS, parse_guide_line
+
+        words = line.split()
+        if self.active or not self.can_guide() or not words or words[0].lower() not in VERBS:
+            return None
+        keyword = KEYWORDS[1] if self.lang == "de" else KEYWORDS[0]
+        try:
+            parse_guide_line(f"{keyword} {line.strip()}")
+        except FormatError:
+            return None
+        return f"{keyword} {line.strip()}"
+
     def line(self, rest: str, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """One ``guide …`` line: begin guiding if need be, carry out the primitive, label what it finished."""
         from teach.sim.guide import parse_guide_line

@@ -257,6 +257,9 @@ class SessionManager(CompatMembers):
                 # nothing close, and the line's first word is what was not understood: perhaps a
                 # command or an answer word was meant ("hlep"; not "find the ball, xyzzy")
                 self.retype = typo_of_command(line, self.lang, self._answer_words(), self.phrases.words)
+            moved = None if asking or confirmed else self.guiding.offered_move(line)
+            if moved is not None:  # "forward 0.3" just after guiding: "Did you mean “guide forward 0.3”?"
+                self.retype, self.suggestion = moved, None
             if self.retype is None and not asking and self.topic is None:
                 self.retype = self._meant_by_pronoun(line)
                 if self.retype is not None:
