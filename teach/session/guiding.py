@@ -408,8 +408,9 @@ class Guiding:
         self.adopt(domain, [self.record.store.read_motion(e.motion, domain) for e in taught])
 
 
-STOP_WORDS = ("stop", "end", "ende", "halt", "aus")
-"""``guide stop``: guidance ends (Esc in the terminal's guide mode says it)."""
+STOP_WORDS = ("stop", "end", "ende", "halt", "aus", "esc", "escape")
+"""``guide stop``: guidance ends (Esc in the terminal's guide mode says it); while guiding also
+one of them alone ("esc" typed after "Esc ends it" was "I don't know “esc”")."""
 _NEW_WORDS = ("something new", "a new action", "new action", "etwas neues", "was neues", "eine neue aktion",
               "neue aktion")
 

@@ -90,7 +90,7 @@ from teach.session.commands import (
 from teach.session.compat import CompatMembers
 from teach.session.definitions import Definitions
 from teach.session.describe import actions_to_name, some_actions, unmet_goal, why_refused
-from teach.session.guiding import Guiding
+from teach.session.guiding import STOP_WORDS, Guiding
 from teach.session.journal import Answered, Asked, DemoLearned, Event, Journal, Situated, state_text
 from teach.session.learning import Learning
 from teach.session.published import Mode, SessionView
@@ -464,6 +464,8 @@ class SessionManager(CompatMembers):
                 return replies + (self._dispatch(deferred) if deferred else [])
             return None if command in LOOKING else [Reply(ReplyKind.ERROR, m.LABEL_GUIDE_FIRST(self.lang))]
         if command is None and self.guiding.reads_as_move(line) and not self._names_steps(line):
+            return self.cmd_guide(line)
+        if self.guiding.active and normalize(line) in STOP_WORDS:  # "esc", "stop" alone: guiding ends
             return self.cmd_guide(line)
         if self.guiding.active and (command is None or command is not Verb.GUIDE):
             self.guiding.end()
