@@ -19,7 +19,8 @@ PRONOUN = "it"
 JOINS = ("and", "then", "and then")
 ANSWERS = ("yes", "no", "okay", "done", "skip", "undo", "i don't know")
 """Answers beside the question words (before, after, both, ...) of ``messages.ANSWER_WORDS``."""
-SAYINGS = ("again", "once more", "are you sure", "is it done", "are we done", "what now")
+SAYINGS = ("again", "once more", "are you sure", "is it done", "are we done", "what now", "what is the task",
+           "go back")
 """Whole lines the session answers that name no step or command (outside the grammar they could not be heard)."""
 _ARTICLES = ("the", "a", "an")
 
