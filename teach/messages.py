@@ -516,6 +516,7 @@ NEW_ACTION_LEARNED = Text("✓ New action “{action}”: afterwards {change}. I
                           "✓ Neue Aktion „{action}“: danach gilt: {change}. Das kann ich jetzt selbst.")
 NEW_ACTION_TAKEN = Text("There is already an action called “{action}”: say its name alone, or choose another name.",
                         "Eine Aktion „{action}“ gibt es schon: nenne sie allein, oder wähle einen anderen Namen.")
+GUIDE_WORD = Text("guide", "führen")
 GUIDE_MODE_ON = Text("Guide mode: ↑/↓ move, ←/→ turn, PgUp/PgDn lift, space opens or closes the hand; Esc ends it.",
                      "Führmodus: ↑/↓ fahren, ←/→ drehen, Bild↑/Bild↓ heben, Leertaste öffnet oder schließt die "
                      "Hand; Esc beendet ihn.")

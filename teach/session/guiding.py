@@ -147,12 +147,12 @@ class Guiding:
         """Not guiding, in a world that can be guided: a line that is a whole move without 'guide'
         ("forward 0.3", "lift 0.1", "turn right 40"), as the guide line a yes would do; None
         otherwise. ("lift 0.1" was offered as "lift the ball", a grasp.)"""
-        from teach.sim.guide import KEYWORDS, VERBS, parse_guide_line
+        from teach.sim.guide import VERBS, parse_guide_line
 
         words = line.split()
         if self.active or not self.can_guide() or not words or words[0].lower() not in VERBS:
             return None
-        keyword = KEYWORDS[1] if self.lang == "de" else KEYWORDS[0]
+        keyword = m.GUIDE_WORD(self.lang)
         try:
             parse_guide_line(f"{keyword} {line.strip()}")
         except FormatError:
