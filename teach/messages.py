@@ -458,6 +458,11 @@ OPEN_ON_QUIT = Text("You have shown me {steps} I have not learned yet: say 'done
                     "Du hast mir {steps} gezeigt, die ich noch nicht gelernt habe: sag 'fertig', um sie zu "
                     "lernen, 'abbrechen', um sie zu verwerfen, oder beende noch einmal: sie bleiben offen, und "
                     "--resume bringt sie zurück.")
+OPEN_ON_QUIT_ONE = Text("You have shown me 1 step I have not learned yet: say 'done' to learn it, 'cancel' to drop "
+                        "it, or quit again: it stays open, and --resume brings it back.",
+                        "Du hast mir 1 Schritt gezeigt, den ich noch nicht gelernt habe: sag 'fertig', um ihn zu "
+                        "lernen, 'abbrechen', um ihn zu verwerfen, oder beende noch einmal: er bleibt offen, und "
+                        "--resume bringt ihn zurück.")
 STEP_COUNT = Text("{count} step", "{count} Schritt")
 STEPS_COUNT = Text("{count} steps", "{count} Schritte")
 

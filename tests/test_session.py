@@ -786,9 +786,13 @@ def test_quitting_with_an_open_demonstration_asks_first(ball, tmp_path):
     session = new_session(ball, tmp_path)
     session.handle("find the ball")
     replies = session.handle("quit")
-    assert not session.finished and "not learned yet" in replies[0].text
+    assert not session.finished and replies[0].text.startswith(
+        "You have shown me 1 step I have not learned yet: say 'done' to learn it,")  # it was "… learn them"
     session.handle("quit")
     assert session.finished
+    german = new_session(ball, tmp_path / "de", lang="de")
+    german.handle("Ball finden, zum Ball gehen")
+    assert german.handle("beenden")[0].text.startswith("Du hast mir 2 Schritte gezeigt, die ich")
 
 
 def test_the_open_demonstration_survives_a_resume(ball, tmp_path):

@@ -634,7 +634,9 @@ class SessionManager(CompatMembers):
         steps = len(self.open.steps) if self.open is not None else 0
         if steps and self._quit_warned_at != self.step - 1:  # not right after the warning
             self._quit_warned_at = self.step
-            return [Reply(ReplyKind.ERROR, m.OPEN_ON_QUIT(self.lang, steps=steps_said(steps, self.lang)))]
+            said = m.OPEN_ON_QUIT_ONE(self.lang) if steps == 1 \
+                else m.OPEN_ON_QUIT(self.lang, steps=steps_said(steps, self.lang))  # "1 step … learn them"
+            return [Reply(ReplyKind.ERROR, said)]
         self.finished = True
         replies = self.cmd_save(rest)
         return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
