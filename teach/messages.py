@@ -612,11 +612,11 @@ SITUATION_RESTORED_ANEW = Text("I set up the last situation again (the simulatio
 SITUATION_NOT_RESTORED = Text("I could not set up the last situation again ({situation}); we go on from here:",
                               "Ich konnte die letzte Situation nicht wieder aufbauen ({situation}); wir machen von "
                               "hier aus weiter:")
-RUN_RESTORED = Text("The session ended while I was running ({action} had begun): the {steps} I had finished "
-                    "are the start of a correction ('steps' lists them, 'done' learns it, 'cancel' drops it); the "
+RUN_RESTORED = Text("The session ended while I was running ({action} had begun): what I had finished ({steps}) "
+                    "is the start of a correction ('steps' lists it, 'done' learns it, 'cancel' drops it); the "
                     "world is set up as it was before {action}.",
-                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): die {steps}, die ich "
-                    "fertig hatte, sind der Anfang einer Korrektur ('schritte' zeigt sie, 'fertig' lernt sie, "
+                    "Die Sitzung endete, während ich lief ({action} hatte begonnen): was ich fertig hatte "
+                    "({steps}), ist der Anfang einer Korrektur ('schritte' zeigt sie, 'fertig' lernt sie, "
                     "'abbrechen' verwirft sie); die Welt ist wieder so wie vor {action}.")
 RUN_RESTORED_NO_STEPS = Text("The session ended while I was running ({action} had just begun): the world is set up "
                              "as it was before it.",
