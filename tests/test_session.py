@@ -898,3 +898,15 @@ def test_what_the_task_is_in_a_domain_without_a_goal_is_what_the_teacher_shows(t
     session = new_session(blocks, tmp_path)
     assert [r.text for r in session.handle("what is the goal?")] == [
         "You show me: I learn from your steps what the task is. Say 'done' when it is finished."]
+
+
+def test_weiter_with_nothing_asked_goes_on(ball, tmp_path):
+    """ "weiter" is 'skip' to a question; after the answer, a teacher saying it to go on was told
+    "Es ist keine Frage offen.": with a tree to run and nothing asked it runs."""
+    session = new_session(ball, tmp_path, lang="de")
+    assert [r.text for r in session.handle("weiter")] == ["Es ist keine Frage offen."]  # nothing learned yet
+    session.handle("Ball finden, zum Ball gehen, Ball greifen, zum Eimer gehen, Ball in den Eimer legen")
+    session.handle("fertig")
+    session.handle("neu")
+    said = [r.text for r in session.handle("weiter")]
+    assert "→ Ball finden" in said and any(text.startswith("Ich habe gemacht") for text in said), said

@@ -372,6 +372,9 @@ DONE_YET_WORDS = {normalize(said) for said in ("is it done", "are you done", "ar
                                                "ist es erledigt", "war es das")}
 """Whole lines asking whether the task is finished ("is it done?" was "I don't know", "are we
 done?" ended the demonstration): answered from the domain's goal, nothing ended."""
+GOING_ON_WORDS = {normalize(said) for said in ("weiter",)}
+"""A 'skip' word that, with no question open, means going on: run ("weiter" after an answer was "Es
+ist keine Frage offen.")."""
 TASK_WORDS = {normalize(said) for said in (
     "what is the task", "what's the task", "whats the task", "what is the goal", "what's the goal", "whats the goal",
     "what is your task", "what's your task", "what is your goal", "what's your goal", "what is your job",

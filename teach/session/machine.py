@@ -66,6 +66,7 @@ from teach.session.commands import (
     COMMANDS,
     DONE_YET_WORDS,
     DOUBT_WORDS,
+    GOING_ON_WORDS,
     LOOKING,
     NO_MATTER_WORDS,
     NUMBERED,
@@ -404,6 +405,8 @@ class SessionManager(CompatMembers):
         if command is not None and self.mode is Mode.ASKING and command in BLOCKED_WHILE_ASKING:
             return [Reply(ReplyKind.ERROR, m.ANSWER_FIRST(self.lang))]
         self.asking.in_a_row = 0
+        if command is Verb.SKIP and normalize(line) in GOING_ON_WORDS and self.runnable is not None:
+            command = Verb.RUN  # "weiter" with nothing asked: go on ("Es ist keine Frage offen.")
         if command is not None:
             return self._handler(command)(rest)
         said = normalize(line)
