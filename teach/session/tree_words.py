@@ -284,8 +284,8 @@ def _all_words(checks: tuple[_Check, ...], domain: Domain, lang: Lang) -> str:
     flat = [part for check in checks for part in (check.parts if check.kind == "all" else (check,))]
     false = list(dict.fromkeys(c.name for c in flat if c.kind == "literal" and not c.value and
                                domain.has_condition(c.name)))
-    if len(false) <= MAX_FALSE_NAMED:
-        return join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in checks)), lang)
+    if len(false) <= MAX_FALSE_NAMED:  # a check of several parts said as a list ("a, b and c", not "a and b and c")
+        return join_words(list(dict.fromkeys(_check_words(c, domain, lang) for c in flat)), lang)
     rest = list(dict.fromkeys(_check_words(c, domain, lang) for c in flat
                               if not (c.kind == "literal" and not c.value and c.name in false)))
     if all(c.kind == "literal" for c in flat):
