@@ -321,8 +321,8 @@ ASK_ANOTHER = Text("All right. Say 'ask' for another question.", "In Ordnung. Sa
 
 # --- saving and leaving ------------------------------------------------------------------------
 SAVED = Text("Saved: {places}.", "Gespeichert: {places}.")
-GOODBYE = Text("Goodbye! Resume with: teach session --resume {session}",
-               "Auf Wiedersehen! Weiter mit: teach session --resume {session}")
+GOODBYE = Text("Goodbye! Resume with: teach session --resume {resume}",
+               "Auf Wiedersehen! Weiter mit: teach session --resume {resume}")
 
 # --- the terminal ------------------------------------------------------------------------------
 PROMPT = Text("teach> ", "teach> ")
@@ -434,8 +434,8 @@ NO_STEPS_TO_UNDO = Text("No demonstration is open, so there are no steps to take
 I_DID_NOTHING = Text("I did nothing.", "Ich habe nichts gemacht.")
 NOTHING_TO_CANCEL = Text("No demonstration is open: there is nothing to cancel.",
                          "Keine Vorführung ist offen: es gibt nichts abzubrechen.")
-SESSION_ID = Text("Session {session} (continue it later with: teach session --resume {session}).",
-                  "Sitzung {session} (später weitermachen mit: teach session --resume {session}).")
+SESSION_ID = Text("Session {session} (continue it later with: teach session --resume {resume}).",
+                  "Sitzung {session} (später weitermachen mit: teach session --resume {resume}).")
 IT_NEEDS = Text("first this must be true: {conditions}", "dafür muss erst gelten: {conditions}")
 IT_DID_NOT_WORK = Text("it did not work out this time", "es hat diesmal nicht geklappt")
 OUTCOME_SUCCESS = Text("it said it was done", "es hieß, ich sei fertig")

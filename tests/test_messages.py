@@ -51,7 +51,7 @@ def test_no_speaker_chooses_a_language_itself(path):
 
 def test_messages_fill_in_their_fields():
     assert messages.THANKS("de", change="Gut.") == "Danke. Gut."
-    assert messages.GOODBYE("en", session="s1").endswith("--resume s1")
+    assert messages.GOODBYE("en", resume="s1").endswith("--resume s1")
 
 
 TEXTS = [(name, lang, text.de if lang == "de" else text.en) for name, text in sorted(CATALOGUE.items())

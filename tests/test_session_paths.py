@@ -60,3 +60,13 @@ def test_an_audio_line_heard_from_the_sessions_own_folder_is_refused(tmp_path: P
     assert err == (f"teach: {tmp_path / 'recordings' / 'said'}: holds {speech / '001.wav'}, which this command "
                    "reads: write into another folder\n")
     assert sorted(tmp_path.rglob("*")) == before
+
+
+def test_the_resume_hint_names_the_base_folder_where_it_is_not_the_working_one(tmp_path, monkeypatch):
+    """ "Resume with: teach session --resume x2" after `--base /elsewhere`, run again from the same
+    folder, found no journal: the hint says the base where it is needed."""
+    monkeypatch.chdir(tmp_path)
+    assert Settings("x2", base=Path(".")).resume_words == "x2"
+    assert Settings("x2", base=tmp_path).resume_words == "x2"  # the working folder, named
+    elsewhere = tmp_path / "my sessions"
+    assert Settings("x2", base=elsewhere).resume_words == f"x2 --base '{elsewhere}'"

@@ -192,7 +192,8 @@ class SessionManager(CompatMembers):
     def greet(self) -> list[Reply]:
         replies = [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         if not self.demos:  # a resumed session names itself in RESUMED_COUNTED
-            replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session)))
+            replies.insert(0, Reply(ReplyKind.INFO, m.SESSION_ID(self.lang, session=self.settings.session,
+                                                                 resume=self.settings.resume_words)))
         else:
             demos = _counted(len(self.demos), m.NO_DEMOS, m.ONE_DEMO, m.DEMOS)(self.lang, count=len(self.demos))
             asked = _counted(self.budget.used, m.NO_QUESTIONS_ASKED, m.ONE_QUESTION_ASKED,
@@ -642,7 +643,7 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.ERROR, said)]
         self.finished = True
         replies = self.cmd_save(rest)
-        return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, session=self.settings.session))]
+        return replies + [Reply(ReplyKind.SAY, m.GOODBYE(self.lang, resume=self.settings.resume_words))]
 
     def cmd_model(self, rest: str) -> list[Reply]:
         if not rest.strip():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import shlex
 from dataclasses import dataclass
 from enum import StrEnum
 from pathlib import Path
@@ -56,6 +57,15 @@ class Settings:
     """Run trees through BehaviorTree.CPP with a Groot2 publisher on this port (None: our own tick)."""
     voice: bool = False
     """The robot says its lines aloud (teach/voice/) and writes them to recordings/<session>/speech/."""
+
+    @property
+    def resume_words(self) -> str:
+        """What follows ``teach session --resume`` to continue this session from where it was
+        started: its name, and the base folder where that is not the working folder (a hint
+        without it, run elsewhere, found no journal)."""
+        if Path(self.base).resolve() == Path.cwd().resolve():
+            return self.session
+        return f"{self.session} --base {shlex.quote(str(self.base))}"
 
     def __post_init__(self) -> None:
         if not SESSION_NAME.match(self.session):
