@@ -277,3 +277,15 @@ def test_what_is_not_done_yet_is_said_as_a_list(domain, tmp_path):
     german = session("events-de", domain, world(domain), tmp_path, "de")
     german.handle("warte, Tablett nehmen, such jemanden")
     assert german.handle("sie hat sich einen genommen")[0].text == "Ereignis: sie hat sich einen genommen."
+
+
+def test_offering_with_nobody_there_is_refused_not_already_done(domain, tmp_path):
+    """ "offer a snack" after the person had left was "– offer a snack: nobody is there to talk to
+    already (nothing to do, not recorded)": the person leaving is what offering costs, not what it
+    is for. It is refused with what it needs; a second "find someone" is still already so."""
+    manager = session("offer-again", domain, world(domain), tmp_path)
+    manager.handle("wait for a request, take the tray, find someone, offer a snack")
+    said = [r.text for r in manager.handle("offer a snack")]
+    assert said[0].startswith("I could not offer a snack: first this must be true:") and "already" not in said[0]
+    manager.handle("find someone")
+    assert manager.handle("find someone")[0].text.startswith("– find someone: someone is there to talk to")

@@ -78,9 +78,15 @@ def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:
 
 def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """What an action would make so, in words, where all of it is so already ("I can see the ball"
-    for a second "find the ball"); "" where something is left to do, or the domain declares no effects."""
+    for a second "find the ball"); "" where something is left to do, the domain declares no effects,
+    a precondition it lacks is not one its effects undo (it cannot be done for another reason), or
+    it only ends something (snacks' "offer a snack" with nobody there was "nobody is there to talk
+    to already": the person leaving is what offering costs, not what it is for)."""
     effects = domain.action(action).ram
-    if not effects or not all(domain.holds(p, state) for p in effects):
+    if not effects or not all(domain.holds(p, state) for p in effects) or not any(p.value for p in effects):
+        return ""
+    undone = {(p.name, not p.value) for p in effects}
+    if any((p.name, p.value) not in undone for p in _lacked(domain, action, state)):
         return ""
     return join_words([domain.condition(p.name).label(lang, p.value) for p in effects], lang)
 
