@@ -182,10 +182,10 @@ def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> TeachError:
         for name in having:
             score[name] = score.get(name, Fraction(0)) + Fraction(1, len(having))
     best = max(score.values(), default=Fraction(0))
-    like = [m.QUOTED(lang, text=domain.condition(name).label(lang)) for name, value in score.items() if value == best]
+    labels_like = [domain.condition(name).label(lang) for name, value in score.items() if value == best]
+    like = [m.QUOTED(lang, text=label) for label in labels_like]
     if best and len(like) == 1:
-        meant = domain.condition(next(name for name, value in score.items() if value == best)).label(lang)
-        return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, meant)
+        return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, labels_like[0])
     if best and len(like) <= MAX_LIKE:
         return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=", ".join(like[:-1]) + m.OR(lang) + like[-1]))
     return TeachError(m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions)))

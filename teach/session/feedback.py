@@ -18,6 +18,7 @@ STILL = 0.005           # m (or 0.5 degree, 5 mm of lift or finger): the command
 HELD_BY_TOP = 0.045     # m: a ball held with its centre this far below the hand is held by its top only
 # (closed round a centred ball with the lift 4 cm up it stayed in the hand on the way to the bin; 5 cm up it
 # fell out at the first move, and the teacher who guided that grasp saw "✓ grasp the ball")
+ON_THE_BALL = 0.12      # m: an open hand stopped this near the ball on its way down rests on it
 
 
 def feedback_line(feedback: Feedback, lang: Lang) -> str:
@@ -92,8 +93,6 @@ def _last_did(feedback: Feedback, lang: Lang) -> str:
         return (m.FEEDBACK_CLOSED_HAND if feedback.gripped > 0 else m.FEEDBACK_OPENED)(lang, key=key)
     return m.FEEDBACK_WAITED(lang, key=m.KEY_WAIT(lang))
 
-
-ON_THE_BALL = 0.12      # m: an open hand stopped this near the ball on its way down rests on it
 
 
 def _rests_on_ball(feedback: Feedback, target: float) -> bool:

@@ -59,6 +59,11 @@ class Learning:
         self._learned_actions: list[str] = []
 
     @property
+    def knows_goal(self) -> bool:
+        """Whether a demonstration has shown where the task ends (the tree's "done" is learned)."""
+        return self.learner.goal.known
+
+    @property
     def has_behaviour(self) -> bool:
         """Whether the tree does anything yet (only goal states shown: it does not)."""
         return any(isinstance(node, Action) for node in walk(self.learner.tree))

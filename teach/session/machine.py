@@ -382,8 +382,7 @@ class SessionManager(CompatMembers):
             if asked in DONE_YET_WORDS:  # "is it done?"
                 return done_yet(self.domain, self.world.state(), self.open is not None, self.lang)
             if asked in TASK_WORDS:  # "what is the task?"
-                learned = self.learning.learner.goal.known
-                return what_task(self.domain, self.learning.tree if learned else None, self.lang)
+                return what_task(self.domain, self.learning.tree if self.learning.knows_goal else None, self.lang)
             return [Reply(ReplyKind.SAY, m.HELLO(self.lang, actions=some_actions(self.domain, self.lang)))]
         meant = meant_instead(line)
         if meant is not None and self.pending is None and self.pending_model is None and self._names_steps(meant):
