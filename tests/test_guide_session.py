@@ -198,6 +198,10 @@ def test_a_move_without_the_word_guide_is_a_move_while_guiding(tmp_path: Path) -
     assert moved != start
     assert "takes -5 to 5 metres" in session.handle("forward 99")[0].text and session.guiding.active
     assert session.handle("wait")[0].text.startswith(m.TAKE_YOUR_TIME("en"))  # holding on, as before
+    # "step back" while guiding backs the robot up a key's step; it is no 'undo' there
+    before = session.world.world.base_pose()  # type: ignore[attr-defined]
+    assert session.handle("step back")[-1].text.endswith("last: ↓ moved me 10 cm") and session.guiding.active
+    assert session.world.world.base_pose() != before  # type: ignore[attr-defined]
     # "Esc ends it", typed: guiding ends (it was "I don't know “esc”")
     assert session.handle("esc")[0].text == m.GUIDE_MODE_OFF("en") and not session.guiding.active
     session.close()

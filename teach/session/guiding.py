@@ -143,6 +143,12 @@ class Guiding:
             return False
         return True
 
+    def back_line(self) -> str:
+        """The move one ↓ key makes, as a line ("back 0.1"): what "step back" means while guiding."""
+        from teach.sim.guide import KEY_STEP
+
+        return f"back {KEY_STEP}"
+
     def offered_move(self, line: str) -> str | None:
         """Not guiding, in a world that can be guided: a line that is a whole move without 'guide'
         ("forward 0.3", "lift 0.1", "turn right 40"), as the guide line a yes would do; None

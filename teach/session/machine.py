@@ -61,6 +61,7 @@ from teach.session.commands import (
     AGAIN_WORDS,
     ANSWERING,
     ANSWERS_ONLY,
+    BACK_WORDS,
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
     COMMANDS,
@@ -470,6 +471,8 @@ class SessionManager(CompatMembers):
             return self.cmd_guide(line)
         if self.guiding.active and normalize(line) in STOP_WORDS:  # "esc", "stop" alone: guiding ends
             return self.cmd_guide(line)
+        if self.guiding.active and normalize(line) in BACK_WORDS:  # "step back": backing up, not 'undo'
+            return self.cmd_guide(self.guiding.back_line())
         if self.guiding.active and (command is None or command is not Verb.GUIDE):
             self.guiding.end()
             if self.guiding.pending is not None:
