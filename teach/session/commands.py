@@ -58,9 +58,9 @@ class Verb(Enum):
                       "mein fehler", "geh zurück", "einen schritt zurück", "schritt zurück"),
                      Text("undo [N] / undo to step N", "zurück [N] / zurück bis Schritt N"),
                      Text("take back the last step (N: steps N to the end), demonstration or answer; "
-                          "also 'that was wrong'",
+                          "also 'that was wrong', 'go back'",
                           "letzten Schritt (N: ab Schritt N), Vorführung oder Antwort zurücknehmen; "
-                          "auch 'das war falsch'"), argued=True, alone=("back",))
+                          "auch 'das war falsch', 'geh zurück'"), argued=True, alone=("back",))
     REDO = _Declared(("redo",), ("wiederholen", "wiederherstellen"), Text("redo", "wiederherstellen"),
                      Text("take back the last undo (steps, a demonstration or an answer)",
                           "das letzte Zurücknehmen rückgängig machen (Schritte, eine Vorführung oder eine Antwort)"))
@@ -126,7 +126,7 @@ class Verb(Enum):
     PLAN = _Declared(("plan",), ("planen",), Text("plan", "planen"),
                      Text("show what the action definitions give", "zeigen, was die Beschreibungen ergeben"))
     SKIP = _Declared(("skip",), ("weiter",), Text("skip", "weiter"),
-                     Text("leave a question unanswered", "eine Frage offen lassen"))
+                     Text("leave a question unanswered", "eine Frage offen lassen (ohne Frage: weitermachen)"))
     WHY = _Declared(("why",), ("warum",), Text("why NAME", "warum NAME"),
                     Text("why a step or a condition is in the tree (why {example})",
                          "warum ein Schritt oder eine Bedingung im Baum ist (warum {example})"), argued=True)
