@@ -207,6 +207,18 @@ def test_a_move_without_the_word_guide_is_a_move_while_guiding(tmp_path: Path) -
     session.close()
 
 
+def test_zurueck_while_guiding_backs_up_and_after_it_undoes(tmp_path: Path) -> None:
+    """ "zurück" is 'undo' and a guide line's "zurück 0.1": alone while guiding it undid the last step
+    of the demonstration; there it backs the robot up, as ↓ does."""
+    session = _session(tmp_path, lang="de")
+    session.handle("führen vor 0.3")
+    assert session.handle("zurück")[-1].text.endswith("zuletzt: ↓ hat mich 10 cm bewegt") and session.guiding.active
+    session.handle("esc")
+    session.handle("Ball finden")
+    assert session.handle("zurück")[0].text.startswith("Rückgängig: Schritt")
+    session.close()
+
+
 def test_guiding_where_the_task_is_finished_is_refused_as_a_named_step_is(tmp_path: Path) -> None:
     """ "guide forward 0.2" after the ball was put in the bin opened a demonstration that began
     where the task was already finished; a named step there is refused with how to start anew."""

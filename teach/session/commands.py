@@ -373,7 +373,8 @@ DONE_YET_WORDS = {normalize(said) for said in ("is it done", "are you done", "ar
 """Whole lines asking whether the task is finished ("is it done?" was "I don't know", "are we
 done?" ended the demonstration): answered from the domain's goal, nothing ended."""
 BACK_WORDS = {normalize(said) for said in ("back", "go back", "step back", "one step back", "go back one step",
-                                           "geh zurück", "einen schritt zurück", "schritt zurück")}
+                                           "zurück", "geh zurück", "fahr zurück", "einen schritt zurück",
+                                           "schritt zurück")}
 """'undo' in everyday words that, while guiding, mean the robot backing up a key's step instead."""
 GOING_ON_WORDS = {normalize(said) for said in ("weiter",)}
 """A 'skip' word that, with no question open, means going on: run ("weiter" after an answer was "Es
