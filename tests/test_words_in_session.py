@@ -771,3 +771,17 @@ def test_a_step_said_without_its_last_object_is_offered_as_the_steps_possible_he
     assert said(manager, "stack c").endswith("Which one: “stack c a” or “stack c d”?")  # holding c again
     said(manager, "put c down")
     assert "Which one" not in said(manager, "stack c")  # c held by nobody: nothing possible to offer
+
+
+def test_blocksworld_speaks_german(tmp_path):
+    """A German blocksworld session showed "pick_up_a" and "ontable_b" and knew no German step; a
+    step already so named every effect ("nicht: a ist frei, …"); "which one" was "„a“ oder „b“ oder „c“"."""
+    blocks = load_domain(ROOT / "demos" / "blocksworld" / "domain.toml")
+    manager = session(blocks, tmp_path, "de")
+    manager.handle("start ich halte a, b ist frei, c ist frei, d ist frei, b liegt auf dem Tisch, c liegt auf dem "
+                   "Tisch, d liegt auf dem Tisch")
+    assert said(manager, "nimm a von b").startswith("– nimm a von b: schon so – b ist frei und ich halte a (")
+    said(manager, "leg es ab")
+    said(manager, "heb c auf")
+    assert said(manager, "leg c auf").endswith("Welchen davon: „leg c auf a“, „leg c auf b“ oder „leg c auf d“?")
+    assert [blocks.action(a).name for a in open_actions(manager)] == ["put_down_a", "pick_up_c"]

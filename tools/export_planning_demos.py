@@ -50,6 +50,16 @@ def action_phrases(form: tuple[str, ...]) -> list[str]:
     return [action_phrase(form), *(said.format(*form[1:]) for said in SAID_ALSO.get(form[0], ()))]
 
 
+SAID_DE = {"stack": ("leg {0} auf {1}", "stapel {0} auf {1}", "setz {0} auf {1}", "stell {0} auf {1}"),
+           "unstack": ("nimm {0} von {1}", "heb {0} von {1}"),
+           "pick_up": ("heb {0} auf", "nimm {0}", "nimm {0} auf"),
+           "put_down": ("leg {0} ab", "stell {0} ab", "leg {0} auf den Tisch")}
+"""German for blocksworld's actions: a German session showed "pick_up_a" and knew no German step."""
+CONDITION_DE = {"clear": "{0} ist frei", "holding": "ich halte {0}", "on": "{0} liegt auf {1}",
+                "ontable": "{0} liegt auf dem Tisch", "handempty": "meine Hand ist leer"}
+"""German for blocksworld's conditions (the robot speaks of itself: "ich halte a")."""
+
+
 def domain_toml(task: Task, with_goal: bool = False) -> str:
     model, domain = task.model, task.domain
 
@@ -65,12 +75,16 @@ def domain_toml(task: Task, with_goal: bool = False) -> str:
         out.append(f"goal = {strings(literals(model.goal_true, model.goal_false))}")
     out.append("")
     for condition in domain.conditions:
+        german = CONDITION_DE.get(condition.form[0]) if condition.form else None
         out += ["[[condition]]", f'name = "{condition.name}"', f'en = "{condition.en}"',
+                *([f'de = "{german.format(*condition.form[1:])}"'] if german else []),
                 f"form = {strings(condition.form)}", ""]
     for action in domain.actions:
         operator = model.by_name[action.name]
+        german_phrases = [said.format(*action.form[1:]) for said in SAID_DE.get(action.form[0], ())]
         out += ["[[action]]", f"id = {action.id}", f'name = "{action.name}"',
-                f"en = {strings(action_phrases(action.form))}", f"form = {strings(action.form)}",
+                f"en = {strings(action_phrases(action.form))}",
+                *([f"de = {strings(german_phrases)}"] if german_phrases else []), f"form = {strings(action.form)}",
                 f"pre = {strings(literals(operator.pre_true, operator.pre_false))}",
                 f"ram = {strings(literals(operator.add, operator.delete))}", ""]
     return "\n".join(out)

@@ -274,8 +274,9 @@ class SessionManager(CompatMembers):
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
             if which:  # "put c on": "Which one: “put c on a” or “put c on d”?"
-                replies.append(Reply(ReplyKind.INFO, m.WHICH_STEP(self.lang, steps=m.OR(self.lang).join(
-                    m.QUOTED(self.lang, text=step) for step in which))))
+                quoted = [m.QUOTED(self.lang, text=step) for step in which]
+                steps = ", ".join(quoted[:-1]) + m.OR(self.lang) + quoted[-1]
+                replies.append(Reply(ReplyKind.INFO, m.WHICH_STEP(self.lang, steps=steps)))
             elif not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
                 can = m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain, self.lang))
                 if self.world.events:  # "jemand nimmt den Ball weg" was met with the actions alone

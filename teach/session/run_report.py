@@ -88,7 +88,8 @@ def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     undone = {(p.name, not p.value) for p in effects}
     if any((p.name, p.value) not in undone for p in _lacked(domain, action, state)):
         return ""
-    return join_words([domain.condition(p.name).label(lang, p.value) for p in effects], lang)
+    # said by what it makes true ("ich halte a und b ist frei", not also "nicht: a liegt auf b, …")
+    return join_words([domain.condition(p.name).label(lang, p.value) for p in effects if p.value], lang)
 
 
 def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
