@@ -43,7 +43,7 @@ from teach.bt.tick import CompiledTree, compile_tree
 from teach.demos import Demonstration
 from teach.domain import Domain, State
 from teach.errors import LearnError
-from teach.messages import Lang
+from teach.messages import Lang, Text
 from teach.symbolic import assign
 
 if TYPE_CHECKING:
@@ -153,11 +153,12 @@ def only_these(true: list[str], false: int, lang: Lang) -> str:
     return f"{join_words(true, lang)}{m.NOTHING_ELSE(lang)}" if true else m.NOTHING_HOLDS(lang, count=false)
 
 
-def join_words(items: list[str], lang: Lang) -> str:
-    """``a``, ``a and b``, ``a, b and c`` in the session's language ("" for none)."""
+def join_words(items: list[str], lang: Lang, last: Text = m.AND) -> str:
+    """``a``, ``a and b``, ``a, b and c`` in the session's language ("" for none); ``last``:
+    the word before the last item (``m.OR``: "a, b or c")."""
     if not items:
         return ""
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + m.AND(lang) + items[-1]
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + last(lang) + items[-1]
 
 
 # --- what the demonstrations say about cause and effect ---------------------------------------

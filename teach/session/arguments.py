@@ -11,6 +11,7 @@ from fractions import Fraction
 
 from teach import messages as m
 from teach.dialogue.phrases import PhraseBook, UnknownPhrase, normalize, plain
+from teach.dialogue.questions import join_words
 from teach.domain import ConditionDef, Domain
 from teach.errors import TeachError
 from teach.messages import Lang
@@ -187,7 +188,7 @@ def _unknown_phrase(domain: Domain, text: str, lang: Lang) -> TeachError:
     if best and len(like) == 1:
         return ConditionGuess(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=like[0]), text, labels_like[0])
     if best and len(like) <= MAX_LIKE:
-        return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=", ".join(like[:-1]) + m.OR(lang) + like[-1]))
+        return TeachError(m.UNKNOWN_CONDITION_LIKE(lang, name=text, some=join_words(like, lang, m.OR)))
     return TeachError(m.UNKNOWN_CONDITION(lang, name=text, known=", ".join(c.label(lang) for c in domain.conditions)))
 
 

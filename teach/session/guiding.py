@@ -130,18 +130,13 @@ class Guiding:
         """While guiding, a line that begins with a move's word, without 'guide' ("forward 0.3",
         "turn -30" were "I don't know “forward 0.3”" and ended guiding); a wrong number is then
         said as the move's ("takes -5 to 5 metres")."""
-        from teach.sim.guide import VERBS, parse_guide_line
+        from teach.sim.guide import VERBS
 
         words = line.split()
         if not self.active or not words or words[0].lower() not in VERBS:
             return False
-        if len(words) > 1:
-            return True
-        try:  # a word alone only where it is a whole move ("open"; "wait" alone is holding on)
-            parse_guide_line(f"guide {line}")
-        except FormatError:
-            return False
-        return True
+        # a word alone only where it is a whole move ("open"; "wait" alone is holding on)
+        return len(words) > 1 or _whole_move(line)
 
     def back_line(self) -> str:
         """The move one ↓ key makes, as a line ("back 0.1"): what "step back" means while guiding."""
@@ -153,17 +148,12 @@ class Guiding:
         """Not guiding, in a world that can be guided: a line that is a whole move without 'guide'
         ("forward 0.3", "lift 0.1", "turn right 40"), as the guide line a yes would do; None
         otherwise. ("lift 0.1" was offered as "lift the ball", a grasp.)"""
-        from teach.sim.guide import VERBS, parse_guide_line
+        from teach.sim.guide import VERBS
 
         words = line.split()
-        if self.active or not self.can_guide() or not words or words[0].lower() not in VERBS:
+        if self.active or not self.can_guide() or not words or words[0].lower() not in VERBS or not _whole_move(line):
             return None
-        keyword = m.GUIDE_WORD(self.lang)
-        try:
-            parse_guide_line(f"{keyword} {line.strip()}")
-        except FormatError:
-            return None
-        return f"{keyword} {line.strip()}"
+        return f"{m.GUIDE_WORD(self.lang)} {line.strip()}"
 
     def line(self, rest: str, interrupted: Callable[[], bool] | None = None) -> list[Reply]:
         """One ``guide …`` line: begin guiding if need be, carry out the primitive, label what it finished."""
@@ -412,6 +402,17 @@ class Guiding:
             return
         domain = self.record.store.session_domain()
         self.adopt(domain, [self.record.store.read_motion(e.motion, domain) for e in taught])
+
+
+def _whole_move(line: str) -> bool:
+    """Whether ``line`` after 'guide' is a move as it stands (its amount right)."""
+    from teach.sim.guide import parse_guide_line
+
+    try:
+        parse_guide_line(f"guide {line.strip()}")
+    except FormatError:
+        return False
+    return True
 
 
 STOP_WORDS = ("stop", "end", "ende", "halt", "aus", "esc", "escape")

@@ -39,7 +39,7 @@ from teach.dialogue.phrases import (
     is_yes,
     normalize,
 )
-from teach.dialogue.questions import describe_situation
+from teach.dialogue.questions import describe_situation, join_words
 from teach.domain import Domain, State
 from teach.errors import LearnError, TeachError
 from teach.messages import Lang
@@ -274,8 +274,7 @@ class SessionManager(CompatMembers):
             shown = unknown if self.retype is None else UnknownPhrase(unknown.text, [self.retype], self.lang)
             replies = [Reply(ReplyKind.ERROR, shown.message)]
             if which:  # "put c on": "Which one: “put c on a” or “put c on d”?"
-                quoted = [m.QUOTED(self.lang, text=step) for step in which]
-                steps = ", ".join(quoted[:-1]) + m.OR(self.lang) + quoted[-1]
+                steps = join_words([m.QUOTED(self.lang, text=step) for step in which], self.lang, m.OR)
                 replies.append(Reply(ReplyKind.INFO, m.WHICH_STEP(self.lang, steps=steps)))
             elif not shown.suggestions and not asking:  # nothing close ("give them a snack", "what can you do?")
                 can = m.WHAT_I_CAN(self.lang, actions=some_actions(self.domain, self.lang))
@@ -684,15 +683,20 @@ class SessionManager(CompatMembers):
         possible, meant = possible_actions(self.domain, self.world.state()), []
         for thing in self.phrases.objects:
             said = line[:pronoun.start()] + thing + line[pronoun.end():]
-            try:
-                tokens = self.phrases.parse(said, self.lang)
-            except TeachError:
-                continue
-            first = tokens[0] if tokens else None
-            if first is not None and first.kind == "action" and not any(t.guessed for t in tokens) \
-                    and first.name in possible:
+            if self._possible_steps(said, possible) is not None:
                 meant.append(said)
         return meant[0] if len(meant) == 1 else None
+
+    def _possible_steps(self, said: str, possible: list[str]) -> list[Token] | None:
+        """``said`` read word for word (no typo guessed) as steps the first of which can be done
+        here (one of ``possible``), or None."""
+        try:
+            tokens = self.phrases.parse(said, self.lang)
+        except TeachError:
+            return None
+        if tokens and tokens[0].kind == "action" and not any(t.guessed for t in tokens) and tokens[0].name in possible:
+            return tokens
+        return None
 
     def _meant_with_object(self, line: str) -> list[str]:
         """The steps possible here that ``line`` says but for its last object, in the teacher's words
@@ -703,12 +707,8 @@ class SessionManager(CompatMembers):
         meant: dict[str, str] = {}
         for thing in self.phrases.objects:
             said = f"{line.strip().rstrip('?.!').strip()} {thing}"
-            try:
-                tokens = self.phrases.parse(said, self.lang)
-            except TeachError:
-                continue
-            if len(tokens) == 1 and tokens[0].kind == "action" and not tokens[0].guessed \
-                    and tokens[0].name in possible:
+            tokens = self._possible_steps(said, possible)
+            if tokens is not None and len(tokens) == 1:
                 meant.setdefault(tokens[0].name, said)
         return list(meant.values()) if len(meant) <= MAX_WHICH else []
 
