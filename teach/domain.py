@@ -81,10 +81,20 @@ class ActionDef:
     form: tuple[str, ...] = ()
     """Optional ``(kind, object, ...)``, e.g. ``("unstack", "a", "b")``: an instance of a parameterised
     action; instances of one kind share what is learned about them (``teach.learn.lifting``)."""
+    when: tuple[Literal, ...] = ()
+    en_when: tuple[str, ...] = ()
+    de_when: tuple[str, ...] = ()
+    """Phrases that mean this step only while ``when`` holds: "take the ball to the bin" is going
+    to the bin with the ball in hand; said without it, the step is refused, not done empty-handed."""
 
     def label(self, lang: str = "en") -> str:
         phrases = self.de if lang == "de" else self.en
         return phrases[0] if phrases else self.name
+
+    def said(self, lang: str | None = None) -> tuple[str, ...]:
+        """Every phrase a teacher may say for it, in ``lang`` (None: both), those that need ``when`` too."""
+        english, german = (*self.en, *self.en_when), (*self.de, *self.de_when)
+        return english if lang == "en" else german if lang == "de" else (*english, *german)
 
 
 @dataclass(frozen=True)
@@ -168,7 +178,7 @@ def check_tree_fits(domain: Domain, conditions: set[str], actions: set[str], pat
 _KEYS = {
     "": ("name", "goal", "condition", "action"),
     "condition": ("name", "en", "de", "en_false", "de_false", "form"),
-    "action": ("id", "name", "en", "de", "pre", "ram", "form"),
+    "action": ("id", "name", "en", "de", "pre", "ram", "form", "when", "en_when", "de_when"),
 }
 """The keys each part of a domain file may hold: any other is a typo that would be ignored."""
 
@@ -339,22 +349,28 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
         if aid in action_ids:
             fail(f"duplicate action id {aid}", line)
         phrases = {}
-        for lang in ("en", "de"):
+        for lang in ("en", "de", "en_when", "de_when"):
             value = raw.get(lang, [])
             if isinstance(value, str):
                 value = [value]
+            where = lines.key(lang, line)
             if not isinstance(value, list) or not all(isinstance(p, str) for p in value):
-                fail(f"action {aname}: '{lang}' must be a list of phrases", line)
+                fail(f"action {aname}: '{lang}' must be a list of phrases", where)
             if len(value) > limits.MAX_PHRASES:
                 fail(f"action {aname}: {len(value)} '{lang}' phrases, more than the {limits.MAX_PHRASES} accepted",
-                     line)
+                     where)
             if any(len(p) > limits.MAX_LABEL_CHARS for p in value):
-                fail(f"action {aname}: a '{lang}' phrase is longer than {limits.MAX_LABEL_CHARS} characters", line)
+                fail(f"action {aname}: a '{lang}' phrase is longer than {limits.MAX_LABEL_CHARS} characters", where)
             phrases[lang] = tuple(value)
         pre = literals(raw.get("pre", []), f"action {aname}: 'pre'", line)
         ram = literals(raw.get("ram", []), f"action {aname}: 'ram'", line)
         form = _form(raw, f"action {aname}", action_forms, fail, lines.key("form", line))
-        actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram, form))  # type: ignore[arg-type]
+        when = literals(raw.get("when", []), f"action {aname}: 'when'", lines.key("when", line))
+        if bool(when) != bool(phrases["en_when"] or phrases["de_when"]):
+            fail(f"action {aname}: 'when' and the phrases that need it ('en_when', 'de_when') go together",
+                 lines.key("when" if when else "en_when" if phrases["en_when"] else "de_when", line))
+        actions.append(ActionDef(aid, aname, phrases["en"], phrases["de"], pre, ram, form, when,  # type: ignore[arg-type]
+                                 phrases["en_when"], phrases["de_when"]))
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 

@@ -34,11 +34,12 @@ def possible_actions(domain: Domain, state: State) -> list[str]:
     return [a.name for a in domain.actions if not missing_preconditions(domain, state, a.name)]
 
 
-def steps_towards(domain: Domain, state: State, action: str, max_steps: int) -> list[str] | None:
-    """The shortest list of at most ``max_steps`` actions after which ``action`` can be done, by
-    ``domain``'s action model (breadth-first; the first found in the domain's order): the way to
-    offer a teacher whose step was refused. None if there is none that short (or it would need
-    the world's events)."""
+def steps_towards(domain: Domain, state: State, action: str, max_steps: int,
+                  also: tuple[Literal, ...] = ()) -> list[str] | None:
+    """The shortest list of at most ``max_steps`` actions after which ``action`` can be done (and
+    ``also`` holds: what the teacher's phrase for it needs), by ``domain``'s action model
+    (breadth-first; the first found in the domain's order): the way to offer a teacher whose step
+    was refused. None if there is none that short (or it would need the world's events)."""
     frontier: list[tuple[State, list[str]]] = [(state, [])]
     seen = {state}
     for _ in range(max_steps):
@@ -48,7 +49,7 @@ def steps_towards(domain: Domain, state: State, action: str, max_steps: int) -> 
                 after = apply_action(domain, here, name)
                 if after in seen:
                     continue
-                if not missing_preconditions(domain, after, action):
+                if not missing_preconditions(domain, after, action) and all(domain.holds(p, after) for p in also):
                     return [*path, name]
                 seen.add(after)
                 following.append((after, [*path, name]))

@@ -89,6 +89,15 @@ def test_bad_domains(tmp_path, body, words):
     assert words in str(info.value) and info.value.line is not None
 
 
+def test_phrases_that_mean_a_step_only_when_something_holds(tmp_path):
+    path = tmp_path / "domain.toml"
+    path.write_text(TINY + 'when = ["Ready", "!Done"]\nen_when = ["work hard"]\nde_when = ["arbeite hart"]\n')
+    work = load_domain(path).action("Work")
+    assert work.when == (Literal("Ready"), Literal("Done", False))
+    assert (work.en_when, work.de_when) == (("work hard",), ("arbeite hart",))
+    assert work.label("en") == "Work"  # a phrase that needs something is never the step's label
+
+
 def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
     demo = parse_demonstration("0;0;0;0;0;1 \t\r\n1;0;0;0;0;0\r\n\r\n", ball, "ok.csv")
     assert [s.action for s in demo.steps] == [1, 0]
@@ -96,7 +105,7 @@ def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
 
 @pytest.mark.parametrize("body, line, message", [
     (TINY.replace('pre = ["Ready"]', 'prex = ["Ready"]'), 13,
-     "unknown key 'prex' in [[action]] (allowed: id, name, en, de, pre, ram, form)"),
+     "unknown key 'prex' in [[action]] (allowed: id, name, en, de, pre, ram, form, when, en_when, de_when)"),
     (TINY.replace('name = "Done"', 'name = "Done"\nlabel = "x"'), 9,
      "unknown key 'label' in [[condition]] (allowed: name, en, de, en_false, de_false, form)"),
     ("goals = []\n" + TINY, 1, "unknown key 'goals' at the top level (allowed: name, goal, condition, action)"),
@@ -104,6 +113,10 @@ def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
     (TINY.replace("id = 1", "id = " + "9" * 5000), 11, "a number with more than 4300 digits"),
     (TINY.replace("id = 1", "id = 0x" + "f" * 4000), 11, "a number with more than 4300 digits"),
     ("# \u2028 \x85\n" + TINY.replace("ram =", "rma ="), 15, "unknown key 'rma'"),
+    (TINY + 'when = ["Ready"]\n', 15, "action Work: 'when' and the phrases that need it ('en_when', 'de_when') go"),
+    (TINY + 'en_when = ["work hard"]\n', 15, "action Work: 'when' and the phrases that need it"),
+    (TINY + 'when = ["Busy"]\nen_when = ["work hard"]\n', 15, "action Work: 'when' names unknown condition 'Busy'"),
+    (TINY + 'when = ["Ready"]\nde_when = 3\n', 16, "action Work: 'de_when' must be a list of phrases"),
 ])
 def test_domain_keys_and_numbers_are_strict(tmp_path, body, line, message):
     path = tmp_path / "domain.toml"

@@ -35,8 +35,12 @@ def test_in_mujoco_only_the_exact_phrase_perturbs(ball, tmp_path):
 
     settings = Settings("mujoco", lang="en", questions=0, base=tmp_path, world="mujoco", record=False)
     manager = SessionManager(settings, ball, MujocoWorld(ball, seed=3))
-    replies = manager.handle("take the ball to the bin")  # carrying nothing, the robot just drives there
+    replies = manager.handle("take the ball to the bin")  # not the event "take the ball away"
     assert not any(r.text.startswith("Event") for r in replies)
+    # and not done with nothing in hand: that would teach "go to the bin" where the teacher meant the ball
+    assert replies[0].text == "I could not take the ball to the bin: first this must be true: the ball is in my hand"
+    assert manager.open is None
+    manager.handle("go to the bin")
     replies = manager.handle("move the bin")
     assert [r.text for r in replies if r.text.startswith("Event")] == ["Event: move the bin."]
     assert manager.open is not None and [s.action for s in manager.open.steps] == [4, -1]

@@ -646,6 +646,31 @@ def test_a_refused_step_says_the_way_there(ball, tmp_path, lang, find, place, wa
     assert session.world.state() == ball.state(["BallFound", "BallClose", "BallGrasped", "BinClose"])
 
 
+@pytest.mark.parametrize(("lang", "lines", "refused", "way", "went"), [
+    ("en", ("find the ball", "bring it to the bin"),
+     "I could not bring the ball to the bin: first this must be true: the ball is in my hand",
+     "To get there: go to the ball, grasp the ball. Say 'yes' and I do that, then bring the ball to the bin.",
+     "take it to the bin"),
+    ("de", ("Ball finden", "bring ihn zum Eimer"),
+     "„bring den Ball zum Eimer“ ging nicht: dafür muss erst gelten: ich habe den Ball in der Hand",
+     "Der Weg dahin: zum Ball gehen, Ball greifen. Sag 'ja', dann tue ich das und danach „bring den Ball zum "
+     "Eimer“.", "ab zum Eimer damit")])
+def test_a_phrase_that_needs_the_ball_in_hand_does_not_go_without_it(ball, tmp_path, lang, lines, refused, way,
+                                                                    went):
+    """ "bring it to the bin" with the ball not in hand drove to the bin empty-handed and taught
+    "go to the bin" there; the domain says those phrases mean it only with the ball in hand."""
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(lines[0])
+    texts = [r.text for r in session.handle(lines[1])]
+    assert texts[:2] == [refused, way]
+    assert session.open is not None and [s.action for s in session.open.steps] == [1]
+    session.handle("ja" if lang == "de" else "yes")
+    assert [s.action for s in session.open.steps] == [1, 2, 3, 4]
+    session.handle("undo")
+    assert [r.kind.name for r in session.handle(went)][0] == "INFO"  # with the ball in hand it goes
+    assert [s.action for s in session.open.steps] == [1, 2, 3, 4]
+
+
 @pytest.mark.parametrize(("lang", "lines", "steps"), [
     ("en", ("what now?", "I don't know", "what should I do?", "whats next", "what's next?"),
      "From here I can: find the ball, go to the bin."),
@@ -736,6 +761,10 @@ def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     replies = session.handle("grasp the ball")
     assert [r.kind.name for r in replies] == ["ERROR", "INFO", "QUESTION"]
     assert replies[1].text == "To get there: find the ball."
+    replies = session.handle("take the ball to the bin")  # a step, but not one without the ball in hand
+    assert [r.kind.name for r in replies] == ["ERROR", "QUESTION"]  # (no short way: the bin is near already)
+    assert replies[0].text.startswith("I could not take the ball to the bin: first this must be true: ")
+    assert replies[0].text.endswith("the ball is in my hand")
 
 
 def test_a_resumed_session_counts_in_words(ball, tmp_path):

@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 from itertools import pairwise
 
 from teach.dialogue.reports import report_key
-from teach.domain import Domain
+from teach.domain import Domain, Literal
 from teach.errors import TeachError
 from teach.messages import Lang
 
@@ -134,6 +134,8 @@ class Token:
     text: str
     said: str = ""
     guessed: bool = False
+    needs: tuple[Literal, ...] = ()
+    """What must hold for the phrase to mean its action ("take the ball to the bin": the ball in hand)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -324,6 +326,7 @@ class _Entry:
     name: str
     phrase: str
     lang: Lang | None  # None for an internal name
+    needs: tuple[Literal, ...] = ()  # an action's phrase that means it only while these hold
 
 
 @dataclass(frozen=True, slots=True)
@@ -349,6 +352,7 @@ class PhraseBook:
         self._ignored = _IGNORED - self._objects
         for action in domain.actions:
             self._add("action", action.name, action.en, action.de)
+            self._add("action", action.name, action.en_when, action.de_when, action.when)
         # a form's objects are what "it" may mean too, block "a" among them (an article to _note_nouns)
         self._nouns += [word for word in objects if word not in self._nouns]
         self._handles = {action.name: _words(action.form[1])[-1] for action in domain.actions
@@ -372,16 +376,18 @@ class PhraseBook:
         is weighed against, so "tke the tray" is not read as a command."""
         return frozenset((*self._vocabulary["action"], *self._vocabulary["event"]))
 
-    def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...]) -> None:
+    def _add(self, kind: str, name: str, english: tuple[str, ...], german: tuple[str, ...],
+             needs: tuple[Literal, ...] = ()) -> None:
+        """``needs``: the phrases mean the action only while these hold (never its label)."""
         spelled = re.sub(r"(?<!^)(?=[A-Z])", " ", name)  # FindBall → "Find Ball"
         for lang, phrases in ((Lang.EN, english), (Lang.DE, german)):
-            if phrases:
+            if phrases and not needs:
                 self._labels.setdefault((name, lang), phrases[0])
             for phrase in phrases:
-                self._enter(_Entry(kind, name, phrase, lang))
+                self._enter(_Entry(kind, name, phrase, lang, needs))
                 self._note_nouns(phrase)
                 self._display[lang].setdefault(phrase, name)
-        for internal in (name, spelled):
+        for internal in () if needs else (name, spelled):
             self._enter(_Entry(kind, name, internal, None))
 
     def _enter(self, entry: _Entry) -> None:
@@ -484,7 +490,7 @@ class PhraseBook:
                     suggestion = Suggestion(said, replace(first, said=said, guessed=True), tuple(tokens), rest, lang,
                                             perturb, topic)
                     raise UnknownPhrase(said, alternatives, lang, suggestion)
-                tokens.append(Token(entry.kind, entry.name, self._text(entry, lang), said, guessed))
+                tokens.append(self._token(entry, lang, said, guessed))
                 topic = self._handles.get(entry.name) or noun or self._last_noun(piece.words) or topic
         return tokens
 
@@ -583,7 +589,7 @@ class PhraseBook:
         """An ambiguous piece's readings: the first as a token, the others' texts."""
         seen: dict[str, Token] = {}
         for entry, _ in piece.options:
-            seen.setdefault(entry.name, Token(entry.kind, entry.name, self._text(entry, lang)))
+            seen.setdefault(entry.name, self._token(entry, lang))
         first, *others = seen.values()
         return first, [t.text for t in others]
 
@@ -652,7 +658,7 @@ class PhraseBook:
             return None  # it names other things than typed: no typo ("put a on c" was done as "put down c")
         if not all(_misspelt(word, (*key, *self._ignored)) for word in words):
             return None  # a word of its own, not a slip of one ("put a by c" was done as "put a on c")
-        return Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
+        return self._token(entry, lang, chunk, True)
 
     def _objects_named(self, words: Iterable[str]) -> list[str]:
         """The objects of the domain's forms among ``words``, in order (none in a domain without forms)."""
@@ -682,7 +688,7 @@ class PhraseBook:
         if entry is None or ratio < _SUGGEST_CUTOFF \
                 or not (pronoun_event or self._clearly_nearest(said, entry, ratio, lang)):
             return UnknownPhrase(chunk, [], lang)
-        candidate = Token(entry.kind, entry.name, self._text(entry, lang), chunk, True)
+        candidate = self._token(entry, lang, chunk, True)
         return UnknownPhrase(chunk, [], lang, Suggestion(chunk, candidate, tuple(tokens), later, lang, perturb, topic))
 
     def _clearly_nearest(self, said: str, entry: _Entry, ratio: float, lang: Lang) -> bool:
@@ -707,6 +713,9 @@ class PhraseBook:
         """How many of the teacher's words stand for a word of ``phrase`` (articles aside)."""
         theirs = [w for w in self.key(phrase) if w not in _ARTICLES]
         return sum(any(_alike(mine, word) for word in theirs) for mine in said.split())
+
+    def _token(self, entry: _Entry, lang: Lang, said: str = "", guessed: bool = False) -> Token:
+        return Token(entry.kind, entry.name, self._text(entry, lang), said, guessed, entry.needs)
 
     def _text(self, entry: _Entry, lang: Lang) -> str:
         """The phrase to show for an entry: the one matched if it is a phrase of ``lang``, else the label."""

@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 
 from teach import messages as m
-from teach.dialogue.phrases import UnknownPhrase, after_no, is_no, is_yes, normalize
+from teach.dialogue.phrases import Token, UnknownPhrase, after_no, is_no, is_yes, normalize
 from teach.dialogue.questions import MUST_KINDS, Question, QuestionBudget
 from teach.domain import State
 from teach.errors import LearnError
@@ -188,6 +188,7 @@ class Asking:
                         self._question_reply(question)]
             answer: str | None = None
         else:
+            said: Token | None = None  # the step the teacher named instead
             if yes:
                 answer = question.action
             else:
@@ -203,14 +204,19 @@ class Asking:
                 tokens = [t for t in parsed if t.kind == "action"]
                 if len(tokens) != 1:
                     return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-                answer = tokens[0].name
+                said = tokens[0]
+                answer = said.name
             assert answer is not None
-            if missing_preconditions(self.vocabulary.domain, question.state, answer):
+            domain = self.vocabulary.domain
+            needs = said.needs if said else ()
+            if missing_preconditions(domain, question.state, answer) \
+                    or any(not domain.holds(p, question.state) for p in needs):
                 # as for 'done': an answer the domain file shows cannot work there is not learned
-                label = self.vocabulary.domain.action(answer).label(self.lang)
-                reason = why_not(self.vocabulary.domain, answer, question.state, self.lang)
+                # (nor "take the ball to the bin" where the ball is not in hand)
+                reason = why_not(domain, answer, question.state, self.lang, needs)
+                label = said.text if said and needs else domain.action(answer).label(self.lang)
                 return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)),
-                        *way_there(self.vocabulary.domain, answer, question.state, self.lang),
+                        *way_there(domain, answer, question.state, self.lang, needs),
                         self._question_reply(question)]
         return self.apply_answer(answer, line)
 

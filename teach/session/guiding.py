@@ -369,7 +369,7 @@ class Guiding:
         name = action_name(phrase)
         domain = self.domain
         if domain.has_action(name) or any(normalize(phrase) == normalize(p) for a in domain.actions
-                                          for p in (*a.en, *a.de)):
+                                          for p in a.said()):
             return [Reply(ReplyKind.ERROR, m.NEW_ACTION_TAKEN(self.lang, action=phrase))]
         phrases: dict[str, tuple[str, ...]] = {"en": (), "de": ()}
         phrases[self.lang] = (phrase,)  # in the session's language only: it is the teacher's word

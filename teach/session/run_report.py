@@ -65,9 +65,10 @@ def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: Lang) -> 
     return lines
 
 
-def why_not(domain: Domain, action: str, state: State, lang: Lang) -> str:
-    """Why an action failed, in words: the preconditions it lacked, if it has any."""
-    missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state)]
+def why_not(domain: Domain, action: str, state: State, lang: Lang, needs: tuple[Literal, ...] = ()) -> str:
+    """Why an action failed, in words: the preconditions it lacked (and what the teacher's phrase
+    for it ``needs``), if it has any."""
+    missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state, needs)]
     return m.IT_NEEDS(lang, conditions=join_words(missing, lang)) if missing else m.IT_DID_NOT_WORK(lang)
 
 
@@ -92,28 +93,30 @@ def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     return join_words([domain.condition(p.name).label(lang, p.value) for p in effects if p.value], lang)
 
 
-def _lacked(domain: Domain, action: str, state: State) -> list[Literal]:
-    return [p for p in domain.action(action).pre if not domain.holds(p, state)]
+def _lacked(domain: Domain, action: str, state: State, needs: tuple[Literal, ...] = ()) -> list[Literal]:
+    wanted = dict.fromkeys((*domain.action(action).pre, *needs))
+    return [p for p in wanted if not domain.holds(p, state)]
 
 
 WAY_STEPS = 3
 """The longest way to a refused step that is offered: longer, and it is not a hint but a plan."""
 
 
-def way_there(domain: Domain, action: str, state: State, lang: Lang) -> list[Reply]:
+def way_there(domain: Domain, action: str, state: State, lang: Lang, needs: tuple[Literal, ...] = ()) -> list[Reply]:
     """After a step of the teacher's was refused, the steps that would make it possible ("To get
     there: go to the ball, grasp the ball, go to the bin."), if ``way_steps`` finds them."""
-    steps = way_steps(domain, action, state)
+    steps = way_steps(domain, action, state, needs)
     if not steps:
         return []
     labels = ", ".join(domain.action(name).label(lang) for name in steps)
     return [Reply(ReplyKind.INFO, m.WAY_THERE(lang, steps=labels))]
 
 
-def way_steps(domain: Domain, action: str, state: State) -> list[str]:
-    """The actions that would make a refused ``action`` possible in ``state``, if the domain's model
-    has a short way that the step does not merely undo (putting d on a to take it off again)."""
-    steps = steps_towards(domain, state, action, WAY_STEPS)
+def way_steps(domain: Domain, action: str, state: State, needs: tuple[Literal, ...] = ()) -> list[str]:
+    """The actions that would make a refused ``action`` possible in ``state`` (with what the
+    teacher's phrase for it ``needs``), if the domain's model has a short way that the step does
+    not merely undo (putting d on a to take it off again)."""
+    steps = steps_towards(domain, state, action, WAY_STEPS, needs)
     if not steps:
         return []
     for step in steps[:-1]:

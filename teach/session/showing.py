@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from teach import messages as m
 from teach.dialogue.phrases import Token
-from teach.domain import State
+from teach.domain import Literal, State
 from teach.errors import TeachError
 from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
@@ -150,8 +150,17 @@ class Showing:
                 replies += self.turn.say([Reply(ReplyKind.INFO, m.EVENT(self.lang, event=token.text))])
                 index += 1
                 continue
-            result = self.world.act(token.name)
             label = domain.action(token.name).label(self.lang)
+            before = self.world.state()
+            if any(not domain.holds(p, before) for p in token.needs):
+                # "take the ball to the bin" without the ball: going there empty-handed would teach
+                # that step where the teacher meant another, so it is refused with what is missing
+                self.just_done = None
+                reason = why_not(domain, token.name, before, self.lang, token.needs)
+                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=token.text, reason=reason)))
+                replies += self._way_offered(token.name, token.text, before, token.needs)
+                break
+            result = self.world.act(token.name)
             so = "" if result.ok else already_so(domain, token.name, result.before, self.lang)
             if so:  # "find the ball" where it is seen was "I could not find the ball: first this must be
                 # true: I cannot see the ball"; like a step that changed nothing, it is passed over
@@ -160,7 +169,7 @@ class Showing:
                 continue
             if not result.ok:
                 reason = why_not(domain, token.name, result.before, self.lang)
-                way = way_steps(domain, queue[-1].name, self.world.state()) \
+                way = way_steps(domain, queue[-1].name, self.world.state(), queue[-1].needs) \
                     if reaching and replanned < MAX_REPLANS and queue[-1].kind == "action" else []
                 if way:  # the promised step, by a way planned again from where the robot is now
                     replanned += 1
@@ -174,7 +183,7 @@ class Showing:
                 replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)))
                 if facilitator and result.message:  # the world's own words are for the facilitator
                     replies.append(Reply(ReplyKind.INFO, m.DETAILS(self.lang, details=result.message)))
-                replies += self._way_offered(token.name, label, result.before)
+                replies += self._way_offered(token.name, label, result.before, token.needs)
                 break
             if result.events:  # the world stopped it: the rest of the line no longer fits
                 self.just_done = None
@@ -199,12 +208,12 @@ class Showing:
         """A step the robot planned itself, as if the teacher had named it."""
         return Token("action", action, self.vocabulary.domain.action(action).label(self.lang))
 
-    def _way_offered(self, action: str, label: str, state: State) -> list[Reply]:
+    def _way_offered(self, action: str, label: str, state: State, needs: tuple[Literal, ...] = ()) -> list[Reply]:
         """The way to a refused step, offered: a yes does it and then the step ("grab it" before the
         ball was within reach: "To get there: go to the ball. Say 'yes' and I do that, then grasp the
-        ball." — it took two more lines)."""
+        ball." — it took two more lines). ``needs``: what the teacher's phrase for it needs too."""
         domain = self.vocabulary.domain
-        labels = [domain.action(step).label(self.lang) for step in way_steps(domain, action, state)]
+        labels = [domain.action(step).label(self.lang) for step in way_steps(domain, action, state, needs)]
         if not labels:
             return []
         self.offered = ", ".join([*labels, label])

@@ -100,7 +100,7 @@ def resolve_action(domain: Domain, text: str) -> str:
     """An action name from a name or one of its en/de phrases (case-insensitive)."""
     wanted = text.strip().lower()
     for action in domain.actions:
-        if wanted == action.name.lower() or wanted in (p.lower() for p in action.en + action.de):
+        if wanted == action.name.lower() or wanted in (p.lower() for p in action.said()):
             return action.name
     raise DomainError(f"unknown action {text!r} (known: {', '.join(domain.action_names)})", domain.path)
 

@@ -67,7 +67,7 @@ def domain_grammar(domain: Domain, known: Callable[[str], bool] = lambda word: T
         spelled = (" ".join(spoken_words(t)) for t in texts)
         return tuple(dict.fromkeys(t for t in spelled if t and all(known(w) for w in t.split())))
 
-    phrases = [phrase for action in domain.actions for phrase in action.en]
+    phrases = [phrase for action in domain.actions for phrase in action.said("en")]
     # pronoun forms of the words the robot itself uses for its actions ("I can: grasp the ball, ..."):
     # of every phrase, they would crowd short commands out ("drop it" is heard for "run")
     labels = [action.label("en") for action in domain.actions]
