@@ -73,7 +73,10 @@ NEW_DEMONSTRATION = Text("New demonstration. Show me the steps.", "Neue Vorführ
 NO_STEPS_YET = Text("You have not shown me any steps yet.", "Du hast mir noch keine Schritte gezeigt.")
 NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
                     "Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'.")
-DISCARDED = Text("Demonstration discarded.", "Vorführung verworfen.")
+DISCARDED = Text("Demonstration discarded ('undo' brings it back).",
+                 "Vorführung verworfen ('zurück' holt sie wieder).")
+BROUGHT_BACK = Text("Back again: the demonstration you discarded ({steps}). Go on showing me.",
+                    "Wieder da: die verworfene Vorführung ({steps}). Zeig mir weiter.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
 UNDONE_LEARNING = Text("Undone: the last demonstration or answer.", "Rückgängig: die letzte Vorführung oder Antwort.")
 NOTHING_TO_REDO = Text("Nothing to redo: 'redo' brings back what the last 'undo' took, until you do something new.",

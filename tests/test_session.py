@@ -560,7 +560,30 @@ def test_cancel_with_nothing_open_says_so(ball, tmp_path):
     session = new_session(ball, tmp_path, lang="de")
     assert session.handle("abbrechen")[0].text == "Keine Vorführung ist offen: es gibt nichts abzubrechen."
     session.handle("Ball finden")
-    assert session.handle("abbrechen")[0].text == "Vorführung verworfen." and session.open is None
+    assert session.handle("abbrechen")[0].text == "Vorführung verworfen ('zurück' holt sie wieder)."
+    assert session.open is None
+
+
+def test_undo_right_after_cancel_brings_the_demonstration_back(ball, tmp_path):
+    """A 'cancel' said by mistake lost the steps shown ("undo": "Nothing to undo")."""
+    session = new_session(ball, tmp_path)
+    session.handle("find the ball, go to the ball")
+    session.handle("cancel")
+    assert session.handle("undo")[0].text == ("Back again: the demonstration you discarded (2 steps). "
+                                               "Go on showing me.")
+    assert [s.action for s in session.open.steps] == [1, 2]
+    resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))  # on disk before it was said
+    assert resumed.open is not None and [s.action for s in resumed.open.steps] == [1, 2]
+    resumed.close()
+    session.handle("grasp the ball")
+    session.handle("cancel")
+    session.handle("reset")  # something happened since: the world is not where the steps left it
+    assert session.handle("undo")[0].text == "Nothing to undo."
+    session.handle("find the ball")
+    session.handle("cancel")
+    session.handle("go to the ball")  # a new demonstration: 'undo' is about it now
+    assert session.handle("undo")[0].text == "Undone: step 1 (go to the ball)."
+    assert session.handle("undo")[0].text == "Nothing to undo."
 
 
 def test_the_greeting_names_the_session(ball, tmp_path):

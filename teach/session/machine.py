@@ -498,7 +498,7 @@ class SessionManager(CompatMembers):
     def cmd_cancel(self, rest: str) -> list[Reply]:
         if self.open is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
-        self.showing.close()
+        self.showing.discard()
         self.topic = None
         return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
 
@@ -514,6 +514,9 @@ class SessionManager(CompatMembers):
             return [Reply(ReplyKind.INFO, self.showing.take_back(step_number(rest, self.lang))), self._state_reply()]
         if rest.strip():
             return [Reply(ReplyKind.ERROR, m.NO_STEPS_TO_UNDO(self.lang))]
+        brought_back = None if aside else self.showing.bring_back()  # "cancel", then "undo"
+        if brought_back is not None:
+            return [Reply(ReplyKind.INFO, brought_back), self._state_reply()]
         if not self.demos:
             return [Reply(ReplyKind.ERROR, m.NOTHING_TO_UNDO(self.lang))]
         text = self.relearning.undo()

@@ -18,6 +18,7 @@ from teach.domain import Literal, State
 from teach.errors import TeachError
 from teach.messages import Lang
 from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventStep
+from teach.session.journal import Situated
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
 from teach.session.run_report import already_so, untrue_now, way_steps, why_not
@@ -39,6 +40,16 @@ class _StepsTakenBack:
     """The world the undo left (before the steps)."""
 
 
+@dataclass(frozen=True)
+class _Discarded:
+    """What 'cancel' discarded, so an 'undo' straight after it brings it back (it was lost: "Nothing
+    to undo"): the demonstration, the world it left, and how much the journal held then."""
+
+    demonstration: OpenDemonstration
+    world: State
+    journalled: int
+
+
 MAX_REPLANS = 2
 """How often a way the teacher said yes to is planned again where one of its steps turned out
 impossible (each way is at most ``WAY_STEPS`` long)."""
@@ -52,6 +63,7 @@ class Showing:
         self.record, self.turn, self.world, self.vocabulary = record, turn, world, vocabulary
         self.lang = lang
         self._taken_back: _StepsTakenBack | None = None
+        self._discarded: _Discarded | None = None
         self.offered: str | None = None
         """After a refused step, the line that does the way to it and the step ("go to the ball, grasp
         the ball"): the session does it on the teacher's yes to the next line, and forgets it then."""
@@ -71,6 +83,7 @@ class Showing:
         """Open a demonstration if none is (said: "New demonstration")."""
         if self.record.open is not None:
             return []
+        self._discarded = None  # a new one: 'undo' no longer means the discarded one
         self.record.open = OpenDemonstration()
         return [Reply(ReplyKind.INFO, m.NEW_DEMONSTRATION(self.lang))]
 
@@ -83,6 +96,27 @@ class Showing:
     def close(self) -> None:
         """The demonstration is finished or discarded: none is open."""
         self.record.open = None
+
+    def discard(self) -> None:
+        """'cancel': the open demonstration is dropped, kept only for an 'undo' straight after."""
+        assert self.record.open is not None
+        self._discarded = _Discarded(self.record.open, self.world.state(), self._taught())
+        self.close()
+
+    def _taught(self) -> int:
+        """How many things the journal holds, not counting where the world was left."""
+        return sum(not isinstance(event, Situated) for event in self.record.journal.events)
+
+    def bring_back(self) -> str | None:
+        """Reopen what 'cancel' discarded, while nothing happened since (no demonstration open, the
+        world as it was left, nothing journalled); None otherwise. Said once it is on disk."""
+        discarded, self._discarded = self._discarded, None
+        if discarded is None or self.record.open is not None or self.world.state() != discarded.world \
+                or self._taught() != discarded.journalled:
+            return None
+        self.record.open = discarded.demonstration
+        self.record.save_open()
+        return m.BROUGHT_BACK(self.lang, steps=steps_said(len(discarded.demonstration.steps), self.lang))
 
     # --- steps -----------------------------------------------------------------------------
 
