@@ -20,6 +20,8 @@ def session(ball, tmp_path, lang):
     ("en", ["please find the ball, then drive to it", "grab it", "ok, go to the bucket and put it in", "done"]),
     ("de", ["such den Ball und dann fahr zum Ball", "nimm ihn", "fahr zum Eimer", "leg ihn in den Eimer",
             "fertig"]),
+    ("en", ["find the ball", "go to the ball", "pick it up", "take it to the bin", "drop it in", "done"]),
+    ("de", ["Ball finden", "zum Ball", "nimm ihn", "ab zum Eimer damit", "räum ihn weg", "fertig"]),
 ])
 def test_everyday_lines_teach_the_whole_task(ball, tmp_path, lang, lines):
     manager = session(ball, tmp_path, lang)

@@ -564,6 +564,19 @@ def test_cancel_with_nothing_open_says_so(ball, tmp_path):
     assert session.open is None
 
 
+@pytest.mark.parametrize(("lang", "find", "place", "forget", "discarded"), [
+    ("en", "find the ball", "put it in", "forget it", "Demonstration discarded ('undo' brings it back)."),
+    ("de", "Ball finden", "leg ihn rein", "vergiss es", "Vorführung verworfen ('zurück' holt sie wieder).")])
+def test_forget_it_drops_an_offer_else_the_demonstration(ball, tmp_path, lang, find, place, forget, discarded):
+    """ "forget it" was "I don't know “forget it”"; to an offered way it is a no, else a 'cancel'."""
+    session = new_session(ball, tmp_path, lang=lang)
+    session.handle(find)
+    session.handle(place)  # refused, with the way there offered
+    session.handle(forget)
+    assert session.open is not None and [s.action for s in session.open.steps] == [1]
+    assert session.handle(forget)[0].text == discarded and session.open is None
+
+
 def test_undo_right_after_cancel_brings_the_demonstration_back(ball, tmp_path):
     """A 'cancel' said by mistake lost the steps shown ("undo": "Nothing to undo")."""
     session = new_session(ball, tmp_path)

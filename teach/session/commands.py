@@ -48,8 +48,11 @@ class Verb(Enum):
                      Text("the task is finished: learn this demonstration; also 'that's it'",
                           "die Aufgabe ist erledigt: diese Vorführung lernen; auch 'das war's'"))
     CANCEL = _Declared(("cancel",), ("abbrechen",), Text("cancel", "abbrechen"),
-                       Text("discard the open demonstration ('undo' right after brings it back)",
-                            "die Vorführung verwerfen ('zurück' gleich danach holt sie wieder)"))
+                       Text("discard the open demonstration ('undo' right after brings it back); also "
+                            "'forget it'",
+                            "die Vorführung verwerfen ('zurück' gleich danach holt sie wieder); auch 'vergiss es'"),
+                       alone=("forget it", "forget that", "forget about it", "scrap that", "vergiss es",
+                              "vergiss das", "vergiss es einfach"))
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
                       "take it back", "oops take that back", "oops", "that's wrong", "that is wrong",
                       "that's not right", "that is not right", "that was not right", "my mistake", "go back",
