@@ -289,3 +289,15 @@ def test_offering_with_nobody_there_is_refused_not_already_done(domain, tmp_path
     assert said[0].startswith("I could not offer a snack: first this must be true:") and "already" not in said[0]
     manager.handle("find someone")
     assert manager.handle("find someone")[0].text.startswith("– find someone: someone is there to talk to")
+
+
+def test_bringing_the_tray_back_needs_the_tray(domain, tmp_path):
+    """ "bring the tray back" with no tray went back to the office and taught "go back" there."""
+    manager = session("tray-back", domain, world(domain), tmp_path)
+    manager.handle("find someone")
+    said = [r.text for r in manager.handle("bring the tray back")]
+    assert said[0] == "I could not bring the tray back: first this must be true: I am carrying the tray"
+    assert manager.open is not None and [s.action for s in manager.open.steps] == [3]
+    german = session("tray-back-de", domain, world(domain), tmp_path, "de")
+    german.handle("warte, Tablett nehmen, such jemanden")
+    assert german.handle("bring das Tablett zurück")[0].text == "✓ ins Büro zurückfahren"
