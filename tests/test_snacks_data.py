@@ -301,3 +301,17 @@ def test_bringing_the_tray_back_needs_the_tray(domain, tmp_path):
     german = session("tray-back-de", domain, world(domain), tmp_path, "de")
     german.handle("warte, Tablett nehmen, such jemanden")
     assert german.handle("bring das Tablett zurück")[0].text == "✓ ins Büro zurückfahren"
+
+
+@pytest.mark.parametrize(("lang", "lines", "steps"), [
+    ("en", ["wait for a request, take the tray", "go to the residents", "ask if anyone wants a cookie"], [1, 2, 3, 4]),
+    ("de", ["warte, Tablett nehmen", "geh zu den Leuten", "frag ob jemand einen Keks will"], [1, 2, 3, 4])])
+def test_asking_someone_is_offering_not_the_ask_command(domain, tmp_path, lang, lines, steps):
+    """ "frag ob jemand einen Keks will" was the command 'frag' ("Ich habe gerade keine Frage"), and
+    "geh zu den Leuten" was not known."""
+    manager = session(f"ask-{lang}", domain, world(domain), tmp_path, lang)
+    for line in lines:
+        manager.handle(line)
+    assert manager.open is not None and [s.action for s in manager.open.steps] == steps
+    said = manager.handle("ask whether she wants a drink" if lang == "en" else "frag ob sie Tee will")[0].text
+    assert "question" not in said and "Frage" not in said  # the step offered or not known, never 'ask'

@@ -393,6 +393,10 @@ TASK_WORDS = {normalize(said) for said in (
 learned of when it is done, or the domain's declared goal."""
 WHO_WORDS = {normalize(said) for said in ("who are you", "what are you", "wer bist du", "was bist du")}
 """Whole lines asking who the robot is ("who are you" was "Did you mean 'why are you'?"): greeted."""
+ASKING_SOMEONE = frozenset({"if", "whether", "ob"})
+"""After 'ask', a word that makes the line someone asked by the robot, a step, not 'ask' ("frag ob
+jemand einen Keks will" was "I have no question right now"; snacks offers "frag ob sie etwas
+möchten")."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",

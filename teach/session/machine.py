@@ -61,6 +61,7 @@ from teach.session.commands import (
     AGAIN_WORDS,
     ANSWERING,
     ANSWERS_ONLY,
+    ASKING_SOMEONE,
     BACK_WORDS,
     BLOCKED_WHILE_ASKING,
     COMMAND_NAMES,
@@ -341,6 +342,8 @@ class SessionManager(CompatMembers):
         takes no words ("ask if they want something", snacks' offering, was 'ask') or is, as a whole,
         one of a command's everyday sayings but its first word in either language (snacks' "go back"
         is a step; in the ball world, which has none such, it is 'undo')."""
+        if command is Verb.ASK and _first_word(rest) in ASKING_SOMEONE:
+            return True  # "ask if they want a cookie": the domain's step (or the nearest one offered)
         if command is None or (bool(rest.strip()) and command.value.argued):
             return False
         if not rest.strip() and normalize(line) in {normalize(command.value.en[0]), normalize(command.value.de[0])}:
