@@ -231,6 +231,24 @@ class TomlLines:
                 raise FormatError(f"unknown key {shown(key)}{where} (allowed: {', '.join(allowed)})", path, line)
 
 
+def _check_when_phrases(actions: list[ActionDef], lines: TomlLines,
+                        fail: Callable[[str, int | None], NoReturn]) -> None:
+    """A phrase that needs ``when`` may not also be a plain phrase (one of the two would be read,
+    which one is unclear): "head to the bin" in both ``en`` and ``en_when`` is refused."""
+    def key(phrase: str) -> str:
+        return " ".join(phrase.lower().split())
+
+    plain = {(lang, key(phrase)): action.name for action in actions
+             for lang, phrases in (("en", action.en), ("de", action.de)) for phrase in phrases}
+    for action in actions:
+        for lang, phrases in (("en", action.en_when), ("de", action.de_when)):
+            for phrase in phrases:
+                other = plain.get((lang, key(phrase)))
+                if other is not None:
+                    fail(f"action {action.name}: {shown(phrase)} is in '{lang}_when' and a plain phrase of {other}",
+                         lines.find(f'"{phrase}"'))
+
+
 def check_numbers(text: str, path: str | Path, syntax: str) -> None:
     """Refuse a JSON or TOML text with an integer too long to convert (teach.limits), naming its line."""
     line = limits.too_long_number(text, syntax)
@@ -374,6 +392,7 @@ def _domain_from_data(data: dict, lines: TomlLines, path: Path) -> Domain:
         action_names.add(aname)  # type: ignore[arg-type]
         action_ids.add(aid)  # type: ignore[arg-type]
 
+    _check_when_phrases(actions, lines, fail)
     formed = next((a.name for a in actions if a.form), None)
     for i, condition in enumerate(conditions if formed is not None else ()):
         if not condition.form:

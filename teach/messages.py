@@ -73,8 +73,12 @@ NEW_DEMONSTRATION = Text("New demonstration. Show me the steps.", "Neue Vorführ
 NO_STEPS_YET = Text("You have not shown me any steps yet.", "Du hast mir noch keine Schritte gezeigt.")
 NOT_FINISHED = Text("The task is not finished yet: {unmet}. Show me more, or say 'cancel'.",
                     "Die Aufgabe ist noch nicht erledigt: {unmet}. Zeig mir mehr, oder sag 'abbrechen'.")
-DISCARDED = Text("Demonstration discarded ('undo' brings it back).",
-                 "Vorführung verworfen ('zurück' holt sie wieder).")
+DISCARDED = Text("Demonstration discarded ('undo' right away brings it back).",
+                 "Vorführung verworfen ('zurück' gleich danach holt sie wieder).")
+DISCARDED_EMPTY = Text("Demonstration discarded (it had no steps).", "Vorführung verworfen (sie hatte keine Schritte).")
+NOT_BACK = Text("The demonstration you discarded cannot come back: something happened since. Nothing was undone.",
+                "Die verworfene Vorführung kann nicht wiederkommen: seitdem ist etwas passiert. Nichts wurde "
+                "rückgängig gemacht.")
 BROUGHT_BACK = Text("Back again: the demonstration you discarded ({steps}). Go on showing me.",
                     "Wieder da: die verworfene Vorführung ({steps}). Zeig mir weiter.")
 NOTHING_TO_UNDO = Text("Nothing to undo.", "Nichts rückgängig zu machen.")
@@ -96,6 +100,8 @@ WHICH_EVENT = Text("Which event? I know: {names}.", "Welches Ereignis? Ich kenne
 EVENT = Text("Event: {event}.", "Ereignis: {event}.")
 EVENT_NOT_NOW = Text("“{event}” cannot happen now (nothing changed, not recorded).",
                      "„{event}“ kann jetzt nicht passieren (nichts hat sich geändert, nicht aufgezeichnet).")
+NOT_WITHOUT = Text("“{said}”: {reason}", "„{said}“: {reason}")
+"""A step said by a phrase that needs more than the step ("bring it to the bin" with nothing in hand)."""
 COULD_NOT = Text("I could not {action}: {reason}", "„{action}“ ging nicht: {reason}")
 WHAT_NOW = Text("From here I can: {actions}. Tell me the next step, or say 'done' when the task is finished "
                 "('help' for more).",

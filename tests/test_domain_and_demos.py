@@ -117,6 +117,8 @@ def test_crlf_and_trailing_ascii_blanks_end_a_line_unseen(ball):
     (TINY + 'en_when = ["work hard"]\n', 15, "action Work: 'when' and the phrases that need it"),
     (TINY + 'when = ["Busy"]\nen_when = ["work hard"]\n', 15, "action Work: 'when' names unknown condition 'Busy'"),
     (TINY + 'when = ["Ready"]\nde_when = 3\n', 16, "action Work: 'de_when' must be a list of phrases"),
+    (TINY + 'en = ["work"]\nwhen = ["Ready"]\nen_when = ["Work "]\n', 17,
+     "action Work: 'Work ' is in 'en_when' and a plain phrase of Work"),
 ])
 def test_domain_keys_and_numbers_are_strict(tmp_path, body, line, message):
     path = tmp_path / "domain.toml"
@@ -124,3 +126,9 @@ def test_domain_keys_and_numbers_are_strict(tmp_path, body, line, message):
     with pytest.raises(FormatError) as info:
         load_domain(path)
     assert info.value.message.startswith(message) and info.value.line == line, info.value
+
+
+def test_the_recordings_domain_document_names_what_a_phrase_needs(ball):
+    from teach.observe.markdown import domain_document
+    row = next(line for line in domain_document(ball).splitlines() if "| ApproachBin |" in line)
+    assert "head to the bin, go over to the bin; while BallGrasped: take the ball to the bin" in row

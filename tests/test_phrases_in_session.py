@@ -40,7 +40,7 @@ def test_in_mujoco_only_the_exact_phrase_perturbs(ball, tmp_path):
     replies = manager.handle("take the ball to the bin")  # not the event "take the ball away"
     assert not any(r.text.startswith("Event") for r in replies)
     # and not done with nothing in hand: that would teach "go to the bin" where the teacher meant the ball
-    assert replies[0].text == "I could not take the ball to the bin: first this must be true: the ball is in my hand"
+    assert replies[0].text == "“take the ball to the bin”: first this must be true: the ball is in my hand"
     assert manager.open is None
     manager.handle("go to the bin")
     replies = manager.handle("move the bin")

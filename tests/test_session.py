@@ -560,13 +560,14 @@ def test_cancel_with_nothing_open_says_so(ball, tmp_path):
     session = new_session(ball, tmp_path, lang="de")
     assert session.handle("abbrechen")[0].text == "Keine Vorführung ist offen: es gibt nichts abzubrechen."
     session.handle("Ball finden")
-    assert session.handle("abbrechen")[0].text == "Vorführung verworfen ('zurück' holt sie wieder)."
+    assert session.handle("abbrechen")[0].text == "Vorführung verworfen ('zurück' gleich danach holt sie wieder)."
     assert session.open is None
 
 
 @pytest.mark.parametrize(("lang", "find", "place", "forget", "discarded"), [
-    ("en", "find the ball", "put it in", "forget it", "Demonstration discarded ('undo' brings it back)."),
-    ("de", "Ball finden", "leg ihn rein", "vergiss es", "Vorführung verworfen ('zurück' holt sie wieder).")])
+    ("en", "find the ball", "put it in", "forget it", "Demonstration discarded ('undo' right away brings it back)."),
+    ("de", "Ball finden", "leg ihn rein", "vergiss es",
+     "Vorführung verworfen ('zurück' gleich danach holt sie wieder).")])
 def test_forget_it_drops_an_offer_else_the_demonstration(ball, tmp_path, lang, find, place, forget, discarded):
     """ "forget it" was "I don't know “forget it”"; to an offered way it is a no, else a 'cancel'."""
     session = new_session(ball, tmp_path, lang=lang)
@@ -585,12 +586,18 @@ def test_undo_right_after_cancel_brings_the_demonstration_back(ball, tmp_path):
     assert session.handle("undo")[0].text == ("Back again: the demonstration you discarded (2 steps). "
                                                "Go on showing me.")
     assert [s.action for s in session.open.steps] == [1, 2]
+    assert session.handle("bring den Ball zum Eimer")[0].text.startswith("“bring den Ball zum Eimer”: ")  # as typed
     resumed = SessionManager.resume(settings(tmp_path), ball, SymbolicWorld(ball))  # on disk before it was said
     assert resumed.open is not None and [s.action for s in resumed.open.steps] == [1, 2]
     resumed.close()
     session.handle("grasp the ball")
     session.handle("cancel")
     session.handle("reset")  # something happened since: the world is not where the steps left it
+    assert session.handle("undo")[0].text == ("The demonstration you discarded cannot come back: something happened "
+                                               "since. Nothing was undone.")
+    assert session.handle("undo")[0].text == "Nothing to undo."
+    session.handle("demonstrate")
+    assert session.handle("cancel")[0].text == "Demonstration discarded (it had no steps)."
     assert session.handle("undo")[0].text == "Nothing to undo."
     session.handle("find the ball")
     session.handle("cancel")
@@ -684,11 +691,11 @@ def test_a_refused_step_says_the_way_there(ball, tmp_path, lang, find, place, wa
 
 @pytest.mark.parametrize(("lang", "lines", "refused", "way", "went"), [
     ("en", ("find the ball", "bring it to the bin"),
-     "I could not bring the ball to the bin: first this must be true: the ball is in my hand",
+     "“bring the ball to the bin”: first this must be true: the ball is in my hand",
      "To get there: go to the ball, grasp the ball. Say 'yes' and I do that, then bring the ball to the bin.",
      "take it to the bin"),
     ("de", ("Ball finden", "bring ihn zum Eimer"),
-     "„bring den Ball zum Eimer“ ging nicht: dafür muss erst gelten: ich habe den Ball in der Hand",
+     "„bring den Ball zum Eimer“: dafür muss erst gelten: ich habe den Ball in der Hand",
      "Der Weg dahin: zum Ball gehen, Ball greifen. Sag 'ja', dann tue ich das und danach „bring den Ball zum "
      "Eimer“.", "ab zum Eimer damit")])
 def test_a_phrase_that_needs_the_ball_in_hand_does_not_go_without_it(ball, tmp_path, lang, lines, refused, way,
@@ -797,10 +804,14 @@ def test_an_answer_that_cannot_work_there_says_the_way_there(ball, tmp_path):
     replies = session.handle("grasp the ball")
     assert [r.kind.name for r in replies] == ["ERROR", "INFO", "QUESTION"]
     assert replies[1].text == "To get there: find the ball."
-    replies = session.handle("take the ball to the bin")  # a step, but not one without the ball in hand
-    assert [r.kind.name for r in replies] == ["ERROR", "QUESTION"]  # (no short way: the bin is near already)
-    assert replies[0].text.startswith("I could not take the ball to the bin: first this must be true: ")
-    assert replies[0].text.endswith("the ball is in my hand")
+    for said in ("take the ball to the bin", "take the ball to the bim"):  # a step, not without the ball in hand
+        replies = session.handle(said)
+        if said.endswith("bim"):  # "Did you mean …?": a yes is checked as the answer typed right is
+            replies = session.handle("yes")
+        assert [r.kind.name for r in replies] == ["ERROR", "QUESTION"]  # (no short way: the bin is near already)
+        assert replies[0].text.startswith("“take the ball to the bin”: first this must be true: ")
+        assert replies[0].text.endswith("the ball is in my hand")
+    assert session.pending is not None
 
 
 def test_a_resumed_session_counts_in_words(ball, tmp_path):

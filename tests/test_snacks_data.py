@@ -296,7 +296,7 @@ def test_bringing_the_tray_back_needs_the_tray(domain, tmp_path):
     manager = session("tray-back", domain, world(domain), tmp_path)
     manager.handle("find someone")
     said = [r.text for r in manager.handle("bring the tray back")]
-    assert said[0] == "I could not bring the tray back: first this must be true: I am carrying the tray"
+    assert said[0] == "“bring the tray back”: first this must be true: I am carrying the tray"
     assert manager.open is not None and [s.action for s in manager.open.steps] == [3]
     german = session("tray-back-de", domain, world(domain), tmp_path, "de")
     german.handle("warte, Tablett nehmen, such jemanden")

@@ -115,10 +115,10 @@ _NO_SAID = {
     "en": ("no", "n", "nope", "nah", "not that", "wrong", "no thanks", "no thank you", "that's wrong", "thats wrong",
            "that is wrong", "not right", "that's not right", "thats not right", "that is not right", "don't",
            "do not", "please don't", "you may not", "you can't", "you cannot", "no way", "never", "absolutely not",
-           "certainly not", "better not", "forget it", "forget that", "forget about it"),
+           "certainly not", "better not", "forget it", "forget about it"),
     "de": ("nein", "ne", "nee", "no", "falsch", "nicht das", "nein danke", "das ist falsch", "stimmt nicht",
            "das stimmt nicht", "nicht richtig", "lieber nicht", "bitte nicht", "darfst du nicht", "du darfst nicht",
-           "auf keinen fall", "nie", "niemals", "vergiss es", "vergiss das"),  # "nö" reads "no"
+           "auf keinen fall", "nie", "niemals", "vergiss es"),  # "nö" reads "no"
 }
 
 

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from teach.domain import Domain
+    from teach.domain import ActionDef, Domain
 
 
 def domain_document(domain: Domain) -> str:
@@ -15,11 +15,17 @@ def domain_document(domain: Domain) -> str:
     lines = [f"# Domain {domain.name}", "", "| ID | condition | meaning |", "|---|---|---|"]
     lines += [f"| {i} | {c.name} | {c.en} |" for i, c in enumerate(domain.conditions, 1)]
     lines += ["", "| ID | action | phrases | pre | ram |", "|---|---|---|---|---|"]
-    lines += [f"| {a.id} | {a.name} | {', '.join(a.en)} | {' '.join(map(str, a.pre))} | "
+    lines += [f"| {a.id} | {a.name} | {_phrases(a)} | {' '.join(map(str, a.pre))} | "
               f"{' '.join(map(str, a.ram))} |" for a in domain.actions]
     if domain.goal:
         lines += ["", "Goal: " + " ".join(map(str, domain.goal))]
     return "\n".join(lines)
+
+
+def _phrases(action: ActionDef) -> str:
+    """An action's English phrases, those that mean it only while ``when`` holds marked so."""
+    when = f"; while {' '.join(map(str, action.when))}: {', '.join(action.en_when)}" if action.en_when else ""
+    return ", ".join(action.en) + when
 
 
 def state_document(names: Sequence[str], values: Sequence[bool], action: str | None) -> str:

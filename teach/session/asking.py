@@ -39,7 +39,7 @@ from teach.session.journal import Answered, Asked, Situated, parse_state_text, s
 from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import way_there, why_not
+from teach.session.run_report import phrase_said, way_there, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.symbolic import missing_preconditions
@@ -186,39 +186,41 @@ class Asking:
             if unmet:  # the question stays open and is not paid for again
                 return [Reply(ReplyKind.ERROR, m.NOT_DONE_THERE(self.lang, unmet=unmet)),
                         self._question_reply(question)]
-            answer: str | None = None
-        else:
-            said: Token | None = None  # the step the teacher named instead
-            if yes:
-                answer = question.action
-            else:
-                instead = after_no(line, self.lang)  # "no, find someone"
-                try:
-                    parsed = self.vocabulary.phrases.parse(instead or line, self.lang)
-                except UnknownPhrase:
-                    if instead is None or question.kind not in MUST_KINDS:
-                        raise
-                    # "no, the ball must be in my hand": the no is clear, what to do instead is not
-                    return [Reply(ReplyKind.ERROR, m.NO_TAKEN(self.lang, rest=instead)),
-                            Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]
-                tokens = [t for t in parsed if t.kind == "action"]
-                if len(tokens) != 1:
-                    return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-                said = tokens[0]
-                answer = said.name
-            assert answer is not None
-            domain = self.vocabulary.domain
-            needs = said.needs if said else ()
-            if missing_preconditions(domain, question.state, answer) \
-                    or any(not domain.holds(p, question.state) for p in needs):
-                # as for 'done': an answer the domain file shows cannot work there is not learned
-                # (nor "take the ball to the bin" where the ball is not in hand)
-                reason = why_not(domain, answer, question.state, self.lang, needs)
-                label = said.text if said and needs else domain.action(answer).label(self.lang)
-                return [Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=label, reason=reason)),
-                        *way_there(domain, answer, question.state, self.lang, needs),
-                        self._question_reply(question)]
-        return self.apply_answer(answer, line)
+            return self.apply_answer(None, line)
+        if yes:
+            return self.answer_step(question.action, line)
+        instead = after_no(line, self.lang)  # "no, find someone"
+        try:
+            parsed = self.vocabulary.phrases.parse(instead or line, self.lang)
+        except UnknownPhrase:
+            if instead is None or question.kind not in MUST_KINDS:
+                raise
+            # "no, the ball must be in my hand": the no is clear, what to do instead is not
+            return [Reply(ReplyKind.ERROR, m.NO_TAKEN(self.lang, rest=instead)),
+                    Reply(ReplyKind.QUESTION, m.WHAT_INSTEAD(self.lang))]
+        tokens = [t for t in parsed if t.kind == "action"]
+        if len(tokens) != 1:
+            return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
+        return self.answer_step(tokens[0], line)
+
+    def answer_step(self, step: Token | str | None, said: str) -> list[Reply]:
+        """Answer the pending question with a step (a parsed one, or the one asked about), unless
+        the domain file shows it cannot work there: as for 'done', that is not learned (nor "take
+        the ball to the bin" where the ball is not in hand, nor either read through a typo)."""
+        question = self.pending
+        assert question is not None and step is not None
+        answer, needs = (step, ()) if isinstance(step, str) else (step.name, step.needs)
+        domain = self.vocabulary.domain
+        lacking = missing_preconditions(domain, question.state, answer) \
+            or [p for p in needs if not domain.holds(p, question.state)]
+        if not lacking:
+            return self.apply_answer(answer, said)
+        reason = why_not(domain, answer, question.state, self.lang, needs)
+        refused = m.NOT_WITHOUT(self.lang, said=phrase_said(domain, step, self.lang), reason=reason) \
+            if isinstance(step, Token) and needs else \
+            m.COULD_NOT(self.lang, action=domain.action(answer).label(self.lang), reason=reason)
+        return [Reply(ReplyKind.ERROR, refused), *way_there(domain, answer, question.state, self.lang, needs),
+                self._question_reply(question)]
 
     def _cannot_happen(self, question: Question) -> list[Reply]:
         """The asked-about situation cannot happen: journalled, never asked again, and not paid for."""

@@ -51,8 +51,7 @@ class Verb(Enum):
                        Text("discard the open demonstration ('undo' right after brings it back); also "
                             "'forget it'",
                             "die Vorführung verwerfen ('zurück' gleich danach holt sie wieder); auch 'vergiss es'"),
-                       alone=("forget it", "forget that", "forget about it", "scrap that", "vergiss es",
-                              "vergiss das", "vergiss es einfach"))
+                       alone=("forget it", "forget about it", "vergiss es", "vergiss es einfach"))
     UNDO = _Declared(("undo", "wrong", "that was wrong", "no that was wrong", "no that's wrong", "take that back",
                       "take it back", "oops take that back", "oops", "that's wrong", "that is wrong",
                       "that's not right", "that is not right", "that was not right", "my mistake", "go back",
@@ -394,9 +393,9 @@ learned of when it is done, or the domain's declared goal."""
 WHO_WORDS = {normalize(said) for said in ("who are you", "what are you", "wer bist du", "was bist du")}
 """Whole lines asking who the robot is ("who are you" was "Did you mean 'why are you'?"): greeted."""
 ASKING_SOMEONE = frozenset({"if", "whether", "ob"})
-"""After 'ask', a word that makes the line someone asked by the robot, a step, not 'ask' ("frag ob
-jemand einen Keks will" was "I have no question right now"; snacks offers "frag ob sie etwas
-möchten")."""
+"""After 'ask', a word that makes a line near a domain step that step, not 'ask' ("frag ob jemand
+einen Keks will" was "I have no question right now"; snacks offers "frag ob sie etwas möchten";
+the ball's "ask if you have a question" stays 'ask')."""
 NO_MATTER_WORDS = {normalize(said) for said in ("sorry", "oh sorry", "never mind", "nevermind", "no worries",
                                                 "no problem", "all good", "ok", "okay", "ok then", "alright",
                                                 "all right", "fine", "got it", "i see", "understood",

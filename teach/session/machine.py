@@ -339,11 +339,12 @@ class SessionManager(CompatMembers):
 
     def _phrase_not_command(self, command: Command | None, rest: str, line: str) -> bool:
         """A line that is one of the domain's phrases is that step where it begins with a command that
-        takes no words ("ask if they want something", snacks' offering, was 'ask') or is, as a whole,
+        takes no words ("ask if they want something", snacks' offering, was 'ask'; "ask if …" near
+        one of them is offered as it) or is, as a whole,
         one of a command's everyday sayings but its first word in either language (snacks' "go back"
         is a step; in the ball world, which has none such, it is 'undo')."""
-        if command is Verb.ASK and _first_word(rest) in ASKING_SOMEONE:
-            return True  # "ask if they want a cookie": the domain's step (or the nearest one offered)
+        if command is Verb.ASK and _first_word(rest) in ASKING_SOMEONE and self._near_steps(line):
+            return True  # "ask if anyone wants a cookie": the domain's step (or the nearest one offered)
         if command is None or (bool(rest.strip()) and command.value.argued):
             return False
         if not rest.strip() and normalize(line) in {normalize(command.value.en[0]), normalize(command.value.de[0])}:
@@ -363,7 +364,7 @@ class SessionManager(CompatMembers):
                     return self._act(tokens)
                 if len(tokens) != 1 or tokens[0].kind != "action":
                     return [Reply(ReplyKind.ERROR, m.ONE_ACTION(self.lang))]
-                return self.asking.apply_answer(tokens[0].name, tokens[0].text)
+                return self.asking.answer_step(tokens[0], tokens[0].text)
             if is_no(line, self.lang):
                 return [Reply(ReplyKind.INFO, m.SAY_IT_ANOTHER_WAY(self.lang))]
         waited = after_holding_on(line)
@@ -501,9 +502,10 @@ class SessionManager(CompatMembers):
     def cmd_cancel(self, rest: str) -> list[Reply]:
         if self.open is None:
             return [Reply(ReplyKind.INFO, m.NOTHING_TO_CANCEL(self.lang))]
+        had_steps = self.showing.has_steps
         self.showing.discard()
         self.topic = None
-        return [Reply(ReplyKind.INFO, m.DISCARDED(self.lang))]
+        return [Reply(ReplyKind.INFO, (m.DISCARDED if had_steps else m.DISCARDED_EMPTY)(self.lang))]
 
     def cmd_undo(self, rest: str) -> list[Reply]:
         aside: list[Reply] = []
@@ -673,6 +675,16 @@ class SessionManager(CompatMembers):
             return not any(token.guessed for token in self.phrases.parse(line, self.lang, topic=self.topic))
         except TeachError:
             return False
+
+    def _near_steps(self, line: str) -> bool:
+        """Whether ``line`` reads as the domain's steps, or as near one that it would be offered."""
+        try:
+            self.phrases.parse(line, self.lang, topic=self.topic)
+        except UnknownPhrase as unknown:
+            return unknown.suggestion is not None and unknown.suggestion.candidate.kind == "action"
+        except TeachError:
+            return False
+        return True
 
     def _instead(self, steps: str) -> list[Reply]:
         """"oops, I meant go to the ball": the last step taken back (if one is open), then these."""

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from teach import messages as m
 from teach.bt.nodes import Action, Node, Status, walk
 from teach.bt.tick import TickResult
+from teach.dialogue.phrases import Token
 from teach.dialogue.questions import join_words
 from teach.domain import Domain, Literal, State
 from teach.messages import Lang
@@ -70,6 +71,14 @@ def why_not(domain: Domain, action: str, state: State, lang: Lang, needs: tuple[
     for it ``needs``), if it has any."""
     missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state, needs)]
     return m.IT_NEEDS(lang, conditions=join_words(missing, lang)) if missing else m.IT_DID_NOT_WORK(lang)
+
+
+def phrase_said(domain: Domain, step: Token, lang: Lang) -> str:
+    """How to quote the phrase a step was refused for: as matched, where it is one of the session's
+    language ("bring it to the bin": "bring the ball to the bin"), else as typed (its text is then
+    the step's label, which needs none of what the phrase does)."""
+    action = domain.action(step.name)
+    return step.text if step.text in (action.de_when if lang == Lang.DE else action.en_when) else step.said or step.text
 
 
 def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:

@@ -21,7 +21,7 @@ from teach.open_demonstration import OpenDemonstration, TakenBack, WorldEventSte
 from teach.session.journal import Situated
 from teach.session.record import SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import already_so, untrue_now, way_steps, why_not
+from teach.session.run_report import already_so, phrase_said, untrue_now, way_steps, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
 from teach.world.protocol import ActResult, RunResult, TeachingWorld, WorldEvent
@@ -100,7 +100,8 @@ class Showing:
     def discard(self) -> None:
         """'cancel': the open demonstration is dropped, kept only for an 'undo' straight after."""
         assert self.record.open is not None
-        self._discarded = _Discarded(self.record.open, self.world.state(), self._taught())
+        kept = self.record.open.steps
+        self._discarded = _Discarded(self.record.open, self.world.state(), self._taught()) if kept else None
         self.close()
 
     def _taught(self) -> int:
@@ -109,11 +110,14 @@ class Showing:
 
     def bring_back(self) -> str | None:
         """Reopen what 'cancel' discarded, while nothing happened since (no demonstration open, the
-        world as it was left, nothing journalled); None otherwise. Said once it is on disk."""
+        world as it was left, nothing journalled), said once it is on disk; where something did, say
+        that it cannot come back (an 'undo' meant for it took back a learned demonstration). None
+        where nothing was discarded."""
         discarded, self._discarded = self._discarded, None
-        if discarded is None or self.record.open is not None or self.world.state() != discarded.world \
-                or self._taught() != discarded.journalled:
+        if discarded is None or self.record.open is not None:
             return None
+        if self.world.state() != discarded.world or self._taught() != discarded.journalled:
+            return m.NOT_BACK(self.lang)
         self.record.open = discarded.demonstration
         self.record.save_open()
         return m.BROUGHT_BACK(self.lang, steps=steps_said(len(discarded.demonstration.steps), self.lang))
@@ -191,7 +195,8 @@ class Showing:
                 # that step where the teacher meant another, so it is refused with what is missing
                 self.just_done = None
                 reason = why_not(domain, token.name, before, self.lang, token.needs)
-                replies.append(Reply(ReplyKind.ERROR, m.COULD_NOT(self.lang, action=token.text, reason=reason)))
+                said = phrase_said(domain, token, self.lang)
+                replies.append(Reply(ReplyKind.ERROR, m.NOT_WITHOUT(self.lang, said=said, reason=reason)))
                 replies += self._way_offered(token.name, token.text, before, token.needs)
                 break
             result = self.world.act(token.name)
