@@ -986,3 +986,11 @@ def test_weiter_with_nothing_asked_goes_on(ball, tmp_path):
     session.handle("neu")
     said = [r.text for r in session.handle("weiter")]
     assert "→ Ball finden" in said and any(text.startswith("Ich habe gemacht") for text in said), said
+
+
+@pytest.mark.parametrize(("lang", "line", "said"), [
+    ("en", "ask if you have a question", "I have no question right now."),
+    ("de", "frag ob du eine Frage hast", "Ich habe gerade keine Frage.")])
+def test_ask_if_is_the_command_where_no_step_is_near(ball, tmp_path, lang, line, said):
+    """Where the domain has no step of asking someone, "ask if …" is still 'ask'."""
+    assert new_session(ball, tmp_path, lang=lang).handle(line)[0].text == said
