@@ -994,3 +994,13 @@ def test_weiter_with_nothing_asked_goes_on(ball, tmp_path):
 def test_ask_if_is_the_command_where_no_step_is_near(ball, tmp_path, lang, line, said):
     """Where the domain has no step of asking someone, "ask if …" is still 'ask'."""
     assert new_session(ball, tmp_path, lang=lang).handle(line)[0].text == said
+
+
+def test_forget_it_to_a_question_passes_it_by(ball, tmp_path):
+    """ "forget it" to a question was "What should I do there instead?"."""
+    session = new_session(ball, tmp_path)
+    session.handle(SEQUENCE)
+    session.handle("done")
+    session.handle("ask")
+    assert session.handle("forget it")[0].text == "All right, I keep being careful there."
+    assert session.pending is None

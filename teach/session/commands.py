@@ -207,7 +207,9 @@ NONSENSE_WORDS = {normalize(said) for said in (
 """Answers doubting the asked-about situation ("that makes no sense"): asked whether it cannot
 happen at all, never taken as 'that cannot happen' on a guess."""
 SKIP_WORDS = set(Verb.SKIP.names) | {"dont know", "don t know", "i dont know", "i don t know", "weiss nicht",
-                                     "ich weiss nicht", "keine ahnung", "uberspringen"}
+                                     "ich weiss nicht", "keine ahnung", "uberspringen", "forget it",
+                                     "forget about it", "vergiss es"}
+"""Answers that pass a question by ("forget it" to one was "What should I do there instead?")."""
 HESITATIONS = INTERJECTIONS | {"well", "na", "also"}
 """Sounds and words a hesitant answer starts with, set aside before it is compared ("hmm, I think so")."""
 
