@@ -25,7 +25,7 @@ BALL = ROOT / "demos" / "ball" / "domain.toml"
 
 def _round_trip_texts() -> list[str]:
     domain = load_domain(BALL)
-    phrases = [" ".join(spoken_words(p)) for action in domain.actions for p in action.en]
+    phrases = [" ".join(spoken_words(p)) for action in domain.actions for p in action.said("en")]
     return list(dict.fromkeys(phrases + [command.usage("en").split()[0] for command in COMMANDS] + list(SAYINGS)))
 
 
