@@ -39,7 +39,7 @@ def test_each_phrase_names_one_action_or_one_event(path):
         key = PhraseBook(domain, events).key  # as the session reads a line (block "a" is kept)
         meanings: dict[tuple[str, ...], set[str]] = defaultdict(set)
         for action in domain.actions:
-            for phrase in (*action.en, *action.de):
+            for phrase in action.said():
                 meanings[key(phrase)].add(f"action {action.name}")
         for name, (english, german) in events.items():
             for phrase in (*english, *german):
