@@ -110,9 +110,9 @@ class Showing:
 
     def bring_back(self) -> str | None:
         """Reopen what 'cancel' discarded, while nothing happened since (no demonstration open, the
-        world as it was left, nothing journalled), said once it is on disk; where something did, say
-        that it cannot come back (an 'undo' meant for it took back a learned demonstration). None
-        where nothing was discarded."""
+        world as it was left, nothing journalled), said once it is on disk. Where something did, it
+        says that it cannot come back, and nothing else is undone (the 'undo' was meant for it, not
+        for the last learned demonstration). None where nothing was discarded."""
         discarded, self._discarded = self._discarded, None
         if discarded is None or self.record.open is not None:
             return None
