@@ -39,10 +39,9 @@ from teach.session.journal import Answered, Asked, Situated, parse_state_text, s
 from teach.session.learning import DONE_ABOUT, Learning
 from teach.session.record import IMPOSSIBLE, SessionRecord
 from teach.session.replies import Reply, ReplyKind
-from teach.session.run_report import phrase_said, way_there, why_not
+from teach.session.run_report import lacked, phrase_said, way_there, why_not
 from teach.session.turn import Turn
 from teach.session.vocabulary import Vocabulary
-from teach.symbolic import missing_preconditions
 
 QUESTIONS_PER_TURN = 2
 MIN_DEMOS_BEFORE_ASKING = 2
@@ -211,9 +210,7 @@ class Asking:
         assert question is not None and step is not None
         answer, needs = (step, ()) if isinstance(step, str) else (step.name, step.needs)
         domain = self.vocabulary.domain
-        lacking = missing_preconditions(domain, question.state, answer) \
-            or [p for p in needs if not domain.holds(p, question.state)]
-        if not lacking:
+        if not lacked(domain, answer, question.state, needs):
             return self.apply_answer(answer, said)
         reason = why_not(domain, answer, question.state, self.lang, needs)
         refused = m.NOT_WITHOUT(self.lang, said=phrase_said(domain, step, self.lang), reason=reason) \

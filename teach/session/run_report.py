@@ -69,7 +69,7 @@ def tried_lines(failed: list[tuple[str, State]], domain: Domain, lang: Lang) -> 
 def why_not(domain: Domain, action: str, state: State, lang: Lang, needs: tuple[Literal, ...] = ()) -> str:
     """Why an action failed, in words: the preconditions it lacked (and what the teacher's phrase
     for it ``needs``), if it has any."""
-    missing = [domain.condition(p.name).label(lang, p.value) for p in _lacked(domain, action, state, needs)]
+    missing = [domain.condition(p.name).label(lang, p.value) for p in lacked(domain, action, state, needs)]
     return m.IT_NEEDS(lang, conditions=join_words(missing, lang)) if missing else m.IT_DID_NOT_WORK(lang)
 
 
@@ -83,7 +83,7 @@ def phrase_said(domain: Domain, step: Token, lang: Lang) -> str:
 
 def untrue_now(domain: Domain, action: str, state: State, lang: Lang) -> str:
     """The preconditions an action lacks, said as they are ("the bin is out of reach")."""
-    return join_words([domain.condition(p.name).label(lang, not p.value) for p in _lacked(domain, action, state)], lang)
+    return join_words([domain.condition(p.name).label(lang, not p.value) for p in lacked(domain, action, state)], lang)
 
 
 def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
@@ -96,13 +96,15 @@ def already_so(domain: Domain, action: str, state: State, lang: Lang) -> str:
     if not effects or not all(domain.holds(p, state) for p in effects) or not any(p.value for p in effects):
         return ""
     undone = {(p.name, not p.value) for p in effects}
-    if any((p.name, p.value) not in undone for p in _lacked(domain, action, state)):
+    if any((p.name, p.value) not in undone for p in lacked(domain, action, state)):
         return ""
     # said by what it makes true ("ich halte a und b ist frei", not also "nicht: a liegt auf b, …")
     return join_words([domain.condition(p.name).label(lang, p.value) for p in effects if p.value], lang)
 
 
-def _lacked(domain: Domain, action: str, state: State, needs: tuple[Literal, ...] = ()) -> list[Literal]:
+def lacked(domain: Domain, action: str, state: State, needs: tuple[Literal, ...] = ()) -> list[Literal]:
+    """What ``action`` lacks in ``state`` by the domain's model, and of what the phrase it was said
+    by ``needs``: empty where it can be done as said."""
     wanted = dict.fromkeys((*domain.action(action).pre, *needs))
     return [p for p in wanted if not domain.holds(p, state)]
 

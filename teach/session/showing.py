@@ -189,8 +189,8 @@ class Showing:
                 index += 1
                 continue
             label = domain.action(token.name).label(self.lang)
-            before = self.world.state() if token.needs else ()
-            if any(not domain.holds(p, before) for p in token.needs):
+            before = self.world.state() if token.needs else None  # read only for a phrase that needs something
+            if before is not None and any(not domain.holds(p, before) for p in token.needs):
                 # "take the ball to the bin" without the ball: going there empty-handed would teach
                 # that step where the teacher meant another, so it is refused with what is missing
                 self.just_done = None
